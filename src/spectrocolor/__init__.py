@@ -1,0 +1,70 @@
+"""spectrocolor: spectra into colour, exactly.
+
+The public names below are loaded lazily, so ``import spectrocolor`` costs only what
+the names you use need (the core needs NumPy and SciPy; plotting, images, the app and
+dask are optional extras that are imported only by the functions that use them).
+"""
+
+from __future__ import annotations
+
+import importlib
+
+__version__ = "0.1.0"
+
+# public name -> module (relative to this package) that defines it
+_PUBLIC: dict[str, str] = {
+    # spectra
+    "Spectrum": "spectrum",
+    "SpectrumError": "errors",
+    "ColorimetryError": "errors",
+    "wavelength_grid": "spectrum",
+    "read_spectra": "spectrum_io",
+    "write_spectra": "spectrum_io",
+    # standard data
+    "observer": "observers",
+    "observer_names": "observers",
+    "illuminant": "illuminants",
+    "illuminant_names": "illuminants",
+    "blackbody": "illuminants",
+    "daylight": "illuminants",
+    "daylight_xy": "illuminants",
+    # colorimetry
+    "weights": "colorimetry",
+    "tristimulus": "colorimetry",
+    "white_point": "colorimetry",
+    "xy": "coordinates",
+    "xyY": "coordinates",
+    "XYZ_from_xyY": "coordinates",
+    "uv_1960": "coordinates",
+    "uv_1976": "coordinates",
+    "xy_from_uv_1976": "coordinates",
+    "lab": "coordinates",
+    "XYZ_from_lab": "coordinates",
+    "lch": "coordinates",
+    "delta_e_76": "differences",
+    "delta_e_2000": "differences",
+    # chromaticity
+    "spectral_locus": "chromaticity",
+    "dominant_wavelength": "chromaticity",
+    "DominantWavelength": "chromaticity",
+    "colorimetric_purity": "chromaticity",
+    "cct": "temperature",
+    "CCT": "temperature",
+    "xy_from_cct": "temperature",
+}
+
+
+def __getattr__(name: str):
+    module = _PUBLIC.get(name)
+    if module is None:
+        raise AttributeError(f"module 'spectrocolor' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_PUBLIC])
+
+
+__all__ = sorted(_PUBLIC)

@@ -1,0 +1,37 @@
+"""Shared test fixtures and switches."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+SEEDS = REPO.parent / "shared" / "seeds"
+ARTIFACTS = REPO / "artifacts"
+CHROMIUM = Path("/usr/bin/chromium")
+
+
+@pytest.fixture(scope="session")
+def artifacts_dir() -> Path:
+    """Folder for pictures and screenshots the tests write for a person to look at."""
+    ARTIFACTS.mkdir(exist_ok=True)
+    return ARTIFACTS
+
+
+def pytest_collection_modifyitems(config, items):
+    """Browser tests need Debian's Chromium; skip them loudly here, fail in CI."""
+    if CHROMIUM.exists():
+        return
+    if os.environ.get("SPECTROCOLOR_REQUIRE_BROWSER"):
+        raise pytest.UsageError(
+            f"{CHROMIUM} is missing but SPECTROCOLOR_REQUIRE_BROWSER is set: "
+            "install it with `apt-get install chromium`"
+        )
+    skip = pytest.mark.skip(
+        reason=f"BROWSER TESTS SKIPPED: {CHROMIUM} not found; `apt-get install chromium` to run them"
+    )
+    for item in items:
+        if "browser" in item.keywords:
+            item.add_marker(skip)
