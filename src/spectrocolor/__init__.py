@@ -51,6 +51,27 @@ _PUBLIC: dict[str, str] = {
     "cct": "temperature",
     "CCT": "temperature",
     "xy_from_cct": "temperature",
+    # display
+    "RGBSpace": "display.spaces",
+    "rgb_space": "display.spaces",
+    "rgb_space_names": "display.spaces",
+    "render": "display.render",
+    "Rendering": "display.render",
+    "adapt": "display.adaptation",
+    "adaptation_matrix": "display.adaptation",
+    "max_object_rgb": "display.normalise",
+    "white_scale": "display.normalise",
+    "transfer": "display.transfer",
+    "transfer_names": "display.transfer",
+    "spectra_excitation_table": "display.transfer",
+    "to_codes": "display.transfer",
+    "from_codes": "display.transfer",
+    # pictures and plots (Pillow / matplotlib imported only when called)
+    "wavelength_tint": "pictures",
+    "write_swatches": "pictures",
+    "write_strip": "pictures",
+    "chromaticity_diagram": "plot",
+    "spectrum_plot": "plot",
 }
 
 

@@ -1,0 +1,287 @@
+"""What the explorer shows, computed with the library: one function per API answer.
+
+Every number the page displays comes from here (or, for the interactive repaint of a drag,
+from the weights and display matrix that :func:`model` serves, checked against :func:`evaluate`
+by the tests). The page's distributions are bin levels 0..``FULL_LEVEL`` (SPECTRA: 0-30); a
+distribution is the relative factor ``levels / FULL_LEVEL`` of a reference light: the equal-energy
+spectrum E (settings 1, 2, 3 and 5, where the full spectrum is the white, Y = 100), or the
+illuminant of setting 4 (the samples are reflectances; the perfect white has Y = 100).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+import spectrocolor as sc
+from spectrocolor.display.gamut import DEFAULT_TOLERANCE
+from spectrocolor.display.transfer import LevelTable, PowerLaw, SRGBCurve
+
+from . import presets as P
+
+FULL_LEVEL = P.FULL_LEVEL
+START_NM, STOP_NM = P.START_NM, P.STOP_NM
+STEPS_NM = (10.0, 5.0, 2.0, 1.0)
+OBSERVERS = {"1931": "CIE 1931 2°", "1964": "CIE 1964 10°", "2015-2": "CIE 2015 2°",
+             "2015-10": "CIE 2015 10°"}
+DISPLAYS = ("sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy")
+GAMUTS = ("flag", "clip", "preserve-luminance", "desaturate")
+NORMALISATIONS = ("fixed", "per-colour")
+CHANNELS = ("R", "G", "B")
+
+
+def grid(step_nm: float) -> np.ndarray:
+    """The explorer's wavelength grid, 400-700 nm at ``step_nm`` (10 nm = SPECTRA's 31 bins)."""
+    return sc.wavelength_grid(START_NM, STOP_NM, step_nm)
+
+
+def _reference(wavelengths_nm: np.ndarray, illuminant_levels):
+    """The illuminant argument for the library: E, or the page's illuminant levels."""
+    if illuminant_levels is None:
+        return "E"
+    return sc.Spectrum(wavelengths_nm, np.asarray(illuminant_levels, dtype=float))
+
+
+def fixed_scale(space: str, W: np.ndarray) -> float:
+    """SPECTRA's alternative A: the largest channel any 0 <= f <= full can drive (note 10)."""
+    return float(sc.max_object_rgb(space, W).max())
+
+
+def _none_nan(v: float):
+    return float(v) if np.isfinite(v) else None
+
+
+def _transfer_description(space) -> dict:
+    t = space.transfer
+    if isinstance(t, SRGBCurve):
+        return {"kind": "srgb", "threshold": t.threshold, "name": t.name}
+    if isinstance(t, PowerLaw):
+        return {"kind": "power", "gamma": t.gamma, "name": t.name}
+    if isinstance(t, LevelTable):
+        return {"kind": "levels", "levels": t.levels.tolist(), "name": t.name}
+    return {"kind": "server", "name": getattr(t, "name", type(t).__name__)}
+
+
+def model(step_nm: float, observer: str, display: str, illuminant_levels=None) -> dict:
+    """Everything the page needs to draw and to repaint a drag without a round trip.
+
+    ``weights`` (K x 3) and ``matrix_from_XYZ`` (3 x 3) reproduce :func:`evaluate`'s XYZ and
+    linear RGB; ``fixed_scale`` is the divisor of normalisation A; ``transfer`` names the
+    encoding. The locus, gamut triangle, white and bar tints are for drawing only.
+    """
+    from spectrocolor.pictures import wavelength_tint
+
+    wl = grid(step_nm)
+    reference = _reference(wl, illuminant_levels)
+    W = sc.weights(wl, observer, reference)
+    space = sc.rgb_space(display)
+    white_XYZ = np.ones(len(wl)) @ W
+    locus = sc.spectral_locus(observer)
+    keep = (locus.wavelengths_nm >= 380) & (locus.wavelengths_nm <= 700)
+    tints = np.asarray(wavelength_tint(wl), dtype=float)
+    return {
+        "wavelengths_nm": wl.tolist(),
+        "full_level": FULL_LEVEL,
+        "observer": observer,
+        "display": space.name,
+        "weights": (np.asarray(W) / FULL_LEVEL).tolist(),
+        "weights_per": "level",
+        "matrix_from_XYZ": np.asarray(space.matrix_from_XYZ).tolist(),
+        "fixed_scale": fixed_scale(display, W),
+        "tolerance": DEFAULT_TOLERANCE,
+        "transfer": _transfer_description(space),
+        "bit_depth": 6 if isinstance(space.transfer, LevelTable) else 8,
+        "white_XYZ": white_XYZ.tolist(),
+        "white_xy": sc.xy(white_XYZ).tolist(),
+        "display_white_xy": np.asarray(space.white_xy).tolist(),
+        "primaries_xy": np.asarray(space.primaries_xy).tolist(),
+        "locus": {"wavelengths_nm": locus.wavelengths_nm[keep].tolist(),
+                  "xy": np.asarray(locus.xy)[keep].tolist()},
+        "tints": np.clip(tints, 0, 1).tolist(),
+    }
+
+
+def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_levels=None,
+             pairs=()) -> dict:
+    """Colorimetry and display rendering of up to a few distributions (bin levels).
+
+    Returns per distribution: XYZ (Y = 100 for the full spectrum / perfect white), xy,
+    dominant or complementary wavelength and excitation purity relative to the reference
+    white, CIELAB, the rendering (linear RGB, codes, flags) and a status line; per pair, ΔE00.
+    """
+    wl = grid(step_nm)
+    reference = _reference(wl, illuminant_levels)
+    levels = np.asarray(spectra, dtype=float)
+    XYZ = sc.tristimulus(sc.Spectrum(wl, levels / FULL_LEVEL), observer, reference)
+    white_XYZ = sc.tristimulus(sc.Spectrum.constant(1.0, wl), observer, reference)
+    xy = sc.xy(XYZ)
+    white_xy = sc.xy(white_XYZ)
+    lit = XYZ[:, 1] > 0
+    dom_nm = np.full(len(levels), np.nan)
+    dom_comp = np.zeros(len(levels), bool)
+    purity = np.full(len(levels), np.nan)
+    if lit.any():
+        d = sc.dominant_wavelength(xy[lit], white_xy, observer)
+        dom_nm[lit] = d.wavelength_nm
+        dom_comp[lit] = d.complementary
+        purity[lit] = d.excitation_purity
+    W = sc.weights(wl, observer, reference)
+    scale = fixed_scale(display, W) if normalise == "fixed" else None
+    r = sc.render(XYZ, display, normalise=normalise, gamut=gamut, scale=scale)
+    lab = sc.lab(XYZ, white_XYZ)
+    colours = []
+    for i in range(len(levels)):
+        negative = [c for c, n in zip(CHANNELS, r.negative[i], strict=True) if n]
+        over = [c for c, o in zip(CHANNELS, r.over[i], strict=True) if o]
+        if not lit[i]:
+            status = "black"
+        elif not r.in_gamut[i]:
+            what = []
+            if negative:
+                what.append(f"{', '.join(negative)} negative")
+            if over:
+                what.append(f"{', '.join(over)} above 1")
+            shown = {"flag": "shown black", "clip": "channels clipped",
+                     "preserve-luminance": "negative channels zeroed at constant Y",
+                     "desaturate": "desaturated at constant Y"}[gamut]
+            status = f"cannot be reproduced ({'; '.join(what)}): {shown}"
+        elif normalise == "per-colour":
+            status = "Optimised!"
+        else:
+            status = "ok"
+        colours.append({
+            "XYZ": XYZ[i].tolist(),
+            "xy": [_none_nan(v) for v in xy[i]],
+            "dominant_nm": _none_nan(dom_nm[i]),
+            "complementary": bool(dom_comp[i]),
+            "purity": _none_nan(purity[i]),
+            "lab": [_none_nan(v) for v in lab[i]],
+            "rgb_unmapped": r.rgb_unmapped[i].tolist(),
+            "rgb_linear": r.rgb_linear[i].tolist(),
+            "rgb_encoded": r.rgb_encoded[i].tolist(),
+            "codes": [int(c) for c in r.codes[i]],
+            "in_gamut": bool(r.in_gamut[i]),
+            "negative": negative,
+            "over": over,
+            "scale": float(np.asarray(r.scale).reshape(-1)[i if np.ndim(r.scale) else 0]),
+            "status": status,
+        })
+    delta = [float(sc.delta_e_2000(lab[a], lab[b])) for a, b in pairs]
+    return {
+        "colours": colours,
+        "delta_e_2000": delta,
+        "white_XYZ": white_XYZ.tolist(),
+        "white_xy": white_xy.tolist(),
+        "normalise": r.normalise,
+        "gamut": r.gamut,
+        "display": r.space,
+        "bit_depth": r.bit_depth,
+    }
+
+
+def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
+    """The smoothest distribution (0..full) with the same XYZ as ``target_levels``.
+
+    Uses :func:`spectrocolor.smoothest_reflectance` with bounds 0 <= ρ <= 1 (van Trigt, seed 004)
+    under E (or the given illuminant), on the page's grid.
+    """
+    wl = grid(step_nm)
+    reference = _reference(wl, illuminant_levels)
+    target = np.asarray(target_levels, dtype=float) / FULL_LEVEL
+    XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer, reference)
+    rho = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
+                                   wavelengths=(START_NM, STOP_NM, float(step_nm)), bounds="unit")
+    values = np.asarray(rho.values, dtype=float)
+    if rho.wavelengths_nm.shape != wl.shape or not np.allclose(rho.wavelengths_nm, wl):
+        values = rho.resample(wl).values
+    levels = values * FULL_LEVEL
+    got = sc.tristimulus(sc.Spectrum(wl, values), observer, reference)
+    return {"levels": levels.tolist(), "XYZ_target": XYZ.tolist(), "XYZ_metamer": got.tolist()}
+
+
+def resolve(values, wavelengths_nm: np.ndarray, level: int | None = None) -> list:
+    """A preset's levels on the grid: listed data (resampled if the grid is finer), or a
+    named generated distribution (CIE D65/A scaled to a peak of 30, E, a constant level)."""
+    if isinstance(values, str):
+        if values in ("D65", "A"):
+            s = sc.illuminant(values, wavelengths_nm).values
+            return (s * FULL_LEVEL / s.max()).tolist()
+        if values == "E":
+            return [float(FULL_LEVEL)] * len(wavelengths_nm)
+        raise ValueError(f"unknown generated preset {values!r}")
+    coarse = sc.Spectrum(grid(10.0), np.asarray(values, dtype=float))
+    return coarse.resample(wavelengths_nm, "linear").values.tolist()
+
+
+def presets(step_nm: float) -> dict:
+    """All five settings' defaults on the grid of ``step_nm`` (see :mod:`.presets`)."""
+    wl = grid(step_nm)
+
+    def one(key, name, values):
+        if values == "sunset":
+            return {"key": key, "name": name, "cycle": [
+                {"d": d, "levels": P.sunset(d, wl).tolist()} for d in P.SUNSET_D]}
+        if values == "level":
+            return {"key": key, "name": name, "cycle": [
+                {"level": v, "levels": [float(v)] * len(wl)} for v in range(FULL_LEVEL + 1)]}
+        return {"key": key, "name": name, "levels": resolve(values, wl)}
+
+    return {
+        "wavelengths_nm": wl.tolist(),
+        "full_level": FULL_LEVEL,
+        "setting1": [one(*p) for p in P.SETTING1],
+        "setting2": {"left": [one(*p) for p in P.SETTING2_LEFT],
+                     "right": [one(*p) for p in P.SETTING2_RIGHT]},
+        "setting3": [{"key": k, "name": n, "left": resolve(a, wl), "right": resolve(b, wl)}
+                     for k, n, a, b in P.SETTING3],
+        "setting4": {"illuminants": [one(*p) for p in P.SETTING4_ILLUMINANTS],
+                     "samples": [{"key": k, "name": n, "left": resolve(a, wl),
+                                  "right": resolve(b, wl)} for k, n, a, b in P.SETTING4_SAMPLES]},
+        "setting5": [{"key": k, "name": n, "left": resolve(a, wl), "right": resolve(b, wl)}
+                     for k, n, a, b in P.SETTING5],
+    }
+
+
+def import_spectra(path, step_nm: float, method: str, scale: str) -> dict:
+    """Read a user's spectra (CSV/JSON) and resample them explicitly onto the page's grid.
+
+    ``scale``: ``"peak"`` (each spectrum scaled so its peak in 400-700 nm is the full level),
+    ``"unit"`` (values are factors 0-1) or ``"levels"`` (values are already 0-30).
+    """
+    s = sc.read_spectra(path)
+    wl = grid(step_nm)
+    lo, hi = float(s.wavelengths_nm[0]), float(s.wavelengths_nm[-1])
+    if lo > START_NM or hi < STOP_NM:
+        raise sc.SpectrumError(
+            f"file covers {lo:g}-{hi:g} nm; the explorer needs {START_NM:g}-{STOP_NM:g} nm and "
+            "never extrapolates")
+    r = s.resample(wl, method)
+    values = np.atleast_2d(r.values)
+    if scale == "peak":
+        peak = values.max(axis=-1, keepdims=True)
+        if np.any(peak <= 0):
+            raise sc.SpectrumError("a spectrum is zero everywhere in 400-700 nm; cannot scale")
+        values = values / peak * FULL_LEVEL
+    elif scale == "unit":
+        values = values * FULL_LEVEL
+    if values.min() < 0 or values.max() > FULL_LEVEL * (1 + 1e-9):
+        raise sc.SpectrumError(
+            f"after scaling '{scale}' the levels run from {values.min():.4g} to {values.max():.4g}; "
+            f"they must lie in 0-{FULL_LEVEL} (choose scale 'peak' or 'unit')")
+    names = list(s.names) if s.names else [f"spectrum {i + 1}" for i in range(len(values))]
+    step = np.diff(s.wavelengths_nm)
+    grid_text = (f"{lo:g}-{hi:g} nm, {len(s.wavelengths_nm)} samples"
+                 + (f" at {step[0]:g} nm" if step.size and np.allclose(step, step[0]) else ""))
+    return {
+        "names": names,
+        "levels": np.clip(values, 0, FULL_LEVEL).tolist(),
+        "note": f"read {len(values)} spectra on {grid_text}; resampled to {len(wl)} bins "
+                f"({START_NM:g}-{STOP_NM:g} nm at {step_nm:g} nm) by {method} interpolation, "
+                f"scale '{scale}'",
+    }
+
+
+def export_spectra(step_nm: float, names, spectra, fmt: str, path) -> None:
+    """Write the page's distributions (levels 0..30) to ``path`` as CSV or JSON."""
+    wl = grid(step_nm)
+    s = sc.Spectrum(wl, np.asarray(spectra, dtype=float), names=list(names))
+    sc.write_spectra(s, path)

@@ -1,0 +1,154 @@
+"""Out-of-gamut strategies for linear RGB: flag, clip, preserve-luminance, desaturate.
+
+All functions take ``rgb_linear`` of shape ``(..., 3)`` (already normalised: 1 = full drive)
+and return a new array of the same shape. A colour is *in gamut* when every channel lies in
+[-tolerance, 1 + tolerance]; in-gamut colours are returned unchanged except that channels within
+the tolerance band are set exactly to 0 or 1.
+
+References
+----------
+D. Zawischa, How to calculate and render colours -- thin films as an example, eqs. 20-21.
+P. Sällström (1999), USIP Report 99-05, STEP 3 ("cannot be reproduced").
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ColorimetryError
+
+__all__ = [
+    "GAMUT_STRATEGIES",
+    "DEFAULT_TOLERANCE",
+    "gamut_flags",
+    "apply_gamut",
+    "flag_black",
+    "clip",
+    "preserve_luminance",
+    "desaturate",
+]
+
+GAMUT_STRATEGIES = ("flag", "clip", "preserve-luminance", "desaturate")
+
+#: Channels within this distance of [0, 1] count as in gamut (absorbs round-off such as the
+#: 1 + 2e-16 that the white of a space can produce).
+DEFAULT_TOLERANCE = 1e-9
+
+
+def _rgb(rgb_linear) -> np.ndarray:
+    rgb = np.asarray(rgb_linear, dtype=float)
+    if rgb.ndim == 0 or rgb.shape[-1] != 3:
+        raise ColorimetryError(
+            f"rgb_linear must have shape (..., 3), got {np.shape(rgb_linear)}"
+        )
+    return rgb
+
+
+def gamut_flags(rgb_linear, tolerance: float = DEFAULT_TOLERANCE):
+    """Per-channel flags ``negative`` and ``over`` (> 1) and per-colour ``in_gamut``.
+
+    Returns
+    -------
+    in_gamut : ndarray bool (...,)
+    negative : ndarray bool (..., 3)
+    over : ndarray bool (..., 3)
+
+    NaN channels are neither negative nor over; a colour with NaN is not in gamut.
+    """
+    rgb = _rgb(rgb_linear)
+    negative = rgb < -tolerance
+    over = rgb > 1 + tolerance
+    in_gamut = ~(negative | over).any(axis=-1) & ~np.isnan(rgb).any(axis=-1)
+    return in_gamut, negative, over
+
+
+def _snap(rgb: np.ndarray, tolerance: float) -> np.ndarray:
+    out = rgb.copy()
+    out[(out < 0) & (out >= -tolerance)] = 0.0
+    out[(out > 1) & (out <= 1 + tolerance)] = 1.0
+    return out
+
+
+def flag_black(rgb_linear, tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
+    """SPECTRA's strategy: out-of-gamut colours are shown black (seed 002, STEP 3)."""
+    rgb = _snap(_rgb(rgb_linear), tolerance)
+    in_gamut, _, _ = gamut_flags(rgb, tolerance)
+    return np.where(in_gamut[..., None], rgb, 0.0)
+
+
+def clip(rgb_linear, tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
+    """Each channel clipped to [0, 1] independently (changes hue, saturation and luminance)."""
+    return np.clip(_snap(_rgb(rgb_linear), tolerance), 0.0, 1.0)
+
+
+def preserve_luminance(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
+    """Zawischa's eqs. 20-21 for any number of negative channels at once, then clip above 1.
+
+    Negative channels are set to 0 and the remaining channels are multiplied by
+    ``Y / (Y - sum_neg Y_c c) = Y / sum_pos Y_c c`` so that the luminance
+    ``Y = Y_R R + Y_G G + Y_B B`` is kept exactly. The seed's Fortran applies the correction
+    channel by channel inside its loop, after earlier channels were already gamma-encoded, so a
+    colour with two negative channels there gets a wrong luminance; here all negatives are
+    handled in one step. A colour whose luminance is <= 0 becomes black. Channels that exceed
+    1 after the correction are clipped to 1; only then is Y not kept (reported by the caller
+    through ``over``).
+
+    Parameters
+    ----------
+    rgb_linear : (..., 3)
+    luminance_row : (3,)
+        Y of each primary at full drive (``RGBSpace.luminance_row``); any positive scale.
+    """
+    rgb = _snap(_rgb(rgb_linear), tolerance)
+    y_c = np.asarray(luminance_row, dtype=float)
+    contributions = rgb * y_c
+    Y = contributions.sum(axis=-1, keepdims=True)
+    positive_part = np.where(rgb > 0, contributions, 0.0).sum(axis=-1, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        factor = np.where((Y > 0) & (positive_part > 0), Y / positive_part, 0.0)
+    out = np.where(rgb > 0, rgb * factor, 0.0)
+    return np.clip(out, 0.0, 1.0)
+
+
+def desaturate(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
+    """Move toward the white at constant luminance, the least distance that reaches the gamut.
+
+    The result is ``(1 - t) c + t g (1, 1, 1)`` with ``g = Y / Y_white`` (the grey of the same
+    luminance) and the smallest ``t`` in [0, 1] that puts every channel in [0, 1]. Because the
+    mixture is linear in XYZ, Y is unchanged and the chromaticity moves on the straight line to
+    the white point, so the hue angle about the white (in xy, u'v' or any linear opponent
+    space) is kept. Exact and closed-form per channel:
+    a channel ``c < 0`` needs ``t >= -c / (g - c)``, a channel ``c > 1`` needs
+    ``t >= (c - 1) / (c - g)``.
+
+    Colours darker than black (Y <= 0) become black and colours brighter than the white
+    (Y > Y_white) become the white: no in-gamut colour has their luminance.
+    """
+    rgb = _snap(_rgb(rgb_linear), tolerance)
+    y_c = np.asarray(luminance_row, dtype=float)
+    g = (rgb @ y_c / y_c.sum())[..., None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t_low = np.where(rgb < 0, -rgb / (g - rgb), 0.0)
+        t_high = np.where(rgb > 1, (rgb - 1) / (rgb - g), 0.0)
+    t = np.clip(np.maximum(t_low, t_high).max(axis=-1, keepdims=True), 0.0, 1.0)
+    out = (1 - t) * rgb + t * g
+    out = np.where(g <= 0, 0.0, np.where(g >= 1, 1.0, out))
+    # the exact solution lands on the cube's faces; remove round-off beyond them
+    return np.clip(out, 0.0, 1.0)
+
+
+def apply_gamut(
+    rgb_linear, strategy: str, luminance_row, tolerance: float = DEFAULT_TOLERANCE
+) -> np.ndarray:
+    """Apply one of :data:`GAMUT_STRATEGIES` to ``(..., 3)`` linear RGB."""
+    if strategy == "flag":
+        return flag_black(rgb_linear, tolerance)
+    if strategy == "clip":
+        return clip(rgb_linear, tolerance)
+    if strategy == "preserve-luminance":
+        return preserve_luminance(rgb_linear, luminance_row, tolerance)
+    if strategy == "desaturate":
+        return desaturate(rgb_linear, luminance_row, tolerance)
+    raise ColorimetryError(
+        f"gamut {strategy!r} is unknown; accepted: {', '.join(GAMUT_STRATEGIES)}"
+    )

@@ -1,0 +1,115 @@
+"""Normalisation: the one number that scales colorimetric RGB to display drive (1 = full).
+
+Colour stimuli are normalised arbitrarily (seed 000), the display is not: its channels run from
+0 to 1. The choices, all reported in a :class:`~spectrocolor.display.render.Rendering`:
+
+* ``"none"`` -- the XYZ are already on the display's scale (``XYZ100``: Y = 100 is the white
+  at full drive); scale 1.
+* ``"fixed"`` -- one given scale for every colour (SPECTRA's alternative A). Take it from the
+  brightest object colour the display must show (:func:`max_object_rgb`: the seed's
+  R_max = 1.58) or from a white (:func:`white_scale`), so lightness relations are kept.
+* ``"per-colour"`` -- each colour's largest channel becomes 1 (alternative B, "Optimised!"):
+  chromaticity only, lightness relations are lost.
+* ``"global-max"`` -- the largest channel over all given colours becomes 1 (Zawischa).
+
+References
+----------
+P. Sällström (1999), USIP Report 99-05, STEP 2 (alternatives A and B) and note 10.
+D. Zawischa, How to calculate and render colours -- thin films as an example, p. 6.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ColorimetryError
+from .spaces import rgb_space
+
+__all__ = ["NORMALISATIONS", "normalise", "max_object_rgb", "white_scale"]
+
+NORMALISATIONS = ("none", "fixed", "per-colour", "global-max")
+
+
+def normalise(rgb_linear, method: str, scale=None):
+    """Divide ``(..., 3)`` linear RGB by the scale the method asks for.
+
+    Parameters
+    ----------
+    rgb_linear : (..., 3)
+        Linear RGB before normalisation.
+    method : {"none", "fixed", "per-colour", "global-max"}
+    scale : float, optional
+        Required for ``"fixed"`` (a positive divisor); refused for the other methods.
+
+    Returns
+    -------
+    rgb_normalised : (..., 3)
+    scale : float or ndarray (...,)
+        The divisor used: a float, or one per colour for ``"per-colour"``. A colour whose
+        largest channel is <= 0 (black, or not displayable by any positive scale) keeps scale 1
+        under ``"per-colour"``; an input whose largest channel is <= 0 keeps scale 1 under
+        ``"global-max"``.
+    """
+    rgb = np.asarray(rgb_linear, dtype=float)
+    if method not in NORMALISATIONS:
+        raise ColorimetryError(
+            f"normalise {method!r} is unknown; accepted: {', '.join(NORMALISATIONS)}"
+        )
+    if method == "fixed":
+        if scale is None or not np.isfinite(scale) or scale <= 0:
+            raise ColorimetryError(
+                f'normalise="fixed" needs scale, a positive number (e.g. max_object_rgb(...).max()'
+                f" or white_scale(...)); got {scale!r}"
+            )
+        return rgb / float(scale), float(scale)
+    if scale is not None:
+        raise ColorimetryError(
+            f'scale is used only with normalise="fixed"; normalise={method!r} computes its own'
+        )
+    if method == "none":
+        return rgb.copy(), 1.0
+    if method == "per-colour":
+        top = rgb.max(axis=-1)
+        per = np.where(top > 0, top, 1.0)
+        return rgb / per[..., None], per
+    top = float(np.nanmax(rgb)) if np.any(np.isfinite(rgb)) else 0.0
+    g = top if top > 0 else 1.0
+    return rgb / g, g
+
+
+def max_object_rgb(space, weights) -> np.ndarray:
+    """Largest linear R, G, B that any reflectance 0 <= f <= 1 can produce (seed 002, note 10).
+
+    With ``XYZ = f @ weights`` and ``rgb = M @ XYZ``, each channel is ``f @ (weights @ M.T)``;
+    over 0 <= f <= 1 its maximum is the sum of the positive entries of that column (take
+    f = 1 where the entry is positive, 0 elsewhere: an ideal "optimal" reflectance).
+
+    Parameters
+    ----------
+    space : RGBSpace or name
+    weights : (K, 3) array
+        Tristimulus weights on the space's XYZ scale, e.g.
+        ``spectrocolor.weights(wavelengths_nm, observer, illuminant)`` (perfect white Y = 100).
+
+    Returns
+    -------
+    ndarray (3,)
+        Maximum R, G, B. Use ``.max()`` as the scale for ``normalise="fixed"`` (SPECTRA's
+        alternative A: R_max = 1.58 for its monitor, 400-700 nm at 10 nm, equal energy).
+    """
+    w = np.asarray(weights, dtype=float)
+    if w.ndim != 2 or w.shape[1] != 3 or not np.all(np.isfinite(w)):
+        raise ColorimetryError(f"weights must be a finite (K, 3) array, got shape {w.shape}")
+    per_bin = w @ rgb_space(space).matrix_from_XYZ.T
+    return np.where(per_bin > 0, per_bin, 0.0).sum(axis=0)
+
+
+def white_scale(space, white_XYZ) -> float:
+    """Scale that puts the largest channel of the given white at 1 (alternative A from a white)."""
+    w = np.asarray(white_XYZ, dtype=float)
+    if w.shape != (3,) or not np.all(np.isfinite(w)):
+        raise ColorimetryError(f"white_XYZ must be three finite numbers, got {white_XYZ!r}")
+    top = float((rgb_space(space).matrix_from_XYZ @ w).max())
+    if top <= 0:
+        raise ColorimetryError(f"white_XYZ {w.tolist()} drives no channel positively")
+    return top

@@ -1,0 +1,292 @@
+"""RGB spaces: the linear map between CIE XYZ and a display's drive values, plus its transfer.
+
+An :class:`RGBSpace` is defined either by the chromaticities of its primaries and white
+(Zawischa, seed 000, eqs. 13-19) or by the measured tristimulus values of its three primaries
+at full drive, whose sum is the white (Sällström, seed 002, STEP 2 and Appendix).
+
+Scale: ``matrix_to_XYZ @ rgb_linear`` gives XYZ on the scale of ``white_XYZ``. For spaces made
+from chromaticities the white has Y = 100 (``XYZ100``: Y = 100 is the display's white at full
+drive). A space made from measured primaries keeps the measurement's scale (SPECTRA's 7000 K
+monitor: white Y = 106.834), so that its ``matrix_from_XYZ`` is the seed's ``matris.d``.
+
+References
+----------
+D. Zawischa, How to calculate and render colours -- thin films as an example, eqs. 13-19.
+P. Sällström (1999), USIP Report 99-05, STEP 2 and Appendix (phosphor table, matris.d/.equ).
+IEC 61966-2-1:1999 (sRGB); SMPTE EG 432-1:2010 and Apple Display P3; Adobe RGB (1998) Color
+Image Encoding (2005); ITU-R BT.2020-2 (2015).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+
+import numpy as np
+
+from ..errors import ColorimetryError
+from .transfer import Transfer, spectra_excitation_table
+from .transfer import transfer as _transfer
+
+__all__ = ["RGBSpace", "rgb_space", "rgb_space_names", "SPECTRA_PHOSPHORS_XYZ"]
+
+#: Measured XYZ of SPECTRA's monitor phosphors at full drive, columns R, G, B (seed 002,
+#: Appendix table; rows X, Y, Z; "formally adjusted to a correlated colour temperature of 7000 K").
+SPECTRA_PHOSPHORS_XYZ = np.array(
+    [
+        [44.68, 34.08, 20.12],
+        [24.81, 73.16, 8.864],
+        [2.586, 13.02, 105.5],
+    ]
+)
+SPECTRA_PHOSPHORS_XYZ.setflags(write=False)
+
+
+def _xy_pair(value, argument: str) -> np.ndarray:
+    xy = np.asarray(value, dtype=float)
+    if xy.shape != (2,) or not np.all(np.isfinite(xy)) or xy[1] <= 0 or xy.sum() > 1 + 1e-12:
+        raise ColorimetryError(
+            f"{argument} must be a chromaticity (x, y) with y > 0 and x + y <= 1, got {value!r}"
+        )
+    return xy
+
+
+def _xyz_triple(value, argument: str) -> np.ndarray:
+    xyz = np.asarray(value, dtype=float)
+    if xyz.shape != (3,) or not np.all(np.isfinite(xyz)):
+        raise ColorimetryError(f"{argument} must be three finite numbers X, Y, Z, got {value!r}")
+    return xyz
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class RGBSpace:
+    """A linear-light RGB space with a transfer function.
+
+    Attributes
+    ----------
+    name : str
+    matrix_to_XYZ : ndarray (3, 3)
+        Columns are the XYZ of the red, green and blue primaries at full drive;
+        ``XYZ = matrix_to_XYZ @ rgb_linear``.
+    matrix_from_XYZ : ndarray (3, 3)
+        Its inverse; ``rgb_linear = matrix_from_XYZ @ XYZ``.
+    white_XYZ : ndarray (3,)
+        XYZ of R = G = B = 1, the sum of the primaries' columns.
+    transfer : transfer object
+        See :mod:`spectrocolor.display.transfer`.
+
+    Use :meth:`from_chromaticities` or :meth:`from_primaries_XYZ` to build one, or
+    :func:`rgb_space` for a built-in one.
+    """
+
+    name: str
+    matrix_to_XYZ: np.ndarray
+    matrix_from_XYZ: np.ndarray
+    transfer: Transfer
+
+    @property
+    def white_XYZ(self) -> np.ndarray:
+        """XYZ of full drive on all three channels, shape (3,)."""
+        return self.matrix_to_XYZ.sum(axis=1)
+
+    @property
+    def white_xy(self) -> np.ndarray:
+        """Chromaticity (x, y) of the white, shape (2,)."""
+        w = self.white_XYZ
+        return w[:2] / w.sum()
+
+    @property
+    def primaries_xy(self) -> np.ndarray:
+        """Chromaticities of the red, green and blue primaries, shape (3, 2) (rows R, G, B)."""
+        cols = self.matrix_to_XYZ.T
+        return cols[:, :2] / cols.sum(axis=1, keepdims=True)
+
+    @property
+    def luminance_row(self) -> np.ndarray:
+        """Y of each primary at full drive (Zawischa's Y_R, Y_G, Y_B), shape (3,)."""
+        return self.matrix_to_XYZ[1]
+
+    def rgb_linear_from_XYZ(self, XYZ) -> np.ndarray:
+        """``(..., 3)`` XYZ (this space's scale) -> ``(..., 3)`` linear RGB (may leave 0-1)."""
+        return np.asarray(XYZ, dtype=float) @ self.matrix_from_XYZ.T
+
+    def XYZ_from_rgb_linear(self, rgb_linear) -> np.ndarray:
+        """``(..., 3)`` linear RGB -> ``(..., 3)`` XYZ on this space's scale."""
+        return np.asarray(rgb_linear, dtype=float) @ self.matrix_to_XYZ.T
+
+    @classmethod
+    def from_primaries_XYZ(
+        cls, red_XYZ, green_XYZ, blue_XYZ, transfer="srgb", name: str = "custom"
+    ) -> RGBSpace:
+        """A space from the measured XYZ of its primaries at full drive (seed 002, STEP 2).
+
+        The white is their sum; the scale of the XYZ values is kept as given.
+
+        Examples
+        --------
+        >>> s = RGBSpace.from_primaries_XYZ([44.68, 24.81, 2.586], [34.08, 73.16, 13.02],
+        ...                                 [20.12, 8.864, 105.5])
+        >>> round(float(s.matrix_from_XYZ[0, 0]), 5)   # seed 002's matris.d: +0.02994
+        0.02994
+        """
+        to_xyz = np.column_stack(
+            [
+                _xyz_triple(red_XYZ, "red_XYZ"),
+                _xyz_triple(green_XYZ, "green_XYZ"),
+                _xyz_triple(blue_XYZ, "blue_XYZ"),
+            ]
+        )
+        det = np.linalg.det(to_xyz)
+        if not np.isfinite(det) or abs(det) < 1e-12 * np.abs(to_xyz).max() ** 3:
+            raise ColorimetryError(
+                "red_XYZ, green_XYZ and blue_XYZ must be linearly independent (they span no space)"
+            )
+        return cls(
+            name=name,
+            matrix_to_XYZ=_readonly(to_xyz),
+            matrix_from_XYZ=_readonly(np.linalg.inv(to_xyz)),
+            transfer=_transfer(transfer),
+        )
+
+    @classmethod
+    def from_chromaticities(
+        cls,
+        red_xy,
+        green_xy,
+        blue_xy,
+        white_xy,
+        transfer="srgb",
+        name: str = "custom",
+        white_Y: float = 100.0,
+    ) -> RGBSpace:
+        """A space from primary and white chromaticities (seed 000, eqs. 13-19).
+
+        Each primary's XYZ is ``u_i (x_i, y_i, 1 - x_i - y_i)``; the strengths ``u_i`` solve
+        R + G + B = W with the white's XYZ = ``white_Y * (x_w/y_w, 1, z_w/y_w)``.
+
+        Parameters
+        ----------
+        red_xy, green_xy, blue_xy, white_xy : (2,) chromaticities
+        transfer : transfer name, gamma number or transfer object
+        name : str
+        white_Y : float
+            Luminance of the white; 100 gives the ``XYZ100`` scale.
+        """
+        prim = np.array(
+            [
+                _xy_pair(red_xy, "red_xy"),
+                _xy_pair(green_xy, "green_xy"),
+                _xy_pair(blue_xy, "blue_xy"),
+            ]
+        )
+        white = _xy_pair(white_xy, "white_xy")
+        if not np.isfinite(white_Y) or white_Y <= 0:
+            raise ColorimetryError(f"white_Y must be a positive number, got {white_Y!r}")
+        columns = np.column_stack([prim[:, 0], prim[:, 1], 1 - prim.sum(axis=1)]).T
+        if abs(np.linalg.det(columns)) < 1e-12:
+            raise ColorimetryError("red_xy, green_xy and blue_xy must not lie on one line")
+        white_XYZ = white_Y * np.array([white[0], white[1], 1 - white.sum()]) / white[1]
+        strengths = np.linalg.solve(columns, white_XYZ)
+        if np.any(strengths <= 0):
+            raise ColorimetryError(
+                f"white_xy {tuple(white)} must lie inside the triangle of the primaries"
+            )
+        return cls.from_primaries_XYZ(*(columns * strengths).T, transfer=transfer, name=name)
+
+    def __repr__(self) -> str:
+        return f"RGBSpace({self.name!r}, white_xy={np.round(self.white_xy, 4).tolist()})"
+
+
+_D65_XY = (0.3127, 0.3290)
+
+
+def _spectra_7000k() -> RGBSpace:
+    p = SPECTRA_PHOSPHORS_XYZ
+    return RGBSpace.from_primaries_XYZ(
+        p[:, 0], p[:, 1], p[:, 2], transfer=spectra_excitation_table(), name="SPECTRA 7000K"
+    )
+
+
+def _spectra_equal_energy() -> RGBSpace:
+    p = SPECTRA_PHOSPHORS_XYZ
+    xy = (p[:2] / p.sum(axis=0)).T
+    return RGBSpace.from_chromaticities(
+        xy[0], xy[1], xy[2], (1 / 3, 1 / 3), transfer=spectra_excitation_table(),
+        name="SPECTRA equal-energy",
+    )
+
+
+_BUILDERS = {
+    "sRGB": lambda: RGBSpace.from_chromaticities(
+        (0.64, 0.33), (0.30, 0.60), (0.15, 0.06), _D65_XY, transfer="srgb", name="sRGB"
+    ),
+    "Display P3": lambda: RGBSpace.from_chromaticities(
+        (0.680, 0.320), (0.265, 0.690), (0.150, 0.060), _D65_XY, transfer="srgb",
+        name="Display P3",
+    ),
+    "Adobe RGB (1998)": lambda: RGBSpace.from_chromaticities(
+        (0.64, 0.33), (0.21, 0.71), (0.15, 0.06), _D65_XY, transfer="adobe rgb",
+        name="Adobe RGB (1998)",
+    ),
+    "Rec. 2020": lambda: RGBSpace.from_chromaticities(
+        (0.708, 0.292), (0.170, 0.797), (0.131, 0.046), _D65_XY, transfer="bt.2020",
+        name="Rec. 2020",
+    ),
+    "SPECTRA 7000K": _spectra_7000k,
+    "SPECTRA equal-energy": _spectra_equal_energy,
+}
+
+_ALIASES = {
+    "srgb": "sRGB",
+    "display p3": "Display P3",
+    "p3": "Display P3",
+    "adobe rgb (1998)": "Adobe RGB (1998)",
+    "adobe rgb": "Adobe RGB (1998)",
+    "rec. 2020": "Rec. 2020",
+    "rec.2020": "Rec. 2020",
+    "rec2020": "Rec. 2020",
+    "bt.2020": "Rec. 2020",
+    "spectra 7000k": "SPECTRA 7000K",
+    "spectra": "SPECTRA 7000K",
+    "spectra equal-energy": "SPECTRA equal-energy",
+    "spectra equal energy": "SPECTRA equal-energy",
+}
+
+
+def rgb_space_names() -> tuple[str, ...]:
+    """Canonical names of the built-in RGB spaces."""
+    return tuple(_BUILDERS)
+
+
+@cache
+def _built(name: str) -> RGBSpace:
+    return _BUILDERS[name]()
+
+
+def rgb_space(name) -> RGBSpace:
+    """A built-in RGB space by name (case-insensitive), or an :class:`RGBSpace` unchanged.
+
+    Parameters
+    ----------
+    name : str or RGBSpace
+        ``"sRGB"``, ``"Display P3"``, ``"Adobe RGB (1998)"``, ``"Rec. 2020"``,
+        ``"SPECTRA 7000K"`` (seed 002's measured monitor, transfer = its 64-level ``c.dat``),
+        ``"SPECTRA equal-energy"`` (``matris.equ``: the same phosphor chromaticities with the
+        equal-energy white x = y = 1/3 at Y = 100, so X = Y = Z = 100 drives R = G = B = 1).
+    """
+    if isinstance(name, RGBSpace):
+        return name
+    if isinstance(name, str):
+        canonical = _ALIASES.get(name.strip().lower())
+        if canonical is not None:
+            return _built(canonical)
+    raise ColorimetryError(
+        f"space {name!r} is unknown; accepted: an RGBSpace or one of "
+        f"{', '.join(rgb_space_names())}"
+    )

@@ -1,0 +1,302 @@
+"""Transfer (excitation) functions between linear drive and encoded signal, and integer codes.
+
+A *transfer* maps linear channel values ``rgb_linear`` (0 = black, 1 = the channel at full
+drive) to encoded signal values ``rgb_encoded`` (0-1) and back. Three kinds exist:
+
+* :class:`SRGBCurve` -- the piecewise sRGB curve of IEC 61966-2-1:1999 (also used by
+  Display P3);
+* :class:`PowerLaw` -- a pure power law ``encoded = linear ** (1/gamma)`` (gamma 2.2, SPECTRA's
+  2.204, Adobe RGB (1998)'s 563/256);
+* :class:`BT2020Curve` -- the ITU-R BT.2020 camera curve;
+* :class:`LevelTable` -- a *measured* excitation function: the light emitted at each of N
+  signal levels (SPECTRA's 64-level ``c.dat``). Encoding picks the nearest level, as SPECTRA's
+  ``digit()`` routine does.
+
+Encoding refuses values outside [0, 1]: bringing colours into range is the job of a gamut
+strategy (:mod:`spectrocolor.display.gamut`), never a silent side effect of encoding.
+NaN passes through as NaN (and encodes to no integer code: :func:`to_codes` refuses it).
+
+References
+----------
+IEC 61966-2-1:1999, Multimedia systems and equipment -- Colour measurement and management --
+Part 2-1: Default RGB colour space -- sRGB.
+ITU-R Recommendation BT.2020-2 (2015), Parameter values for ultra-high definition television.
+Adobe Systems (2005), Adobe RGB (1998) Color Image Encoding, version 2005-05.
+P. Sällström (1999), A computer program for visualising the relation between colour and
+spectral energy distribution, USIP Report 99-05, Appendix ("c.dat", gamma 2.204).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ColorimetryError
+
+__all__ = [
+    "SRGBCurve",
+    "PowerLaw",
+    "BT2020Curve",
+    "LevelTable",
+    "Transfer",
+    "transfer",
+    "transfer_names",
+    "spectra_excitation_table",
+    "to_codes",
+    "from_codes",
+]
+
+
+def _check_unit_range(values: np.ndarray, argument: str) -> np.ndarray:
+    values = np.asarray(values, dtype=float)
+    bad = (values < 0.0) | (values > 1.0)
+    if np.any(bad):
+        raise ColorimetryError(
+            f"{argument} must lie in [0, 1] (NaN allowed); got values from "
+            f"{np.nanmin(values):.6g} to {np.nanmax(values):.6g}. Bring colours into the "
+            "display's range with a gamut strategy before encoding."
+        )
+    return values
+
+
+@dataclass(frozen=True)
+class SRGBCurve:
+    """The sRGB transfer function of IEC 61966-2-1:1999.
+
+    ``encoded = 12.92 * linear`` for ``linear <= threshold``, else
+    ``1.055 * linear ** (1/2.4) - 0.055``.
+
+    Parameters
+    ----------
+    threshold : float
+        Linear break point. The standard's value is 0.0031308 (encoded 0.04045). Zawischa
+        (seed 000, eqs. 22-23) prints 0.00304, the value of the 1996 sRGB proposal; with it the
+        two branches differ by 1e-5 at the break (0.039277 vs 0.039287), invisible at 8 bits
+        but not continuous. Pass ``threshold=0.00304`` to reproduce the seed exactly.
+    """
+
+    threshold: float = 0.0031308
+    name: str = "sRGB (IEC 61966-2-1)"
+
+    def encode(self, rgb_linear):
+        """Linear 0-1 -> encoded 0-1."""
+        x = _check_unit_range(rgb_linear, "rgb_linear")
+        with np.errstate(invalid="ignore"):
+            power = 1.055 * np.power(np.maximum(x, self.threshold), 1 / 2.4) - 0.055
+        return np.where(x <= self.threshold, 12.92 * x, power)
+
+    def decode(self, rgb_encoded):
+        """Encoded 0-1 -> linear 0-1."""
+        v = _check_unit_range(rgb_encoded, "rgb_encoded")
+        knee = 12.92 * self.threshold
+        with np.errstate(invalid="ignore"):
+            power = np.power((np.maximum(v, knee) + 0.055) / 1.055, 2.4)
+        return np.where(v <= knee, v / 12.92, power)
+
+
+@dataclass(frozen=True)
+class PowerLaw:
+    """A pure power law: ``encoded = linear ** (1 / gamma)``, ``linear = encoded ** gamma``.
+
+    Parameters
+    ----------
+    gamma : float
+        Display exponent (> 0): 2.2 for a generic CRT (seed 000), 2.204 for SPECTRA's monitor
+        (seed 002), 563/256 = 2.19921875 for Adobe RGB (1998).
+    """
+
+    gamma: float
+    name: str = ""
+
+    def __post_init__(self):
+        if not np.isfinite(self.gamma) or self.gamma <= 0:
+            raise ColorimetryError(f"gamma must be a positive number, got {self.gamma!r}")
+        if not self.name:
+            object.__setattr__(self, "name", f"gamma {self.gamma:g}")
+
+    def encode(self, rgb_linear):
+        """Linear 0-1 -> encoded 0-1."""
+        return np.power(_check_unit_range(rgb_linear, "rgb_linear"), 1.0 / self.gamma)
+
+    def decode(self, rgb_encoded):
+        """Encoded 0-1 -> linear 0-1."""
+        return np.power(_check_unit_range(rgb_encoded, "rgb_encoded"), self.gamma)
+
+
+@dataclass(frozen=True)
+class BT2020Curve:
+    """The ITU-R BT.2020 transfer curve (camera OETF; BT.709's shape with exact constants).
+
+    ``encoded = 4.5 * linear`` below ``beta = 0.018053968510807``, else
+    ``alpha * linear ** 0.45 - (alpha - 1)`` with ``alpha = 1.09929682680944``.
+    """
+
+    name: str = "ITU-R BT.2020"
+    alpha: float = 1.09929682680944
+    beta: float = 0.018053968510807
+
+    def encode(self, rgb_linear):
+        """Linear 0-1 -> encoded 0-1."""
+        x = _check_unit_range(rgb_linear, "rgb_linear")
+        with np.errstate(invalid="ignore"):
+            power = self.alpha * np.power(np.maximum(x, self.beta), 0.45) - (self.alpha - 1)
+        return np.where(x < self.beta, 4.5 * x, power)
+
+    def decode(self, rgb_encoded):
+        """Encoded 0-1 -> linear 0-1."""
+        v = _check_unit_range(rgb_encoded, "rgb_encoded")
+        knee = 4.5 * self.beta
+        with np.errstate(invalid="ignore"):
+            power = np.power((np.maximum(v, knee) + self.alpha - 1) / self.alpha, 1 / 0.45)
+        return np.where(v < knee, v / 4.5, power)
+
+
+@dataclass(frozen=True, eq=False)
+class LevelTable:
+    """A measured excitation function: the relative emission at each of N signal levels.
+
+    Parameters
+    ----------
+    levels : array_like, shape (N,)
+        Emission at levels 0..N-1 as a fraction of full emission: strictly increasing, starting
+        at 0 and ending at 1 (SPECTRA's ``c.dat``: 64 numbers, 0 at level 0, 1 at level 63).
+    name : str
+
+    Notes
+    -----
+    Encoding a linear value picks the level whose emission is nearest (SPECTRA's ``digit()``:
+    "scans the list, finds the nearest value and returns the index"); ties go to the lower
+    level. The encoded value is ``index / (N - 1)``; decoding returns the table's emission.
+    """
+
+    levels: np.ndarray
+    name: str = "measured levels"
+
+    def __post_init__(self):
+        levels = np.array(self.levels, dtype=float)
+        if levels.ndim != 1 or levels.size < 2:
+            raise ColorimetryError(f"levels must be a 1-D table of >= 2 values, got {levels.shape}")
+        if levels[0] != 0.0 or levels[-1] != 1.0 or np.any(np.diff(levels) <= 0):
+            raise ColorimetryError(
+                "levels must increase strictly from 0 (level 0) to 1 (the top level)"
+            )
+        levels.setflags(write=False)
+        object.__setattr__(self, "levels", levels)
+
+    @property
+    def n_levels(self) -> int:
+        """Number of signal levels N."""
+        return int(self.levels.size)
+
+    def index(self, rgb_linear) -> np.ndarray:
+        """Nearest level index (0..N-1) for linear values in [0, 1]; NaN is refused."""
+        x = _check_unit_range(rgb_linear, "rgb_linear")
+        if np.any(np.isnan(x)):
+            raise ColorimetryError("rgb_linear contains NaN, which has no signal level")
+        upper = np.clip(np.searchsorted(self.levels, x, side="left"), 1, self.n_levels - 1)
+        lower = upper - 1
+        take_upper = (self.levels[upper] - x) < (x - self.levels[lower])
+        return np.where(take_upper, upper, lower)
+
+    def encode(self, rgb_linear):
+        """Linear 0-1 -> encoded ``index / (N - 1)`` of the nearest level."""
+        return self.index(rgb_linear) / (self.n_levels - 1)
+
+    def decode(self, rgb_encoded):
+        """Encoded ``index / (N - 1)`` -> the table's emission at that level."""
+        v = _check_unit_range(rgb_encoded, "rgb_encoded")
+        index = np.rint(v * (self.n_levels - 1)).astype(int)
+        return self.levels[index]
+
+
+Transfer = SRGBCurve | PowerLaw | BT2020Curve | LevelTable
+
+
+def spectra_excitation_table(gamma: float = 2.204, n_levels: int = 64) -> LevelTable:
+    """SPECTRA's ``c.dat``: ``(level / (N-1)) ** gamma`` for N levels (seed 002, Appendix).
+
+    With the defaults, 50 % excitation is nearest to level 46 of 63.
+    """
+    if int(n_levels) != n_levels or n_levels < 2:
+        raise ColorimetryError(f"n_levels must be an integer >= 2, got {n_levels!r}")
+    n = int(n_levels)
+    levels = (np.arange(n) / (n - 1)) ** float(gamma)
+    return LevelTable(levels, name=f"SPECTRA c.dat ({n} levels, gamma {gamma:g})")
+
+
+def _named_transfers() -> dict[str, Transfer]:
+    return {
+        "srgb": SRGBCurve(),
+        "srgb-1996": SRGBCurve(threshold=0.00304, name="sRGB, 1996 threshold 0.00304 (seed 000)"),
+        "linear": PowerLaw(1.0, name="linear"),
+        "gamma 2.2": PowerLaw(2.2),
+        "gamma 2.204": PowerLaw(2.204),
+        "adobe rgb": PowerLaw(563 / 256, name="Adobe RGB (1998), gamma 563/256"),
+        "bt.2020": BT2020Curve(),
+        "spectra c.dat": spectra_excitation_table(),
+    }
+
+
+def transfer_names() -> tuple[str, ...]:
+    """Names accepted by :func:`transfer`."""
+    return tuple(_named_transfers())
+
+
+def transfer(spec) -> Transfer:
+    """A transfer object from a name (see :func:`transfer_names`), a gamma number, or itself.
+
+    Parameters
+    ----------
+    spec : str, float or transfer object
+        ``"srgb"``, ``"srgb-1996"``, ``"linear"``, ``"gamma 2.2"``, ``"gamma 2.204"``,
+        ``"adobe rgb"``, ``"bt.2020"``, ``"spectra c.dat"``; a number is a power-law gamma.
+    """
+    if isinstance(spec, SRGBCurve | PowerLaw | BT2020Curve | LevelTable):
+        return spec
+    if isinstance(spec, int | float) and not isinstance(spec, bool):
+        return PowerLaw(float(spec))
+    if isinstance(spec, str):
+        found = _named_transfers().get(spec.strip().lower())
+        if found is not None:
+            return found
+    raise ColorimetryError(
+        f"transfer {spec!r} is unknown; accepted: a gamma number, a transfer object, or one of "
+        f"{', '.join(transfer_names())}"
+    )
+
+
+def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
+    """Encoded 0-1 values to integer codes ``round(encoded * (2**bit_depth - 1))``.
+
+    Rounds half to even (NumPy's ``rint``). Zawischa's Fortran truncates with ``int()``; its
+    text says "rounded to integer", which is what this does.
+
+    Parameters
+    ----------
+    rgb_encoded : array_like
+        Encoded values in [0, 1]; NaN is refused.
+    bit_depth : int
+        1 to 32 bits (6 for SPECTRA's 18-bit DAC, 8, 10, 12, 16).
+
+    Returns
+    -------
+    ndarray of int64
+    """
+    if int(bit_depth) != bit_depth or not 1 <= bit_depth <= 32:
+        raise ColorimetryError(f"bit_depth must be an integer from 1 to 32, got {bit_depth!r}")
+    v = _check_unit_range(rgb_encoded, "rgb_encoded")
+    if np.any(np.isnan(v)):
+        raise ColorimetryError("rgb_encoded contains NaN, which has no integer code")
+    return np.rint(v * (2 ** int(bit_depth) - 1)).astype(np.int64)
+
+
+def from_codes(codes, bit_depth: int = 8) -> np.ndarray:
+    """Integer codes to encoded 0-1 values, ``codes / (2**bit_depth - 1)``."""
+    if int(bit_depth) != bit_depth or not 1 <= bit_depth <= 32:
+        raise ColorimetryError(f"bit_depth must be an integer from 1 to 32, got {bit_depth!r}")
+    codes = np.asarray(codes)
+    top = 2 ** int(bit_depth) - 1
+    if np.any(codes < 0) or np.any(codes > top):
+        raise ColorimetryError(f"codes must lie in 0..{top} for bit_depth {bit_depth}")
+    return codes / top

@@ -1,0 +1,173 @@
+"""CIE illuminants, Planckian radiators and the CIE daylight series.
+
+References
+----------
+CIE 015:2018 *Colorimetry*, 4th ed.: §4.1 and Table 5 (illuminant A formula with
+c₂ = 1.435 × 10⁻² m·K), §4.1.2 and Table 6 (daylight basis S0, S1, S2 and the xD, yD, M1, M2
+formulae), Tables 8–10 (FL1–FL12, LED-B1–B5). CODATA 2018 (second radiation constant
+c₂ = 1.438 776 877 × 10⁻² m·K). Sources of the files: ``data/PROVENANCE.md``.
+"""
+
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+
+import numpy as np
+
+from .data_tables import load_table
+from .errors import ColorimetryError, SpectrumError
+from .spectrum import Spectrum, validate_wavelengths, wavelength_grid
+
+#: Second radiation constant, CODATA 2018, m·K.
+C2_CODATA_M_K = 1.438776877e-2
+#: Second radiation constant used in the definition of CIE illuminant A, m·K.
+C2_ILLUMINANT_A_M_K = 1.435e-2
+#: Temperature in the defining formula of illuminant A (with c₂ = 1.435e-2 m·K; this is the
+#: 2856 K Planckian radiator of the ITS-68/CODATA constant c₂ = 1.4388e-2 m·K).
+ILLUMINANT_A_TEMPERATURE_K = 2848.0
+
+_TABULATED = (
+    "B", "C", "D50", "D55", "D65", "D75",
+    *(f"FL{i}" for i in range(1, 13)),
+    *(f"LED-B{i}" for i in range(1, 6)),
+)  # fmt: skip
+_NAMES = ("A", *_TABULATED[:2], *_TABULATED[2:6], "E", *_TABULATED[6:])
+_DEFAULT_GRID = (300.0, 830.0, 5.0)
+
+
+def illuminant_names() -> tuple[str, ...]:
+    """Names accepted by :func:`illuminant`."""
+    return _NAMES
+
+
+def canonical_illuminant_name(name: str) -> str:
+    """``"d65"``, ``"FL 11"``, ``"led_b1"`` → ``"D65"``, ``"FL11"``, ``"LED-B1"``; or raise."""
+    if not isinstance(name, str):
+        raise ColorimetryError(f"illuminant: expected a name such as 'D65', got {name!r}")
+    key = re.sub(r"[\s_]+", "", name.strip().upper())
+    key = re.sub(r"^LED-?B", "LED-B", key)
+    key = re.sub(r"^F(\d)", r"FL\1", key) if not key.startswith("FL") else key
+    if key not in _NAMES:
+        raise ColorimetryError(
+            f"illuminant: unknown illuminant {name!r}; choose one of {', '.join(_NAMES)} "
+            "(or use blackbody(T) / daylight(T) for other temperatures)"
+        )
+    return key
+
+
+def _grid_or_default(wavelengths_nm, default: tuple[float, float, float]) -> np.ndarray:
+    if wavelengths_nm is None:
+        return wavelength_grid(*default)
+    return validate_wavelengths(wavelengths_nm)
+
+
+def planck(wavelengths_nm: np.ndarray, temperature_K: float, c2_m_K: float) -> np.ndarray:
+    """Relative Planck spectral radiance ``1 / (λ⁵ (exp(c₂/λT) − 1))``, arbitrary scale."""
+    wavelength_m = np.asarray(wavelengths_nm, dtype=float) * 1e-9
+    return 1.0 / (wavelength_m**5 * np.expm1(c2_m_K / (wavelength_m * temperature_K)))
+
+
+def blackbody(
+    temperature_K: float,
+    wavelengths_nm=None,
+    normalise_at_nm: float = 560.0,
+    c2_m_K: float = C2_CODATA_M_K,
+) -> Spectrum:
+    """Planckian radiator at ``temperature_K``, relative SPD equal to 100 at ``normalise_at_nm``.
+
+    Defaults: 360–830 nm at 1 nm and the CODATA 2018 second radiation constant. Seed 000
+    (Zawischa) lights its soap films with ``blackbody(6504)``.
+    """
+    if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
+        raise ColorimetryError(f"temperature_K: expected a positive temperature in kelvin, got {temperature_K!r}")
+    grid = _grid_or_default(wavelengths_nm, (360.0, 830.0, 1.0))
+    values = 100.0 * planck(grid, temperature_K, c2_m_K) / planck(np.array(normalise_at_nm), temperature_K, c2_m_K)
+    return Spectrum(grid, values, ("blackbody",))
+
+
+def _illuminant_A(grid: np.ndarray) -> np.ndarray:
+    """CIE 015:2018 eq. (4.1): S_A(λ) = 100 (560/λ)⁵ (e^{c₂/(560·2848)} − 1)/(e^{c₂/(λ·2848)} − 1)."""
+    c2_nm_K = C2_ILLUMINANT_A_M_K * 1e9
+    T = ILLUMINANT_A_TEMPERATURE_K
+    return 100.0 * (560.0 / grid) ** 5 * np.expm1(c2_nm_K / (560.0 * T)) / np.expm1(c2_nm_K / (grid * T))
+
+
+@lru_cache(maxsize=None)
+def _table(name: str) -> Spectrum:
+    header, table = load_table(f"illuminants/{name}.csv")
+    return Spectrum(table[:, 0], table[:, 1], (name,))
+
+
+def illuminant(name: str, wavelengths_nm=None, method: str = "linear") -> Spectrum:
+    """Relative spectral power distribution of a CIE illuminant.
+
+    Parameters
+    ----------
+    name
+        ``"A"`` (evaluated from its defining formula on any grid), ``"E"`` (equal energy, 100
+        everywhere), ``"B"``, ``"C"``, ``"D50"``, ``"D55"``, ``"D65"``, ``"D75"``,
+        ``"FL1"``–``"FL12"``, ``"LED-B1"``–``"LED-B5"`` (the CIE tables, 5 nm).
+    wavelengths_nm
+        Grid to return, nm. ``None``: the table's own grid (A: 300–780 nm, E: 300–830 nm, 5 nm).
+        Tabulated illuminants are interpolated with ``method`` (default linear, as CIE 015
+        recommends for the daylight series) and never extrapolated.
+
+    >>> illuminant("D65").values[wavelength_grid(300, 830, 5) == 560][0]
+    100.0
+    """
+    canonical = canonical_illuminant_name(name)
+    if canonical == "A":
+        grid = _table("A").wavelengths_nm if wavelengths_nm is None else validate_wavelengths(wavelengths_nm)
+        return Spectrum(grid, _illuminant_A(grid), ("A",))
+    if canonical == "E":
+        grid = _grid_or_default(wavelengths_nm, _DEFAULT_GRID)
+        return Spectrum(grid, np.full(grid.size, 100.0), ("E",))
+    table = _table(canonical)
+    if wavelengths_nm is None:
+        return table
+    try:
+        return table.resample(wavelengths_nm, method)
+    except SpectrumError as exc:
+        raise ColorimetryError(f"illuminant {canonical}: {exc}") from None
+
+
+def daylight_xy(cct_K: float) -> np.ndarray:
+    """Chromaticity (xD, yD) of the CIE daylight illuminant of correlated colour temperature ``cct_K``.
+
+    CIE 015:2018 eqs. (4.7)–(4.9); valid for 4000 K ≤ T ≤ 25 000 K.
+    """
+    T = float(cct_K)
+    if not 4000.0 <= T <= 25000.0:
+        raise ColorimetryError(f"cct_K: the CIE daylight series is defined for 4000–25000 K, got {cct_K!r}")
+    if T <= 7000.0:
+        x = -4.6070e9 / T**3 + 2.9678e6 / T**2 + 0.09911e3 / T + 0.244063
+    else:
+        x = -2.0064e9 / T**3 + 1.9018e6 / T**2 + 0.24748e3 / T + 0.237040
+    y = -3.000 * x**2 + 2.870 * x - 0.275
+    return np.array([x, y])
+
+
+def daylight(cct_K: float, wavelengths_nm=None, round_coefficients: bool = True) -> Spectrum:
+    """CIE daylight illuminant of correlated colour temperature ``cct_K`` from S0, S1, S2.
+
+    ``S(λ) = S0(λ) + M1 S1(λ) + M2 S2(λ)`` with M1, M2 from (xD, yD) (CIE 015:2018 eq. 4.10).
+    With ``round_coefficients`` (default) M1 and M2 are rounded to three decimals, as the CIE
+    did for the tabulated D50–D75; so ``daylight(6500 * 1.4388 / 1.4380)`` reproduces the D65
+    table. The basis is tabulated at 5 nm (300–830 nm) and interpolated linearly.
+    """
+    x, y = daylight_xy(cct_K)
+    m = 0.0241 + 0.2562 * x - 0.7341 * y
+    m1 = (-1.3515 - 1.7703 * x + 5.9114 * y) / m
+    m2 = (0.0300 - 31.4424 * x + 30.0717 * y) / m
+    if round_coefficients:
+        m1, m2 = round(m1, 3), round(m2, 3)
+    header, table = load_table("illuminants/D_series_basis.csv")
+    basis = Spectrum(table[:, 0], table[:, 1:].T.copy())
+    if wavelengths_nm is not None:
+        try:
+            basis = basis.resample(wavelengths_nm, "linear")
+        except SpectrumError as exc:
+            raise ColorimetryError(f"daylight: {exc}") from None
+    s0, s1, s2 = basis.values
+    return Spectrum(basis.wavelengths_nm, s0 + m1 * s1 + m2 * s2, (f"D{cct_K:g}K",))

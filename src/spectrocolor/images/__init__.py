@@ -1,0 +1,32 @@
+"""Spectral images at scale: read cubes, convert them block by block, write images.
+
+Needs the ``images`` extra (Pillow, tifffile, xarray, dask, h5netcdf, tqdm); the core package
+never imports this. Importing it registers the ``.spectro`` accessor on xarray DataArrays.
+
+* :func:`read_cube` — .npy/.npz, multi-page TIFF, ENVI, netCDF/HDF5, folder of band images.
+* :func:`cube_to_xyz`, :func:`cube_to_lab`, :func:`cube_to_rgb` — bounded-memory conversion.
+* :func:`write_image` — PNG (8/16-bit codes) or float TIFF.
+* ``DataArray.spectro.to_xyz / to_lab / to_rgb`` — the same, lazy on dask.
+"""
+
+from __future__ import annotations
+
+from . import accessor  # noqa: F401  (registers DataArray.spectro)
+from .convert import ConversionPlan, cube_to_lab, cube_to_rgb, cube_to_xyz, plan_conversion
+from .cube import MappedArray, SpectralCube, wavelengths_to_nm
+from .readers import read_cube, read_envi_header
+from .writers import write_image
+
+__all__ = [
+    "ConversionPlan",
+    "MappedArray",
+    "SpectralCube",
+    "cube_to_lab",
+    "cube_to_rgb",
+    "cube_to_xyz",
+    "plan_conversion",
+    "read_cube",
+    "read_envi_header",
+    "wavelengths_to_nm",
+    "write_image",
+]

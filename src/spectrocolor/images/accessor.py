@@ -1,0 +1,104 @@
+"""The ``.spectro`` accessor on xarray DataArrays with a ``wavelength`` dimension.
+
+Registered when :mod:`spectrocolor.images` is imported::
+
+    import spectrocolor.images  # noqa: F401  (registers .spectro)
+    XYZ = cube.spectro.to_xyz(illuminant="D65")          # dims (..., "XYZ")
+    lab = cube.spectro.to_lab(illuminant="D65")          # dims (..., "Lab")
+    rgb8 = cube.spectro.to_rgb(illuminant="D65")         # dims (..., "RGB"), uint8
+
+On a dask-backed array nothing is computed until ``.compute()``: the conversion is one
+``xr.apply_ufunc(..., dask="parallelized")`` whose per-chunk function is the same block
+function the NumPy path uses (:mod:`spectrocolor.images.blocks`), so it runs unchanged on a
+``dask.distributed`` cluster. The wavelength axis must be one chunk (each pixel needs all its
+bands): rechunk with ``cube.chunk({"wavelength": -1})``; it is never rechunked silently.
+
+The ``wavelength`` coordinate must be in nm, or carry ``units`` "nm" or "um"/"µm"
+(converted).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..errors import SpectrumError
+from .convert import plan_conversion
+from .cube import wavelengths_to_nm
+
+__all__ = ["SpectroAccessor"]
+
+
+@xr.register_dataarray_accessor("spectro")
+class SpectroAccessor:
+    """Colorimetry of spectral DataArrays (see the module docstring)."""
+
+    def __init__(self, array: xr.DataArray) -> None:
+        self._array = array
+
+    @property
+    def wavelengths_nm(self) -> np.ndarray:
+        """The ``wavelength`` coordinate in nm (units attribute honoured; default nm)."""
+        array = self._array
+        if "wavelength" not in array.dims:
+            raise SpectrumError(
+                f"the DataArray has no 'wavelength' dimension (dims {array.dims}); rename the "
+                "spectral dimension to 'wavelength'"
+            )
+        if "wavelength" not in array.coords:
+            raise SpectrumError("the 'wavelength' dimension has no coordinate values (in nm)")
+        coord = array.coords["wavelength"]
+        return wavelengths_to_nm(coord.values, coord.attrs.get("units", "nm"),
+                                 "DataArray 'wavelength' coordinate")
+
+    def _apply(self, plan, name: str, components: tuple[str, str, str]) -> xr.DataArray:
+        array = self._array
+        chunks = array.chunksizes.get("wavelength") if array.chunks is not None else None
+        if chunks is not None and len(chunks) > 1:
+            raise SpectrumError(
+                f"the 'wavelength' dimension is split into {len(chunks)} dask chunks {chunks}; "
+                "each pixel needs all its bands: rechunk first with "
+                "array.chunk({'wavelength': -1})"
+            )
+        result = xr.apply_ufunc(
+            plan.function,
+            array,
+            kwargs=plan.keywords,
+            input_core_dims=[["wavelength"]],
+            output_core_dims=[[name]],
+            dask="parallelized",
+            output_dtypes=[plan.dtype],
+            dask_gufunc_kwargs={"output_sizes": {name: 3}},
+            keep_attrs=False,
+        )
+        result = result.assign_coords({name: list(components)})
+        result.attrs.update({"quantity": plan.quantity})
+        if plan.white_XYZ is not None:
+            result.attrs["white_XYZ"] = np.asarray(plan.white_XYZ).tolist()
+        return result
+
+    def to_xyz(self, illuminant=None, observer: str = "1931", method: str = "sum",
+               scale: float = 1.0) -> xr.DataArray:
+        """CIE XYZ per pixel, dims (..., "XYZ"); arguments as :func:`cube_to_xyz`."""
+        plan = plan_conversion("xyz", self.wavelengths_nm, illuminant=illuminant,
+                               observer=observer, method=method, scale=scale)
+        return self._apply(plan, "XYZ", ("X", "Y", "Z"))
+
+    def to_lab(self, illuminant=None, observer: str = "1931", method: str = "sum",
+               scale: float = 1.0, white_XYZ=None) -> xr.DataArray:
+        """CIELAB per pixel, dims (..., "Lab"); arguments as :func:`cube_to_lab`."""
+        plan = plan_conversion("lab", self.wavelengths_nm, illuminant=illuminant,
+                               observer=observer, method=method, scale=scale,
+                               white_XYZ=white_XYZ)
+        return self._apply(plan, "Lab", ("L*", "a*", "b*"))
+
+    def to_rgb(self, illuminant=None, observer: str = "1931", method: str = "sum",
+               scale: float = 1.0, space="sRGB", gamut: str = "clip", exposure: float = 1.0,
+               adaptation: str | None = "bradford", bit_depth: int = 8,
+               output: str = "codes") -> xr.DataArray:
+        """Display RGB per pixel, dims (..., "RGB"); arguments as :func:`cube_to_rgb`."""
+        plan = plan_conversion("rgb", self.wavelengths_nm, illuminant=illuminant,
+                               observer=observer, method=method, scale=scale, space=space,
+                               gamut=gamut, exposure=exposure, adaptation=adaptation,
+                               bit_depth=bit_depth, output=output)
+        return self._apply(plan, "RGB", ("R", "G", "B"))

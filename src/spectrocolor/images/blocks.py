@@ -1,0 +1,80 @@
+"""The per-block work of every image conversion, shared by the NumPy, memmap and dask paths.
+
+Each function takes a block of spectra ``(..., K)`` (any leading shape: a row block of a cube,
+a dask chunk) and returns ``(..., 3)``. They are plain module-level functions of arrays, so
+dask can ship them to workers; the precomputed weights and whites are passed in.
+
+The work is the library's: XYZ is ``values @ W`` with ``W`` from :func:`spectrocolor.weights`
+(what :func:`spectrocolor.tristimulus` computes for a Spectrum), CIELAB is
+:func:`spectrocolor.lab`, display RGB is :func:`spectrocolor.adapt` then
+:func:`spectrocolor.render`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["xyz_block", "lab_block", "rgb_block"]
+
+
+def xyz_block(values, weights: np.ndarray) -> np.ndarray:
+    """Tristimulus values of a block of spectra: ``values @ weights`` in float64.
+
+    Parameters
+    ----------
+    values : array_like, shape (..., K)
+        Spectral values (reflectance 0-1 for reflectance weights; any dtype).
+    weights : ndarray, shape (K, 3)
+        From :func:`spectrocolor.weights`, times the value scale.
+
+    Returns
+    -------
+    ndarray, shape (..., 3), float64
+        XYZ on the weights' scale (XYZ100 for reflectance weights).
+    """
+    return np.matmul(np.asarray(values, dtype=np.float64), weights)
+
+
+def lab_block(values, weights: np.ndarray, white_XYZ: np.ndarray) -> np.ndarray:
+    """CIELAB (L*, a*, b*) of a block of spectra, relative to ``white_XYZ`` (same scale as XYZ)."""
+    from ..coordinates import lab
+
+    return lab(xyz_block(values, weights), white_XYZ)
+
+
+def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
+    """Display RGB of a block of spectra.
+
+    Parameters
+    ----------
+    values, weights
+        As for :func:`xyz_block`.
+    options : dict
+        ``adapt_from`` (XYZ of the source white or None), ``adapt_method``, ``exposure``
+        (XYZ multiplier), ``space``, ``gamut``, ``bit_depth``, ``output`` ("codes",
+        "rgb_linear" or "rgb_encoded").
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Integer codes (uint8 or uint16) or float64 linear / encoded RGB.
+    """
+    import spectrocolor as sc
+
+    XYZ = xyz_block(values, weights)
+    if options["adapt_from"] is not None:
+        space = sc.rgb_space(options["space"]) if isinstance(options["space"], str) else (
+            options["space"]
+        )
+        XYZ = sc.adapt(XYZ, options["adapt_from"], space.white_XYZ,
+                       method=options["adapt_method"])
+    if options["exposure"] != 1.0:
+        XYZ = XYZ * options["exposure"]
+    rendering = sc.render(
+        XYZ, space=options["space"], normalise="none", gamut=options["gamut"],
+        bit_depth=options["bit_depth"],
+    )
+    if options["output"] == "codes":
+        dtype = np.uint8 if options["bit_depth"] <= 8 else np.uint16
+        return np.asarray(rendering.codes).astype(dtype)
+    return np.asarray(getattr(rendering, options["output"]), dtype=np.float64)

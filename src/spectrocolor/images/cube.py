@@ -1,0 +1,270 @@
+"""The spectral cube: a (rows, columns, bands) array and its wavelengths in nanometres.
+
+A cube's values may live in memory (``ndarray``), or stay on disk as a :class:`MappedArray`
+that opens the file on each access, so a cube larger than memory is read block by block
+and can be shipped to dask workers as a few bytes (a path and a layout), not as data.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import SpectrumError
+
+__all__ = ["SpectralCube", "MappedArray", "wavelengths_to_nm"]
+
+# accepted spellings of wavelength units (lower case, spaces removed) -> nanometres per unit
+_UNITS_TO_NM = {
+    "nm": 1.0,
+    "nanometer": 1.0,
+    "nanometers": 1.0,
+    "nanometre": 1.0,
+    "nanometres": 1.0,
+    "um": 1000.0,
+    "µm": 1000.0,
+    "μm": 1000.0,  # Greek mu as well as the micro sign
+    "micron": 1000.0,
+    "microns": 1000.0,
+    "micrometer": 1000.0,
+    "micrometers": 1000.0,
+    "micrometre": 1000.0,
+    "micrometres": 1000.0,
+}
+
+
+def wavelengths_to_nm(values, units: str | None, source: str) -> np.ndarray:
+    """Wavelengths given in ``units`` converted to nanometres, checked strictly increasing.
+
+    Parameters
+    ----------
+    values : array_like, shape (K,)
+        Wavelengths in ``units``.
+    units : str or None
+        "nm" (nanometres) or "um" / "µm" / "micrometers" (converted by × 1000); other
+        spellings of these are accepted case-insensitively. None or anything else is an error:
+        no unit is guessed.
+    source : str
+        Where the wavelengths came from, for error messages (a file name).
+
+    Returns
+    -------
+    ndarray, shape (K,), float64
+        Wavelengths in nm.
+    """
+    if units is None:
+        raise SpectrumError(
+            f"{source}: the wavelength units are not given; say them (e.g. wavelength_units='nm'"
+            " or 'um'); units are never guessed"
+        )
+    key = re.sub(r"\s+", "", str(units)).lower()
+    if key not in _UNITS_TO_NM:
+        raise SpectrumError(
+            f"{source}: unknown wavelength units {units!r}; accepted: nanometers (nm) or "
+            "micrometers (um, µm, microns)"
+        )
+    try:
+        nm = np.asarray(values, dtype=np.float64).reshape(-1) * _UNITS_TO_NM[key]
+    except (TypeError, ValueError) as exc:
+        raise SpectrumError(f"{source}: wavelengths must be numbers; got {values!r:.80}") from exc
+    if nm.size == 0:
+        raise SpectrumError(f"{source}: the wavelength list is empty")
+    if not np.all(np.isfinite(nm)):
+        raise SpectrumError(f"{source}: wavelengths must be finite; got {nm}")
+    if nm.size > 1 and not np.all(np.diff(nm) > 0):
+        raise SpectrumError(
+            f"{source}: wavelengths must be strictly increasing; got {np.array2string(nm)}"
+        )
+    return nm
+
+
+@dataclass(frozen=True)
+class MappedArray:
+    """A read-only array stored in a raw binary file, opened with ``np.memmap`` on each access.
+
+    Indexing returns an in-memory ``ndarray`` of the selected part; nothing else is read.
+    It pickles as its path and layout, so dask workers open the file themselves.
+
+    Parameters
+    ----------
+    path : str
+        The raw file.
+    stored_dtype : str
+        NumPy dtype string with byte order (e.g. ">f4").
+    file_shape : tuple of int
+        Shape of the array as stored (C order), e.g. (bands, lines, samples) for ENVI BSQ.
+    offset : int
+        Bytes to skip at the start of the file (a header).
+    axes : tuple of int
+        Transposition from the stored order to (rows, columns, bands).
+    """
+
+    path: str
+    stored_dtype: str
+    file_shape: tuple[int, ...]
+    offset: int = 0
+    axes: tuple[int, ...] = (0, 1, 2)
+
+    def _open(self) -> np.ndarray:
+        stored = np.memmap(
+            self.path, dtype=self.dtype, mode="r", offset=self.offset,
+            shape=self.file_shape,
+        )
+        return stored.transpose(self.axes)
+
+    @property
+    def dtype(self) -> np.dtype:
+        return np.dtype(self.stored_dtype)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(self.file_shape[axis] for axis in self.axes)
+
+    @property
+    def ndim(self) -> int:
+        return len(self.file_shape)
+
+    @property
+    def nbytes(self) -> int:
+        return int(np.prod(self.file_shape)) * self.dtype.itemsize
+
+    def __getitem__(self, key) -> np.ndarray:
+        rows, rest = _split_row_key(key, self.shape[0])
+        if rows is not None and self.axes[0] in (0, 1):
+            return self._read_rows(*rows)[rest]
+        return np.array(self._open()[key])
+
+    def _read_rows(self, start: int, stop: int) -> np.ndarray:
+        """Rows start:stop as (rows, columns, bands), read with plain file reads (no mapping).
+
+        Mapping the whole file would count the file against the address-space limit of the
+        process; reading only the rows keeps memory (and address space) bounded by the block.
+        """
+        dtype = self.dtype
+        first, second, third = self.file_shape
+        with open(self.path, "rb") as handle:
+            if self.axes[0] == 0:  # rows are the stored outer axis: one contiguous read
+                count = (stop - start) * second * third
+                handle.seek(self.offset + start * second * third * dtype.itemsize)
+                block = np.fromfile(handle, dtype=dtype, count=count)
+                block = block.reshape(stop - start, second, third)
+            else:  # rows are the middle axis (e.g. ENVI BSQ): one read per outer index
+                block = np.empty((first, stop - start, third), dtype=dtype)
+                for index in range(first):
+                    handle.seek(self.offset + (index * second + start) * third * dtype.itemsize)
+                    block[index] = np.fromfile(
+                        handle, dtype=dtype, count=(stop - start) * third
+                    ).reshape(stop - start, third)
+        # block is stored-order with the row axis cut; apply the same transposition
+        return block.transpose(self.axes)
+
+    def __array__(self, dtype=None, copy=None) -> np.ndarray:
+        array = np.array(self._open())
+        return array if dtype is None else array.astype(dtype)
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+
+@dataclass(frozen=True)
+class SpectralCube:
+    """A spectral image: values (rows, columns, bands) and the band wavelengths in nm.
+
+    Attributes
+    ----------
+    values : ndarray or MappedArray or array-like, shape (H, W, K)
+        Spectral values as stored in the file (no scaling applied: a reflectance stored as
+        integer codes stays integer codes; pass ``scale=`` to the conversions).
+    wavelengths_nm : ndarray, shape (K,)
+        Band centre wavelengths in nanometres, strictly increasing.
+    source : str
+        The file or folder the cube was read from ("" for an in-memory cube).
+    metadata : dict
+        Other header fields worth keeping (e.g. ENVI "reflectance scale factor").
+    """
+
+    values: object
+    wavelengths_nm: np.ndarray
+    source: str = ""
+    metadata: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        shape = tuple(self.values.shape)
+        name = self.source or "cube"
+        if len(shape) != 3:
+            raise SpectrumError(
+                f"{name}: a spectral cube must have shape (rows, columns, bands); got {shape}"
+            )
+        wavelengths = np.asarray(self.wavelengths_nm, dtype=np.float64)
+        if wavelengths.ndim != 1 or wavelengths.size != shape[2]:
+            raise SpectrumError(
+                f"{name}: {wavelengths.size} wavelengths for {shape[2]} bands; the band count and"
+                " the wavelength count must match"
+            )
+        if wavelengths.size > 1 and not np.all(np.diff(wavelengths) > 0):
+            raise SpectrumError(f"{name}: wavelengths_nm must be strictly increasing")
+        object.__setattr__(self, "wavelengths_nm", wavelengths)
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        return tuple(self.values.shape)
+
+    def to_numpy(self) -> np.ndarray:
+        """All values in memory as an ndarray (H, W, K) of the stored dtype."""
+        return np.asarray(self.values)
+
+    def to_xarray(self, chunks=None):
+        """The cube as an ``xarray.DataArray`` with dims ("y", "x", "wavelength").
+
+        Parameters
+        ----------
+        chunks : None, int, tuple or dict, optional
+            None: values as they are (in memory, or read on access). Otherwise a dask-backed
+            array with these chunks (the wavelength axis is always one whole chunk).
+        """
+        import xarray as xr
+
+        values = self.values
+        if chunks is not None:
+            import dask.array as da
+
+            if isinstance(chunks, dict):
+                chunks = (chunks.get("y", "auto"), chunks.get("x", "auto"), -1)
+            elif isinstance(chunks, int):
+                chunks = (chunks, chunks, -1)
+            else:
+                chunks = (*tuple(chunks)[:2], -1)
+            values = da.from_array(values, chunks=chunks, name=f"cube-{_token(self)}")
+        elif not isinstance(values, np.ndarray):
+            values = np.asarray(values)
+        return xr.DataArray(
+            values,
+            dims=("y", "x", "wavelength"),
+            coords={"wavelength": ("wavelength", self.wavelengths_nm, {"units": "nm"})},
+            name="spectral_values",
+            attrs={"source": self.source},
+        )
+
+
+def _split_row_key(key, n_rows: int):
+    """(start, stop) and the remaining key when ``key`` selects a contiguous row range."""
+    first, rest = (key[0], (slice(None), *key[1:])) if isinstance(key, tuple) else (key, ())
+    if not isinstance(first, slice) or first.step not in (None, 1):
+        return None, None
+    start, stop, _ = first.indices(n_rows)
+    if stop <= start:
+        return None, None
+    return (start, stop), (rest if rest else slice(None))
+
+
+def _token(cube: SpectralCube) -> str:
+    """A deterministic dask name for a cube (stable across pickling)."""
+    import dask.base
+
+    if isinstance(cube.values, MappedArray):
+        stat = os.stat(cube.values.path)
+        return dask.base.tokenize(cube.values, stat.st_mtime_ns, stat.st_size)
+    return dask.base.tokenize(cube.values)

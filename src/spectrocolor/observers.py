@@ -1,0 +1,100 @@
+"""CIE standard colorimetric observers (colour-matching functions x̄, ȳ, z̄ at 1 nm).
+
+References
+----------
+CIE 015:2018 *Colorimetry*, 4th ed., Tables 1 and 2 (1931 2°, 1964 10°).
+CIE 170-2:2015 *Fundamental chromaticity diagram with physiological axes*, XYZ functions
+(the "CIE 2015" 2° and 10° observers). Sources of the files: ``data/PROVENANCE.md``.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from .data_tables import load_table
+from .errors import ColorimetryError
+from .spectrum import Spectrum
+
+_FILES = {
+    "CIE 1931 2°": "cmf_cie1931_2deg.csv",
+    "CIE 1964 10°": "cmf_cie1964_10deg.csv",
+    "CIE 2015 2°": "cmf_cie2015_2deg.csv",
+    "CIE 2015 10°": "cmf_cie2015_10deg.csv",
+}
+
+_ALIASES = {
+    "cie 1931 2°": "CIE 1931 2°",
+    "cie 1931 2": "CIE 1931 2°",
+    "cie1931": "CIE 1931 2°",
+    "1931": "CIE 1931 2°",
+    "2": "CIE 1931 2°",
+    "2deg": "CIE 1931 2°",
+    "2°": "CIE 1931 2°",
+    "cie 1964 10°": "CIE 1964 10°",
+    "cie 1964 10": "CIE 1964 10°",
+    "cie1964": "CIE 1964 10°",
+    "1964": "CIE 1964 10°",
+    "10": "CIE 1964 10°",
+    "10deg": "CIE 1964 10°",
+    "10°": "CIE 1964 10°",
+    "cie 2015 2°": "CIE 2015 2°",
+    "cie 2015 2": "CIE 2015 2°",
+    "2015-2": "CIE 2015 2°",
+    "2015 2deg": "CIE 2015 2°",
+    "2015-2deg": "CIE 2015 2°",
+    "cie 2015 10°": "CIE 2015 10°",
+    "cie 2015 10": "CIE 2015 10°",
+    "2015-10": "CIE 2015 10°",
+    "2015 10deg": "CIE 2015 10°",
+    "2015-10deg": "CIE 2015 10°",
+}
+
+
+def observer_names() -> tuple[str, ...]:
+    """Canonical names of the shipped observers."""
+    return tuple(_FILES)
+
+
+def canonical_observer_name(name: str) -> str:
+    """Canonical name for an observer name or alias (``"1931"``, ``"10deg"``, …), or raise."""
+    if not isinstance(name, str):
+        raise ColorimetryError(f"observer: expected a name such as '1931' or '1964', got {name!r}")
+    if name in _FILES:
+        return name
+    key = " ".join(name.strip().lower().replace("_", " ").replace("degree", "deg").split())
+    canonical = _ALIASES.get(key) or _ALIASES.get(key.replace(" ", ""))
+    if canonical is None:
+        raise ColorimetryError(
+            f"observer: unknown observer {name!r}; choose one of {list(_FILES)} "
+            "or an alias such as '1931', '2deg', '1964', '10deg', '2015-2', '2015-10'"
+        )
+    return canonical
+
+
+@lru_cache(maxsize=None)
+def _observer(canonical: str) -> Spectrum:
+    header, table = load_table(_FILES[canonical])
+    return Spectrum(table[:, 0], table[:, 1:].T.copy(), header[1:])
+
+
+def observer(name: str = "1931") -> Spectrum:
+    """Colour-matching functions of a CIE standard observer.
+
+    Parameters
+    ----------
+    name
+        ``"CIE 1931 2°"`` (aliases ``"1931"``, ``"2deg"``), ``"CIE 1964 10°"`` (``"1964"``,
+        ``"10deg"``), ``"CIE 2015 2°"`` (``"2015-2"``), ``"CIE 2015 10°"`` (``"2015-10"``).
+
+    Returns
+    -------
+    Spectrum
+        Values of shape ``(3, K)``: x̄, ȳ, z̄ at 1 nm (360–830 nm for 1931/1964, 390–830 nm
+        for the 2015 observers), names ``("x_bar", "y_bar", "z_bar")``.
+
+    >>> observer("1931").values.shape
+    (3, 471)
+    """
+    result = _observer(canonical_observer_name(name))
+    result.values.setflags(write=False)
+    return result

@@ -1,0 +1,233 @@
+"""Pictures without plotting: colour swatches, coloured strips and a wavelength tint palette.
+
+Images are built as ``(H, W, 3)`` uint8 arrays (``rgb8``: already encoded display values, 0-255)
+by :func:`swatch_image` and :func:`strip_image`, and written by :func:`save_image` as PNG
+(Pillow, imported only when a PNG is written) or binary PPM (P6, written directly; seed 000
+writes the ASCII variant P3 of the same format).
+
+References
+----------
+D. Zawischa, How to calculate and render colours -- thin films as an example, Appendix A (the
+PPM strip with ticks every 500 nm of path difference).
+P. Sällström (1999), USIP Report 99-05, "Can you really display a pure spectrum?" (the palette
+anchored at the unique hues).
+Netpbm PPM format specification, https://netpbm.sourceforge.net/doc/ppm.html
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ColorimetryError, SpectrumError
+
+__all__ = [
+    "TINT_HUE_ANCHORS",
+    "wavelength_tint",
+    "swatch_image",
+    "strip_image",
+    "save_image",
+    "write_swatches",
+    "write_strip",
+]
+
+#: (wavelength nm, HSV hue degrees) anchors of the illustrative spectrum palette. Seed 002 places
+#: unique blue at 470 nm, the blue-green "as blue as green" at 500 nm, essentially green from 510
+#: to 570 nm, unique yellow at 580 nm, orange "as yellow as red" at 600 nm, red from 620 nm.
+TINT_HUE_ANCHORS = (
+    (360.0, 275.0),
+    (430.0, 260.0),
+    (470.0, 240.0),
+    (500.0, 180.0),
+    (510.0, 135.0),
+    (540.0, 120.0),
+    (570.0, 95.0),
+    (580.0, 60.0),
+    (600.0, 30.0),
+    (620.0, 0.0),
+    (830.0, 0.0),
+)
+
+
+def _hsv_to_rgb(hue_deg: np.ndarray, saturation: np.ndarray, value: np.ndarray) -> np.ndarray:
+    h = (np.asarray(hue_deg) % 360.0) / 60.0
+    c = value * saturation
+    x = c * (1 - np.abs(h % 2 - 1))
+    zero = np.zeros_like(c)
+    sector = np.floor(h).astype(int) % 6
+    choices = [
+        np.stack([c, x, zero], -1),
+        np.stack([x, c, zero], -1),
+        np.stack([zero, c, x], -1),
+        np.stack([zero, x, c], -1),
+        np.stack([x, zero, c], -1),
+        np.stack([c, zero, x], -1),
+    ]
+    rgb = np.choose(sector[..., None], choices)
+    return rgb + (value - c)[..., None]
+
+
+def wavelength_tint(wavelengths_nm) -> np.ndarray:
+    """Illustrative sRGB colour for each wavelength, for tinting spectrum bars (``rgb8``).
+
+    A spectral light cannot be shown on a display (seed 002: "Certainly not!"); this palette
+    shows its *hue*, with hues interpolated linearly between :data:`TINT_HUE_ANCHORS` (unique
+    blue 470 nm, blue-green 500 nm, yellow 580 nm, orange 600 nm), full saturation, and a
+    brightness that peaks at 555 nm and falls off roughly symmetrically,
+    ``value = 0.3 + 0.7 exp(-((lambda - 555) / 106)**2)``, so that bars at the spectrum's ends stay
+    visible. Not a colorimetric rendering: use :func:`spectrocolor.render` for that.
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like (...,)
+        Wavelengths in nm, 360 to 830.
+
+    Returns
+    -------
+    ndarray (..., 3) uint8
+    """
+    wl = np.asarray(wavelengths_nm, dtype=float)
+    if not np.all(np.isfinite(wl)) or np.any((wl < 360) | (wl > 830)):
+        raise SpectrumError(
+            "wavelengths_nm must be finite and within 360-830 nm for wavelength_tint"
+        )
+    anchors = np.array(TINT_HUE_ANCHORS)
+    hue = np.interp(wl, anchors[:, 0], anchors[:, 1])
+    value = 0.3 + 0.7 * np.exp(-(((wl - 555.0) / 106.0) ** 2))
+    rgb = _hsv_to_rgb(hue, np.ones_like(wl), value)
+    return np.rint(rgb * 255).astype(np.uint8)
+
+
+def _rgb8(rgb8, argument: str = "rgb8") -> np.ndarray:
+    a = np.asarray(rgb8)
+    if a.ndim != 2 or a.shape[1] != 3 or a.shape[0] == 0:
+        raise ColorimetryError(f"{argument} must have shape (N, 3) with N >= 1, got {a.shape}")
+    if not np.issubdtype(a.dtype, np.integer) or a.min() < 0 or a.max() > 255:
+        raise ColorimetryError(f"{argument} must hold integers 0-255 (8-bit codes)")
+    return a.astype(np.uint8)
+
+
+def swatch_image(
+    rgb8,
+    size: int = 64,
+    columns: int | None = None,
+    gap: int = 4,
+    background=(255, 255, 255),
+    crossed=None,
+) -> np.ndarray:
+    """Square swatches on a background, row by row.
+
+    Parameters
+    ----------
+    rgb8 : (N, 3) integers 0-255
+    size : int
+        Swatch side in pixels.
+    columns : int, optional
+        Swatches per row (default: all in one row, at most 8).
+    gap : int
+        Pixels between swatches and around them.
+    background : (3,) integers 0-255
+    crossed : (N,) bool, optional
+        Swatches to mark with a diagonal cross in the background colour -- e.g.
+        ``~rendering.in_gamut`` to show SPECTRA's "cannot be reproduced".
+
+    Returns
+    -------
+    ndarray (H, W, 3) uint8
+    """
+    colours = _rgb8(rgb8)
+    if int(size) != size or size < 1 or int(gap) != gap or gap < 0:
+        raise ColorimetryError("size must be a positive integer and gap a non-negative one")
+    n = colours.shape[0]
+    cols = min(n, 8) if columns is None else int(columns)
+    if cols < 1:
+        raise ColorimetryError(f"columns must be a positive integer, got {columns!r}")
+    rows = -(-n // cols)
+    bg = _rgb8([background], "background")[0]
+    img = np.empty((gap + rows * (size + gap), gap + cols * (size + gap), 3), np.uint8)
+    img[...] = bg
+    marks = np.zeros(n, bool) if crossed is None else np.asarray(crossed, bool).reshape(n)
+    diag = np.arange(size)
+    for i in range(n):  # one slice assignment per swatch (N is small: swatches, not pixels)
+        r, c = divmod(i, cols)
+        y0, x0 = gap + r * (size + gap), gap + c * (size + gap)
+        img[y0 : y0 + size, x0 : x0 + size] = colours[i]
+        if marks[i]:
+            img[y0 + diag, x0 + diag] = bg
+            img[y0 + diag, x0 + size - 1 - diag] = bg
+    return img
+
+
+def strip_image(
+    rgb8,
+    height: int = 80,
+    ticks=None,
+    tick_height: int = 10,
+    tick_rgb8=(255, 255, 255),
+) -> np.ndarray:
+    """A strip one pixel column per colour, optionally with a band of tick marks below.
+
+    As in Zawischa's Fortran (seed 000): the colours fill the top ``height - tick_height`` rows;
+    the bottom ``tick_height`` rows are black, with each tick three pixels wide (its column and
+    one either side) in ``tick_rgb8``.
+
+    Parameters
+    ----------
+    rgb8 : (N, 3) integers 0-255
+    height : int
+    ticks : sequence of int, optional
+        Column indices (0-based) of tick marks; None for no tick band.
+    tick_height : int
+    tick_rgb8 : (3,) integers 0-255
+
+    Returns
+    -------
+    ndarray (height, N, 3) uint8
+    """
+    colours = _rgb8(rgb8)
+    n = colours.shape[0]
+    band = 0 if ticks is None else int(tick_height)
+    if int(height) != height or height < 1 or not 0 <= band < height:
+        raise ColorimetryError("height must be a positive integer larger than tick_height")
+    img = np.empty((int(height), n, 3), np.uint8)
+    img[: height - band] = colours[None]
+    if band:
+        idx = np.asarray(ticks, dtype=int).reshape(-1)
+        if np.any((idx < 0) | (idx >= n)):
+            raise ColorimetryError(f"ticks must be column indices in 0..{n - 1}")
+        img[height - band :] = 0
+        cols = np.clip(np.concatenate([idx - 1, idx, idx + 1]), 0, n - 1)
+        img[height - band :, cols] = _rgb8([tick_rgb8], "tick_rgb8")[0]
+    return img
+
+
+def save_image(image, path) -> Path:
+    """Write an ``(H, W, 3)`` uint8 image as PNG (Pillow) or binary PPM P6, by file extension."""
+    img = np.asarray(image)
+    if img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8:
+        raise ColorimetryError(
+            f"image must be an (H, W, 3) uint8 array, got {img.shape} {img.dtype}"
+        )
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".ppm":
+        header = f"P6\n{img.shape[1]} {img.shape[0]}\n255\n".encode("ascii")
+        path.write_bytes(header + np.ascontiguousarray(img).tobytes())
+    elif suffix == ".png":
+        from PIL import Image
+
+        Image.fromarray(img, mode="RGB").save(path)
+    else:
+        raise ColorimetryError(f"path must end in .png or .ppm, got {path.name!r}")
+    return path
+
+
+def write_swatches(rgb8, path, **options) -> Path:
+    """:func:`swatch_image` written to ``path`` (.png or .ppm); options as for swatch_image."""
+    return save_image(swatch_image(rgb8, **options), path)
+
+
+def write_strip(rgb8, path, **options) -> Path:
+    """:func:`strip_image` written to ``path`` (.png or .ppm); options as for strip_image."""
+    return save_image(strip_image(rgb8, **options), path)

@@ -1,0 +1,97 @@
+"""Exact membership in the set of colours a reflectance can produce, for given weights.
+
+With weights ``W`` (K, 3), the colours ``b = W.T @ rho`` of reflectances ``0 <= rho <= 1``
+form a zonotope (the discrete object-colour solid), and those of ``rho >= 0`` a convex
+cone. Both are polyhedra whose facet normals are cross products of pairs of generators
+(rows of ``W``), so membership is decided exactly by a finite set of linear inequalities.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+_CHUNK = 4096
+
+
+@dataclass(frozen=True)
+class Facets:
+    """Unit facet normals ``normals`` (F, 3) with offsets: inside iff ``normals @ (b - centre)
+    <= support`` for every facet (for the cone, ``centre = 0`` and ``support = 0``)."""
+
+    normals: np.ndarray
+    support: np.ndarray
+    centre: np.ndarray
+    pairs: np.ndarray  # (F, 2) generator indices spanning each facet
+
+
+def _pair_normals(W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    K = W.shape[0]
+    i, j = np.triu_indices(K, 1)
+    n = np.cross(W[i], W[j])
+    norm = np.linalg.norm(n, axis=1)
+    scale = np.linalg.norm(W[i], axis=1) * np.linalg.norm(W[j], axis=1)
+    keep = norm > 1e-12 * np.maximum(scale, np.finfo(float).tiny)
+    n = n[keep] / norm[keep, None]
+    return n, np.stack([i[keep], j[keep]], axis=1)
+
+
+def solid_facets(W: np.ndarray) -> Facets:
+    """Facets of the zonotope ``{W.T rho : 0 <= rho <= 1}`` (both orientations)."""
+    n, pairs = _pair_normals(W)
+    n = np.concatenate([n, -n])
+    pairs = np.concatenate([pairs, pairs])
+    support = 0.5 * np.abs(n @ W.T).sum(axis=1)
+    centre = 0.5 * W.sum(axis=0)
+    return Facets(n, support, centre, pairs)
+
+
+def cone_facets(W: np.ndarray) -> Facets:
+    """Facets of the cone ``{W.T rho : rho >= 0}``, normals pointing outwards."""
+    n, pairs = _pair_normals(W)
+    proj = n @ W.T  # (F, K)
+    tol = 1e-12 * np.abs(proj).max(axis=1, keepdims=True)
+    below = np.all(proj <= tol, axis=1)
+    above = np.all(proj >= -tol, axis=1)
+    n = np.concatenate([n[below], -n[above]])
+    pairs = np.concatenate([pairs[below], pairs[above]])
+    return Facets(n, np.zeros(len(n)), np.zeros(3), pairs)
+
+
+def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Membership of colours ``b`` (N, 3).
+
+    Returns
+    -------
+    ratio : (N,)
+        For the solid, the gauge ``max_f n_f.(b - c) / s_f`` (inside iff <= 1; ``1 - ratio``
+        is the relative depth: the fraction by which ``b - c`` could grow and stay inside).
+        For the cone, ``max_f n_f.b / |b|`` (inside iff <= 0), 0 for ``b = 0``.
+    excess : (N,)
+        ``max_f n_f.(b - c) - s_f``: the distance (XYZ100 units) from ``b`` to the farthest
+        violated facet plane, <= 0 inside. Outside, it is the Euclidean distance to the
+        solid when the nearest boundary point lies inside a facet, and a lower bound otherwise.
+    facet : (N,) int
+        Index of the facet attaining ``ratio``.
+    """
+    N = b.shape[0]
+    ratio = np.empty(N)
+    excess = np.empty(N)
+    facet = np.empty(N, dtype=np.int64)
+    for start in range(0, N, _CHUNK):
+        d = b[start:start + _CHUNK] - facets.centre
+        proj = d @ facets.normals.T
+        if cone:
+            norm = np.linalg.norm(d, axis=1)
+            k = np.argmax(proj, axis=1)
+            top = proj[np.arange(len(d)), k]
+            excess[start:start + len(d)] = top
+            ratio[start:start + len(d)] = np.where(norm > 0, top / np.where(norm > 0, norm, 1), 0)
+        else:
+            rel = proj / facets.support
+            k = np.argmax(rel, axis=1)
+            ratio[start:start + len(d)] = rel[np.arange(len(d)), k]
+            excess[start:start + len(d)] = np.max(proj - facets.support, axis=1)
+        facet[start:start + len(d)] = k
+    return ratio, excess, facet

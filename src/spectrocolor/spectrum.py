@@ -1,0 +1,350 @@
+"""The :class:`Spectrum` type: one wavelength grid, values of shape ``(..., K)``.
+
+A ``Spectrum`` is one spectral distribution or a whole batch of them (a list of samples,
+an image cube) sampled on a single strictly increasing wavelength grid in nanometres.
+It never guesses: combining spectra on different grids is an error until one of them is
+explicitly resampled, and resampling never extrapolates.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from numbers import Real
+
+import numpy as np
+
+from .errors import SpectrumError
+from .interpolation import interpolation_matrix
+
+ArrayLike = np.ndarray | Sequence[float] | float
+
+#: Wavelengths below this (in nm) are taken as a sign that the data is in micrometres.
+_SMALLEST_PLAUSIBLE_NM = 100.0
+
+
+def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarray:
+    """Uniform grid ``start_nm, start_nm + step_nm, …, stop_nm`` (both ends included), in nm.
+
+    >>> wavelength_grid(400, 700, 10).size
+    31
+    """
+    for name, value in (("start_nm", start_nm), ("stop_nm", stop_nm), ("step_nm", step_nm)):
+        if not isinstance(value, Real) or not np.isfinite(value):
+            raise SpectrumError(f"{name}: expected a finite number of nanometres, got {value!r}")
+    if step_nm <= 0:
+        raise SpectrumError(f"step_nm: must be positive, got {step_nm!r}")
+    if stop_nm <= start_nm:
+        raise SpectrumError(f"stop_nm: must exceed start_nm ({start_nm!r}), got {stop_nm!r}")
+    count = (stop_nm - start_nm) / step_nm
+    if abs(count - round(count)) > 1e-9 * max(1.0, count):
+        raise SpectrumError(
+            f"step_nm: {step_nm!r} does not divide {start_nm!r}–{stop_nm!r} nm into whole steps"
+        )
+    return start_nm + step_nm * np.arange(round(count) + 1, dtype=float)
+
+
+def validate_wavelengths(wavelengths_nm: ArrayLike, argument: str = "wavelengths_nm") -> np.ndarray:
+    """Return a read-only float64 copy of a strictly increasing, finite grid in nm, or raise."""
+    try:
+        grid = np.array(wavelengths_nm, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise SpectrumError(f"{argument}: expected numbers in nm ({exc})") from None
+    if grid.ndim != 1 or grid.size < 1:
+        raise SpectrumError(f"{argument}: expected a 1-D sequence of wavelengths, got shape {grid.shape}")
+    if not np.all(np.isfinite(grid)):
+        raise SpectrumError(f"{argument}: contains NaN or infinity")
+    steps = np.diff(grid)
+    if np.any(steps <= 0):
+        bad = int(np.argmax(steps <= 0))
+        kind = "duplicate" if steps[bad] == 0 else "decreasing"
+        raise SpectrumError(
+            f"{argument}: must be strictly increasing; {kind} wavelength at position {bad + 1} "
+            f"({grid[bad]:g} then {grid[bad + 1]:g} nm)"
+        )
+    if grid[-1] < _SMALLEST_PLAUSIBLE_NM:
+        raise SpectrumError(
+            f"{argument}: largest wavelength is {grid[-1]:g}; that looks like micrometres, "
+            "but spectrocolor expects nanometres (multiply by 1000)"
+        )
+    if grid[0] <= 0:
+        raise SpectrumError(f"{argument}: wavelengths must be positive nm, got {grid[0]:g}")
+    grid.setflags(write=False)
+    return grid
+
+
+def _as_values(values: ArrayLike, size: int) -> np.ndarray:
+    try:
+        array = np.asarray(values)
+    except (TypeError, ValueError) as exc:
+        raise SpectrumError(f"values: expected an array of numbers ({exc})") from None
+    if array.dtype.kind in "biu":
+        array = array.astype(float)
+    if array.dtype.kind != "f":
+        raise SpectrumError(f"values: expected real numbers, got dtype {array.dtype}")
+    if array.ndim == 0 or array.shape[-1] != size:
+        raise SpectrumError(
+            f"values: last axis must have one entry per wavelength ({size}), got shape {array.shape}"
+        )
+    return array
+
+
+class Spectrum:
+    """Spectral distribution(s) on one wavelength grid.
+
+    Parameters
+    ----------
+    wavelengths_nm
+        Strictly increasing wavelengths, shape ``(K,)``, in nanometres.
+    values
+        Array of shape ``(..., K)``: a single spectrum ``(K,)``, a batch ``(N, K)`` or an image
+        ``(H, W, K)``. Reflectances and transmittances are factors on the 0–1 scale. Float32
+        values stay float32 (useful for large cubes); integers become float64.
+    names
+        Optional names, one per spectrum of a ``(N, K)`` batch (or one for a single spectrum).
+
+    Examples
+    --------
+    >>> s = Spectrum([400, 500, 600], [0.1, 0.5, 0.9])
+    >>> (1 - s).values
+    array([0.9, 0.5, 0.1])
+    """
+
+    __slots__ = ("_wavelengths_nm", "_values", "_names")
+
+    def __init__(self, wavelengths_nm: ArrayLike, values: ArrayLike, names: Sequence[str] | None = None):
+        self._wavelengths_nm = validate_wavelengths(wavelengths_nm)
+        self._values = _as_values(values, self._wavelengths_nm.size)
+        self._names = self._check_names(names)
+
+    def _check_names(self, names: Sequence[str] | None) -> tuple[str, ...] | None:
+        if names is None:
+            return None
+        if isinstance(names, str):
+            names = (names,)
+        names = tuple(str(n) for n in names)
+        expected = 1 if self._values.ndim == 1 else self._values.shape[0]
+        if self._values.ndim > 2 or len(names) != expected:
+            raise SpectrumError(
+                f"names: expected {expected} name(s) for values of shape {self._values.shape}, "
+                f"got {len(names)}"
+            )
+        return names
+
+    # ------------------------------------------------------------------ properties
+    @property
+    def wavelengths_nm(self) -> np.ndarray:
+        """Wavelength grid, shape ``(K,)``, nm (read-only)."""
+        return self._wavelengths_nm
+
+    @property
+    def values(self) -> np.ndarray:
+        """Spectral values, shape ``(..., K)``."""
+        return self._values
+
+    @property
+    def names(self) -> tuple[str, ...] | None:
+        """Names of the spectra of a batch, or ``None``."""
+        return self._names
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """Leading shape ``values.shape[:-1]``: ``()`` for one spectrum."""
+        return self._values.shape[:-1]
+
+    @property
+    def interval_nm(self) -> float | None:
+        """The sampling interval in nm if the grid is uniform, else ``None``."""
+        steps = np.diff(self._wavelengths_nm)
+        if steps.size == 0 or not np.allclose(steps, steps[0], rtol=1e-9, atol=0):
+            return None
+        return float(steps[0])
+
+    def __repr__(self) -> str:
+        grid = self._wavelengths_nm
+        step = self.interval_nm
+        spacing = f"{step:g} nm" if step is not None else "irregular"
+        named = f", names={list(self._names)[:4]}{'…' if len(self._names) > 4 else ''}" if self._names else ""
+        return (
+            f"Spectrum({grid[0]:g}–{grid[-1]:g} nm, {spacing}, K={grid.size}, "
+            f"batch_shape={self.batch_shape}{named})"
+        )
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def constant(cls, value: float, wavelengths_nm: ArrayLike) -> Spectrum:
+        """The same ``value`` at every wavelength (e.g. 1 for the perfect reflector)."""
+        grid = validate_wavelengths(wavelengths_nm)
+        return cls(grid, np.full(grid.size, float(value)))
+
+    @classmethod
+    def block(
+        cls,
+        start_nm: float,
+        stop_nm: float,
+        wavelengths_nm: ArrayLike,
+        inside: float = 1.0,
+        outside: float = 0.0,
+    ) -> Spectrum:
+        """Ideal (block) spectrum: ``inside`` for ``start_nm ≤ λ ≤ stop_nm``, ``outside`` elsewhere.
+
+        ``start_nm > stop_nm`` gives the band-stop complement (``inside`` outside the gap), as for
+        the purple optimal colours.
+        """
+        grid = validate_wavelengths(wavelengths_nm)
+        if start_nm <= stop_nm:
+            mask = (grid >= start_nm) & (grid <= stop_nm)
+        else:
+            mask = (grid >= start_nm) | (grid <= stop_nm)
+        return cls(grid, np.where(mask, float(inside), float(outside)))
+
+    @classmethod
+    def gaussian(cls, peak_nm: float, fwhm_nm: float, wavelengths_nm: ArrayLike, peak: float = 1.0) -> Spectrum:
+        """Gaussian band of full width at half maximum ``fwhm_nm`` centred on ``peak_nm``."""
+        if not fwhm_nm > 0:
+            raise SpectrumError(f"fwhm_nm: must be positive, got {fwhm_nm!r}")
+        grid = validate_wavelengths(wavelengths_nm)
+        sigma = fwhm_nm / (2.0 * np.sqrt(2.0 * np.log(2.0)))
+        return cls(grid, peak * np.exp(-0.5 * ((grid - peak_nm) / sigma) ** 2))
+
+    @classmethod
+    def bins(
+        cls, levels: ArrayLike, start_nm: float = 400.0, step_nm: float = 10.0, full_scale: float | None = None
+    ) -> Spectrum:
+        """Spectrum from bin levels at ``start_nm, start_nm + step_nm, …`` (bin centres, nm).
+
+        SPECTRA's editor has 31 bins of 10 nm at 400–700 nm with integer levels 0–30; pass
+        ``full_scale=30`` to get values on the 0–1 scale.
+        """
+        level_array = np.asarray(levels, dtype=float)
+        if level_array.ndim < 1 or level_array.shape[-1] < 1:
+            raise SpectrumError(f"levels: expected at least one bin level, got shape {level_array.shape}")
+        count = level_array.shape[-1]
+        grid = start_nm + step_nm * np.arange(count, dtype=float)
+        if full_scale is not None:
+            if not full_scale > 0:
+                raise SpectrumError(f"full_scale: must be positive, got {full_scale!r}")
+            level_array = level_array / full_scale
+        return cls(grid, level_array)
+
+    # ------------------------------------------------------------------ grid operations
+    def resample(self, wavelengths_nm: ArrayLike, method: str = "linear") -> Spectrum:
+        """Values on another grid inside this one's range (``"linear"``, ``"sprague"``, ``"cubic"``).
+
+        Never extrapolates: a target outside ``wavelengths_nm``'s range raises ``SpectrumError``.
+        """
+        target = validate_wavelengths(wavelengths_nm)
+        if target.shape == self._wavelengths_nm.shape and np.array_equal(target, self._wavelengths_nm):
+            return self
+        matrix = interpolation_matrix(self._wavelengths_nm, target, method)
+        return Spectrum(target, self._values @ matrix.T.astype(self._values.dtype, copy=False), self._names)
+
+    def restrict(self, start_nm: float, stop_nm: float) -> Spectrum:
+        """The samples with ``start_nm ≤ λ ≤ stop_nm`` (no interpolation)."""
+        grid = self._wavelengths_nm
+        keep = (grid >= start_nm - 1e-9) & (grid <= stop_nm + 1e-9)
+        if not np.any(keep):
+            raise SpectrumError(
+                f"start_nm/stop_nm: {start_nm:g}–{stop_nm:g} nm holds none of this spectrum's samples "
+                f"({grid[0]:g}–{grid[-1]:g} nm)"
+            )
+        return Spectrum(grid[keep], self._values[..., keep], self._names)
+
+    def same_grid(self, other: Spectrum) -> bool:
+        """True if ``other`` is sampled at exactly the same wavelengths."""
+        a, b = self._wavelengths_nm, other.wavelengths_nm
+        return a.shape == b.shape and bool(np.allclose(a, b, rtol=0, atol=1e-9))
+
+    def __getitem__(self, index) -> Spectrum:
+        """Select spectra of a batch (the wavelength axis is always kept)."""
+        if self._values.ndim == 1:
+            raise SpectrumError("index: a single spectrum has no batch axis to index")
+        values = self._values[index]
+        names = None
+        if self._names is not None and self._values.ndim == 2:
+            picked = np.asarray(self._names, dtype=object)[index]
+            names = tuple(np.atleast_1d(picked)) if values.ndim == 2 else (str(picked),)
+        return Spectrum(self._wavelengths_nm, values, names)
+
+    # ------------------------------------------------------------------ arithmetic
+    def _operand(self, other, operation: str):
+        if isinstance(other, Spectrum):
+            if not self.same_grid(other):
+                raise SpectrumError(
+                    f"{operation}: spectra on different wavelength grids ({self!r} vs {other!r}); "
+                    "resample one explicitly with .resample(other.wavelengths_nm)"
+                )
+            return other.values
+        array = np.asarray(other)
+        if array.dtype.kind not in "biuf":
+            raise SpectrumError(f"{operation}: cannot combine a Spectrum with {type(other).__name__}")
+        return array
+
+    def _apply(self, other, operation: str, func, reflected: bool = False) -> Spectrum:
+        operand = self._operand(other, operation)
+        result = func(operand, self._values) if reflected else func(self._values, operand)
+        names = self._names if np.shape(result) == self._values.shape else None
+        return Spectrum(self._wavelengths_nm, result, names)
+
+    def __add__(self, other):
+        return self._apply(other, "addition", np.add)
+
+    def __radd__(self, other):
+        return self._apply(other, "addition", np.add, reflected=True)
+
+    def __sub__(self, other):
+        return self._apply(other, "subtraction", np.subtract)
+
+    def __rsub__(self, other):
+        return self._apply(other, "subtraction", np.subtract, reflected=True)
+
+    def __mul__(self, other):
+        return self._apply(other, "multiplication", np.multiply)
+
+    def __rmul__(self, other):
+        return self._apply(other, "multiplication", np.multiply, reflected=True)
+
+    def __truediv__(self, other):
+        return self._apply(other, "division", np.true_divide)
+
+    def __neg__(self):
+        return Spectrum(self._wavelengths_nm, -self._values, self._names)
+
+    def __eq__(self, other) -> bool:
+        return (
+            isinstance(other, Spectrum)
+            and self.same_grid(other)
+            and self._values.shape == other.values.shape
+            and bool(np.array_equal(self._values, other.values))
+        )
+
+    __hash__ = None  # mutable-looking array payload: not hashable
+
+    # ------------------------------------------------------------------ conversion
+    def to_dict(self) -> dict:
+        """JSON-ready dict ``{"wavelengths_nm": [...], "spectra": {name: [...]}}`` (1-D or 2-D only)."""
+        if self._values.ndim > 2:
+            raise SpectrumError(f"values: only single spectra or (N, K) batches go to JSON, got {self._values.shape}")
+        rows = np.atleast_2d(self._values)
+        names = self._names or tuple(f"spectrum_{i + 1}" for i in range(rows.shape[0]))
+        return {
+            "wavelengths_nm": self._wavelengths_nm.tolist(),
+            "spectra": {name: row.tolist() for name, row in zip(names, rows, strict=True)},
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Spectrum:
+        """Inverse of :meth:`to_dict`; also accepts ``{"wavelengths_nm", "values", "names"}``."""
+        if not isinstance(data, dict) or "wavelengths_nm" not in data:
+            raise SpectrumError("JSON: expected an object with a 'wavelengths_nm' list")
+        if "spectra" in data:
+            spectra = data["spectra"]
+            if not isinstance(spectra, dict) or not spectra:
+                raise SpectrumError("JSON: 'spectra' must be a non-empty object of name → values")
+            names = list(spectra)
+            values = np.array([spectra[n] for n in names], dtype=float)
+            if values.shape[0] == 1:
+                return cls(data["wavelengths_nm"], values[0], names)
+            return cls(data["wavelengths_nm"], values, names)
+        if "values" in data:
+            return cls(data["wavelengths_nm"], np.array(data["values"], dtype=float), data.get("names"))
+        raise SpectrumError("JSON: expected a 'spectra' object or a 'values' array")

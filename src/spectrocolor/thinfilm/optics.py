@@ -1,0 +1,350 @@
+"""Interference optics of thin films, vectorised over thickness × angle × wavelength.
+
+Three models, from simplest to exact:
+
+* :func:`two_beam_reflectance` — Zawischa's two-beam model (seed 000, eqs. 6-8): only the first
+  reflections at the front and back surface interfere; a parameter β < 1 stands for the weaker
+  second beam. Depends only on the optical path difference ``s = 2 d n``.
+* :func:`thin_film` — one film between two semi-infinite media with all multiple reflections
+  (the Airy sum of Fresnel amplitudes), s, p or unpolarised light, any angle of incidence.
+* :func:`stack_optics` — any stack of layers with complex indices by the characteristic
+  (transfer) matrix method, optionally on a thick substrate that is treated incoherently.
+
+Conventions: indices ``N = n + ik`` with ``k >= 0`` (fields ``exp(i(kz − ωt))``); wavelengths
+are vacuum wavelengths in nm; thicknesses are physical thicknesses in nm; the angle of incidence
+is in degrees, measured in the ambient medium, which must be non-absorbing. Reflectance and
+transmittance are fractions of the incident power (0-1). For unpolarised light they are the
+means of the s and p values.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import SpectrumError
+from .media import _wavelengths, refractive_index
+
+POLARISATIONS = ("s", "p", "unpolarised")
+
+
+@dataclass(frozen=True)
+class FilmOptics:
+    """Reflectance and transmittance of a film or stack.
+
+    Attributes
+    ----------
+    wavelengths_nm
+        Vacuum wavelengths, shape ``(K,)``.
+    reflectance, transmittance
+        Fractions of the incident power (0-1), shape ``(..., K)``; the leading shape is the
+        broadcast of the thickness batch and the angle batch.
+    polarisation
+        ``"s"``, ``"p"`` or ``"unpolarised"``.
+    """
+
+    wavelengths_nm: np.ndarray
+    reflectance: np.ndarray
+    transmittance: np.ndarray
+    polarisation: str
+
+    @property
+    def absorptance(self) -> np.ndarray:
+        """``1 − R − T``: fraction absorbed in the layers (and a thick slab), shape ``(..., K)``."""
+        return 1.0 - self.reflectance - self.transmittance
+
+    def spectrum(self, quantity: str = "reflectance"):
+        """The reflectance or transmittance as a :class:`spectrocolor.Spectrum` (0-1)."""
+        from ..spectrum import Spectrum
+
+        if quantity not in ("reflectance", "transmittance"):
+            raise SpectrumError(
+                f"quantity: expected 'reflectance' or 'transmittance', got {quantity!r}"
+            )
+        return Spectrum(self.wavelengths_nm, getattr(self, quantity))
+
+
+def _check_polarisation(polarisation: str) -> str:
+    if polarisation not in POLARISATIONS:
+        raise SpectrumError(
+            f"polarisation: expected one of {POLARISATIONS}, got {polarisation!r}"
+        )
+    return polarisation
+
+
+def _nonnegative(values, argument: str) -> np.ndarray:
+    array = np.asarray(values, dtype=float)
+    if not np.all(np.isfinite(array)) or np.any(array < 0):
+        raise SpectrumError(f"{argument}: expected finite values >= 0 (nm), got {values!r}")
+    return array
+
+
+def _angles(angle_deg) -> np.ndarray:
+    theta = np.asarray(angle_deg, dtype=float)
+    if not np.all(np.isfinite(theta)) or np.any(theta < 0) or np.any(theta >= 90):
+        raise SpectrumError(
+            f"angle_deg: angle of incidence must be in [0, 90) degrees, got {angle_deg!r}"
+        )
+    return np.radians(theta)[..., None]
+
+
+def _ambient(ambient, wl) -> np.ndarray:
+    n0 = refractive_index(ambient, wl)
+    if np.any(n0.imag != 0):
+        raise SpectrumError("ambient: the incidence medium must be non-absorbing (k = 0)")
+    return n0
+
+
+def _normal_index(index: np.ndarray, kx: np.ndarray) -> np.ndarray:
+    """``N cos θ = sqrt(N² − kx²)`` on the branch of forward (decaying) waves, Im >= 0."""
+    q = np.sqrt(index.astype(complex) ** 2 - kx**2)
+    return np.where((q.imag < 0) | ((q.imag == 0) & (q.real < 0)), -q, q)
+
+
+def _admittance(index: np.ndarray, q: np.ndarray, polarisation: str) -> np.ndarray:
+    """Tilted optical admittance in units of the vacuum admittance (s: N cos θ, p: N / cos θ)."""
+    return q if polarisation == "s" else index**2 / q
+
+
+def _mean_over_polarisations(compute, polarisation: str):
+    if polarisation != "unpolarised":
+        return compute(polarisation)
+    r_s, t_s = compute("s")
+    r_p, t_p = compute("p")
+    return 0.5 * (r_s + r_p), 0.5 * (t_s + t_p)
+
+
+def two_beam_reflectance(opd_nm, wavelengths_nm, beta: float = 0.95) -> np.ndarray:
+    """Zawischa's two-beam reflectance factor ``1 + β² − 2β cos(2π s / λ)``.
+
+    This is eq. (6) of seed 000 divided by ``α² E₀² / 2``: relative, not a reflectance
+    (multiply by the single-surface reflectance α² for an absolute value).
+
+    Parameters
+    ----------
+    opd_nm
+        Optical path difference ``s`` of the two beams in nm, any shape ``(...)``
+        (``s = 2 d n`` at normal incidence; see :func:`optical_path_difference`).
+    wavelengths_nm
+        Vacuum wavelengths in nm, shape ``(K,)``.
+    beta
+        Amplitude of the back-surface beam relative to the front-surface beam, ``0 <= β <= 1``.
+
+    Returns
+    -------
+    ndarray, shape ``(..., K)``
+
+    References
+    ----------
+    D. Zawischa, "How to calculate and render colours – thin films as an example",
+    ITP, Leibniz University Hannover, eqs. (6)-(8).
+    """
+    s = _nonnegative(opd_nm, "opd_nm")
+    wl = _wavelengths(wavelengths_nm)
+    if not (np.isfinite(beta) and 0 <= beta <= 1):
+        raise SpectrumError(f"beta: expected 0 <= beta <= 1, got {beta!r}")
+    return 1.0 + beta * beta - 2.0 * beta * np.cos(2.0 * np.pi * s[..., None] / wl)
+
+
+def optical_path_difference(thickness_nm, film_index: float, angle_deg=0.0,
+                            ambient_index: float = 1.0) -> np.ndarray:
+    """Optical path difference ``s = 2 d sqrt(n² − n₀² sin² θ₀)`` of the two first beams (nm).
+
+    At normal incidence this is seed 000's eq. (4), ``s = 2 d n``.
+    """
+    d = _nonnegative(thickness_nm, "thickness_nm")
+    theta = np.asarray(angle_deg, dtype=float)
+    if not np.all(np.isfinite(theta)) or np.any((theta < 0) | (theta >= 90)):
+        raise SpectrumError(f"angle_deg: expected [0, 90) degrees, got {angle_deg!r}")
+    if not (film_index > 0 and ambient_index > 0):
+        raise SpectrumError("film_index and ambient_index must be positive real numbers")
+    return 2.0 * d * np.sqrt(film_index**2 - (ambient_index * np.sin(np.radians(theta))) ** 2)
+
+
+def thin_film(thickness_nm, wavelengths_nm, film, *, ambient=1.0, substrate=1.0,
+              angle_deg=0.0, polarisation: str = "unpolarised") -> FilmOptics:
+    """One coherent film between two semi-infinite media, exact (Airy sum of Fresnel terms).
+
+    ``r = (r₀₁ + r₁₂ e^{2iδ}) / (1 + r₀₁ r₁₂ e^{2iδ})`` and
+    ``t = t₀₁ t₁₂ e^{iδ} / (1 + r₀₁ r₁₂ e^{2iδ})`` with ``δ = 2π d N₁ cos θ₁ / λ``.
+
+    Parameters
+    ----------
+    thickness_nm
+        Film thickness in nm, shape ``(...)``.
+    wavelengths_nm
+        Vacuum wavelengths in nm, shape ``(K,)``.
+    film, ambient, substrate
+        Media (:class:`~spectrocolor.thinfilm.media.Medium`, number, or ``(K,)`` array).
+        The ambient (incidence) medium must be non-absorbing.
+    angle_deg
+        Angle of incidence in the ambient medium, degrees in [0, 90), broadcastable with
+        ``thickness_nm``.
+    polarisation
+        ``"s"``, ``"p"`` or ``"unpolarised"`` (mean of s and p).
+
+    Returns
+    -------
+    FilmOptics
+        Reflectance and transmittance (into the substrate) of shape ``(..., K)``.
+
+    References
+    ----------
+    M. Born and E. Wolf, *Principles of Optics*, 7th ed., §1.6.4 (Cambridge, 1999);
+    O. S. Heavens, *Optical Properties of Thin Solid Films* (Dover, 1991), ch. 4.
+    """
+    polarisation = _check_polarisation(polarisation)
+    wl = _wavelengths(wavelengths_nm)
+    d = _nonnegative(thickness_nm, "thickness_nm")[..., None]
+    n0 = _ambient(ambient, wl)
+    n1 = refractive_index(film, wl)
+    n2 = refractive_index(substrate, wl)
+    kx = n0.real * np.sin(_angles(angle_deg))
+    q0, q1, q2 = (_normal_index(n, kx) for n in (n0, n1, n2))
+    phase = np.exp(2j * np.pi * d * q1 / wl)
+
+    def compute(pol):
+        e0, e1, e2 = (_admittance(n, q, pol) for n, q in ((n0, q0), (n1, q1), (n2, q2)))
+        r01, r12 = (e0 - e1) / (e0 + e1), (e1 - e2) / (e1 + e2)
+        t01, t12 = 2 * e0 / (e0 + e1), 2 * e1 / (e1 + e2)
+        denominator = 1 + r01 * r12 * phase**2
+        r = (r01 + r12 * phase**2) / denominator
+        t = t01 * t12 * phase / denominator
+        return np.abs(r) ** 2, e2.real / e0.real * np.abs(t) ** 2
+
+    reflectance, transmittance = _mean_over_polarisations(compute, polarisation)
+    return FilmOptics(wl, reflectance, transmittance, polarisation)
+
+
+def thin_film_reflectance(thickness_nm, wavelengths_nm, film, **kwargs) -> np.ndarray:
+    """Reflectance (0-1) of one film, shape ``(..., K)``; arguments as :func:`thin_film`."""
+    return thin_film(thickness_nm, wavelengths_nm, film, **kwargs).reflectance
+
+
+def _coherent_stack(eta0, etas, eta_sub, qs, thicknesses, wl):
+    """Amplitude r and power T of a coherent stack from characteristic matrices.
+
+    With ``N = n + ik`` the layer matrix is ``[[cos δ, −i sin δ / η], [−i η sin δ, cos δ]]``.
+    """
+    m11 = m22 = 1.0 + 0j
+    m12 = m21 = 0j
+    for j, (eta, q) in enumerate(zip(etas, qs, strict=True)):
+        delta = 2 * np.pi * thicknesses[..., j, None] * q / wl
+        c, s = np.cos(delta), np.sin(delta)
+        a12, a21 = -1j * s / eta, -1j * eta * s
+        m11, m12, m21, m22 = (m11 * c + m12 * a21, m11 * a12 + m12 * c,
+                              m21 * c + m22 * a21, m21 * a12 + m22 * c)
+    b = m11 + m12 * eta_sub
+    c = m21 + m22 * eta_sub
+    denominator = eta0 * b + c
+    r = (eta0 * b - c) / denominator
+    transmittance = 4 * eta0.real * eta_sub.real / np.abs(denominator) ** 2
+    return r, transmittance
+
+
+def stack_optics(thicknesses_nm, wavelengths_nm, layers: Sequence, *, ambient=1.0,
+                 substrate=1.0, angle_deg=0.0, polarisation: str = "unpolarised",
+                 substrate_thickness_nm: float | None = None,
+                 exit_medium=1.0) -> FilmOptics:
+    """A multilayer stack by the transfer (characteristic) matrix method.
+
+    Parameters
+    ----------
+    thicknesses_nm
+        Layer thicknesses in nm, shape ``(..., L)``, ordered from the ambient side; the leading
+        shape is a batch (e.g. 1501 thickness settings).
+    wavelengths_nm
+        Vacuum wavelengths in nm, shape ``(K,)``.
+    layers
+        ``L`` media, from the ambient side (each a Medium, a number or a ``(K,)`` array; complex
+        indices ``n + ik`` for absorbing layers).
+    ambient
+        Incidence medium (non-absorbing).
+    substrate
+        The medium below the stack (may be absorbing, e.g. a metal).
+    angle_deg
+        Angle of incidence in the ambient, degrees in [0, 90), broadcastable with the batch.
+    polarisation
+        ``"s"``, ``"p"`` or ``"unpolarised"``.
+    substrate_thickness_nm
+        ``None`` (default): the substrate is semi-infinite and transmittance is into it.
+        A thickness: the substrate is a thick slab, treated incoherently (intensities, not
+        amplitudes, add over its internal reflections), with ``exit_medium`` behind it; the
+        transmittance is into the exit medium. Interfaces of the slab use ``Re(N)`` and its
+        absorption ``exp(−4π Im(N cos θ) d / λ)`` per pass (weak-absorption approximation).
+    exit_medium
+        Medium behind a thick substrate (only with ``substrate_thickness_nm``).
+
+    Returns
+    -------
+    FilmOptics
+        Reflectance and transmittance, shape ``(..., K)``.
+
+    References
+    ----------
+    H. A. Macleod, *Thin-Film Optical Filters*, 4th ed. (CRC Press, 2010), ch. 2 (characteristic
+    matrix, tilted admittances); C. C. Katsidis and D. I. Siapkas, "General transfer-matrix method
+    for optical multilayer systems with coherent, partially coherent, and incoherent
+    interference," Appl. Opt. 41, 3978-3987 (2002) (incoherent substrate).
+    """
+    polarisation = _check_polarisation(polarisation)
+    wl = _wavelengths(wavelengths_nm)
+    layers = list(layers)
+    thicknesses = _nonnegative(thicknesses_nm, "thicknesses_nm")
+    if thicknesses.ndim == 0 or thicknesses.shape[-1] != len(layers):
+        raise SpectrumError(
+            f"thicknesses_nm: last axis must hold one thickness per layer ({len(layers)}), "
+            f"got shape {thicknesses.shape}"
+        )
+    n0 = _ambient(ambient, wl)
+    n_layers = [refractive_index(m, wl) for m in layers]
+    n_sub = refractive_index(substrate, wl)
+    kx = n0.real * np.sin(_angles(angle_deg))
+    q0, q_sub = _normal_index(n0, kx), _normal_index(n_sub, kx)
+    qs = [_normal_index(n, kx) for n in n_layers]
+
+    if substrate_thickness_nm is None:
+        def compute(pol):
+            eta0 = _admittance(n0, q0, pol)
+            etas = [_admittance(n, q, pol) for n, q in zip(n_layers, qs, strict=True)]
+            r, t = _coherent_stack(eta0, etas, _admittance(n_sub, q_sub, pol), qs,
+                                   thicknesses, wl)
+            return np.abs(r) ** 2, t
+
+        reflectance, transmittance = _mean_over_polarisations(compute, polarisation)
+        shape = np.broadcast_shapes(reflectance.shape, thicknesses.shape[:-1] + (wl.size,))
+        return FilmOptics(wl, np.broadcast_to(reflectance, shape).copy(),
+                          np.broadcast_to(transmittance, shape).copy(), polarisation)
+
+    d_sub = float(_nonnegative(substrate_thickness_nm, "substrate_thickness_nm"))
+    n_exit = refractive_index(exit_medium, wl)
+    if np.any(n_exit.imag != 0):
+        raise SpectrumError(
+            "exit_medium: the medium behind a thick substrate must be non-absorbing"
+        )
+    n_slab = n_sub.real.astype(complex)
+    q_slab, q_exit = _normal_index(n_slab, kx), _normal_index(n_exit, kx)
+    single_pass = np.exp(-4 * np.pi * q_sub.imag * d_sub / wl)
+    reversed_thicknesses = thicknesses[..., ::-1]
+
+    def compute(pol):
+        eta0, eta_slab = _admittance(n0, q0, pol), _admittance(n_slab, q_slab, pol)
+        etas = [_admittance(n, q, pol) for n, q in zip(n_layers, qs, strict=True)]
+        r_front, t_front = _coherent_stack(eta0, etas, eta_slab, qs, thicknesses, wl)
+        r_back_side, t_back_side = _coherent_stack(eta_slab, etas[::-1], eta0, qs[::-1],
+                                                   reversed_thicknesses, wl)
+        eta_exit = _admittance(n_exit, q_exit, pol)
+        r_exit = np.abs((eta_slab - eta_exit) / (eta_slab + eta_exit)) ** 2
+        t_exit = 1.0 - r_exit
+        rf, rb = np.abs(r_front) ** 2, np.abs(r_back_side) ** 2
+        loop = 1.0 - rb * r_exit * single_pass**2
+        reflectance = rf + t_front * t_back_side * r_exit * single_pass**2 / loop
+        transmittance = t_front * t_exit * single_pass / loop
+        return reflectance, transmittance
+
+    reflectance, transmittance = _mean_over_polarisations(compute, polarisation)
+    shape = np.broadcast_shapes(reflectance.shape, thicknesses.shape[:-1] + (wl.size,))
+    return FilmOptics(wl, np.broadcast_to(reflectance, shape).copy(),
+                      np.broadcast_to(transmittance, shape).copy(), polarisation)
