@@ -1,0 +1,215 @@
+"""``spectrocolor xyz`` and ``spectrocolor describe``: colorimetry of the spectra in a file."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import sys
+
+import numpy as np
+
+from ..errors import SpectrumError
+from ..spectrum import Spectrum
+from . import UserError
+
+#: Reflectance factors above this are almost surely percentages.
+_PERCENT_SUSPICION = 1.5
+
+
+def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: str | None = "D65") -> None:
+    """Options shared by commands that compute colour from a spectral file."""
+    parser.add_argument("file", help="CSV or JSON: a wavelength_nm column and one column per spectrum")
+    parser.add_argument(
+        "--illuminant",
+        default=default_illuminant,
+        help="CIE illuminant lighting the reflectance/transmittance samples (default %(default)s)",
+    )
+    parser.add_argument("--observer", default="1931", help="1931 (2°), 1964 (10°), 2015-2, 2015-10 (default %(default)s)")
+    parser.add_argument(
+        "--interval",
+        type=float,
+        help="sum only at multiples of this interval in nm (e.g. 10 or 20; the file must hold those samples)",
+    )
+    parser.add_argument("--method", choices=("sum", "1nm"), default="sum", help="summation method (default %(default)s)")
+    parser.add_argument("--range", nargs=2, type=float, metavar=("START", "STOP"), help="use only START–STOP nm")
+    parser.add_argument("--percent", action="store_true", help="the file's values are percentages (0–100)")
+    parser.add_argument("--light", action="store_true", help="the spectra are lights (no illuminant; relative XYZ)")
+    parser.add_argument("--format", choices=("table", "csv", "json"), default="table", help="output format")
+
+
+def load_samples(args: argparse.Namespace) -> Spectrum:
+    """Read ``args.file`` and apply --range, --interval and --percent, checking reflectances."""
+    from ..spectrum_io import read_spectra
+
+    spectra = read_spectra(args.file)
+    if spectra.names is None:
+        spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
+    if args.range:
+        spectra = spectra.restrict(*args.range)
+    if args.interval:
+        grid = spectra.wavelengths_nm
+        on_step = np.isclose(np.mod(grid + 1e-9, args.interval), 0, atol=1e-6)
+        if on_step.sum() < 2:
+            raise UserError(f"--interval: the file holds fewer than two samples at multiples of {args.interval:g} nm")
+        step = np.diff(grid[on_step])
+        if not np.allclose(step, args.interval):
+            raise UserError(
+                f"--interval: the file's samples ({spectra.interval_nm or 'irregular'} nm) do not include every "
+                f"multiple of {args.interval:g} nm in its range; summation needs the samples themselves "
+                "(use --method 1nm to integrate at 1 nm instead)"
+            )
+        spectra = Spectrum(grid[on_step], spectra.values[..., on_step], spectra.names)
+    values = spectra.values
+    if args.percent:
+        values = values / 100.0
+        spectra = Spectrum(spectra.wavelengths_nm, values, spectra.names)
+    if not args.light:
+        if np.any(values < 0):
+            row, k = np.argwhere(np.atleast_2d(values) < 0)[0]
+            raise UserError(
+                f"{args.file}: negative reflectance {np.atleast_2d(values)[row, k]:g} in {spectra.names[row]!r} "
+                f"at {spectra.wavelengths_nm[k]:g} nm; reflectance factors are 0–1 (use --light for lights)"
+            )
+        if values.max() > _PERCENT_SUSPICION:
+            raise UserError(
+                f"{args.file}: reflectance values reach {values.max():g}; if they are percentages pass "
+                "--percent, if they are lights pass --light"
+            )
+    return spectra
+
+
+def compute_XYZ(spectra: Spectrum, args: argparse.Namespace) -> np.ndarray:
+    from ..colorimetry import tristimulus
+
+    illuminant = None if args.light else args.illuminant
+    try:
+        return np.atleast_2d(tristimulus(spectra, args.observer, illuminant, args.method))
+    except SpectrumError as exc:
+        raise UserError(str(exc)) from None
+
+
+def emit(rows: list[dict], fmt: str, stream=None) -> None:
+    """Print rows as an aligned table, CSV or JSON."""
+    stream = stream or sys.stdout
+    if fmt == "json":
+        json.dump(rows, stream, indent=1)
+        stream.write("\n")
+        return
+    columns = list(rows[0])
+    if fmt == "csv":
+        writer = csv.DictWriter(stream, columns, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+        return
+    cells = [[_cell(row[c]) for c in columns] for row in rows]
+    widths = [max(len(c), *(len(r[i]) for r in cells)) for i, c in enumerate(columns)]
+    numeric = [all(_numeric(r[i]) or not r[i] for r in cells) for i in range(len(columns))]
+    buffer = io.StringIO()
+    header = (c.rjust(w) if n else c.ljust(w) for c, w, n in zip(columns, widths, numeric, strict=True))
+    buffer.write("  ".join(header).rstrip() + "\n")
+    for r in cells:
+        buffer.write("  ".join(v.rjust(w) if _numeric(v) else v.ljust(w) for v, w in zip(r, widths, strict=True)).rstrip() + "\n")
+    stream.write(buffer.getvalue())
+
+
+def _cell(value) -> str:
+    if isinstance(value, float):
+        return "" if np.isnan(value) else f"{value:.4f}"
+    return str(value)
+
+
+def _numeric(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _xyz_command(args: argparse.Namespace) -> int:
+    from ..coordinates import xy
+
+    spectra = load_samples(args)
+    XYZ = compute_XYZ(spectra, args)
+    chromaticity = xy(XYZ)
+    rows = [
+        {"name": name, "X": float(X[0]), "Y": float(X[1]), "Z": float(X[2]), "x": float(c[0]), "y": float(c[1])}
+        for name, X, c in zip(spectra.names, XYZ, chromaticity, strict=True)
+    ]
+    emit(rows, args.format)
+    return 0
+
+
+def describe_rows(spectra: Spectrum, XYZ100: np.ndarray, illuminant: str, observer: str) -> list[dict]:
+    """One dict per sample: XYZ, xy, dominant/complementary wavelength, purity, Y %, sRGB hex."""
+    from ..chromaticity import dominant_wavelength
+    from ..colorimetry import white_point
+    from ..coordinates import xy
+    from ..display import adapt, render
+
+    chromaticity = xy(XYZ100)
+    white_XYZ = _white_on_grid(spectra, illuminant, observer)
+    dominant = dominant_wavelength(chromaticity, xy(white_XYZ), observer)
+    display_XYZ = adapt(XYZ100, white_XYZ, white_point("D65", "1931"), method="bradford")
+    shown = render(display_XYZ, "sRGB", normalise="none", gamut="desaturate")
+    rows = []
+    for i, name in enumerate(spectra.names):
+        code = shown.codes[i]
+        rows.append(
+            {
+                "name": name,
+                "X": float(XYZ100[i, 0]),
+                "Y": float(XYZ100[i, 1]),
+                "Z": float(XYZ100[i, 2]),
+                "x": float(chromaticity[i, 0]),
+                "y": float(chromaticity[i, 1]),
+                "wavelength_nm": float(dominant.wavelength_nm[i]),
+                "kind": "neutral"
+                if np.isnan(dominant.wavelength_nm[i])
+                else ("complementary" if dominant.complementary[i] else "dominant"),
+                "purity": float(dominant.excitation_purity[i]),
+                "luminance_factor_percent": float(XYZ100[i, 1]),
+                "srgb": "#{:02x}{:02x}{:02x}".format(*(int(v) for v in code)),
+                "in_srgb_gamut": bool(shown.in_gamut[i]),
+            }
+        )
+    return rows
+
+
+def _white_on_grid(spectra: Spectrum, illuminant: str, observer: str) -> np.ndarray:
+    from ..colorimetry import weights
+
+    return np.asarray(weights(spectra.wavelengths_nm, observer, illuminant).sum(axis=0))
+
+
+def _describe_command(args: argparse.Namespace) -> int:
+    if args.light:
+        raise UserError("describe: reports surface colours under an illuminant; use `spectrocolor xyz --light` for lights")
+    spectra = load_samples(args)
+    XYZ = compute_XYZ(spectra, args)
+    emit(describe_rows(spectra, XYZ, args.illuminant, args.observer), args.format)
+    return 0
+
+
+def register(subparsers) -> None:
+    xyz = subparsers.add_parser(
+        "xyz",
+        help="CIE XYZ and xy of each spectrum in a file",
+        description="Tristimulus values (perfect white Y = 100) and chromaticity of each spectrum.",
+    )
+    add_spectral_options(xyz)
+    xyz.set_defaults(handler=_xyz_command)
+
+    describe = subparsers.add_parser(
+        "describe",
+        help="XYZ, xy, dominant wavelength, purity, luminance factor and an sRGB swatch per sample",
+        description=(
+            "Describe surface colours as in a measurement report (seed 001): dominant or complementary "
+            "wavelength and excitation purity relative to the illuminant's white, luminance factor Y in %, "
+            "and an sRGB hex swatch (Bradford-adapted to D65, desaturated at constant Y if out of gamut)."
+        ),
+    )
+    add_spectral_options(describe, default_illuminant="C")
+    describe.set_defaults(handler=_describe_command)

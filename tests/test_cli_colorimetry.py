@@ -1,0 +1,85 @@
+"""The `spectrocolor xyz` and `describe` commands, run as a user would (a real subprocess)."""
+
+import csv
+import io
+import json
+import subprocess
+import sys
+from importlib import resources
+
+import numpy as np
+import pytest
+
+import spectrocolor as sc
+
+COLORCHECKER = str(resources.files("spectrocolor").joinpath("data", "reflectances_colorchecker_babel.csv"))
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "spectrocolor", *args], capture_output=True, text=True, timeout=120)
+
+
+def test_xyz_csv_equals_library():
+    result = run("xyz", COLORCHECKER, "--illuminant", "D65", "--format", "csv")
+    assert result.returncode == 0, result.stderr
+    rows = list(csv.DictReader(io.StringIO(result.stdout)))
+    expected = sc.tristimulus(sc.read_spectra(COLORCHECKER), "1931", "D65")
+    got = np.array([[float(r["X"]), float(r["Y"]), float(r["Z"])] for r in rows])
+    np.testing.assert_allclose(got, expected, rtol=1e-12)
+    assert rows[0]["name"] == "dark_skin"
+
+
+def test_xyz_interval_subsamples_like_the_seed(tmp_path):
+    g = sc.wavelength_grid(380, 780, 10)
+    path = sc.write_spectra(sc.Spectrum(g, np.linspace(0.2, 0.8, g.size), ["ramp"]), tmp_path / "r.csv")
+    result = run("xyz", str(path), "--interval", "20", "--format", "json")
+    assert result.returncode == 0, result.stderr
+    got = json.loads(result.stdout)[0]
+    expected = sc.tristimulus(sc.Spectrum(g[::2], np.linspace(0.2, 0.8, g.size)[::2]), "1931", "D65")
+    np.testing.assert_allclose([got["X"], got["Y"], got["Z"]], expected, rtol=1e-12)
+
+
+def test_describe_matches_library_and_the_known_colorchecker_swatch():
+    result = run("describe", COLORCHECKER, "--illuminant", "D65", "--format", "json")
+    assert result.returncode == 0, result.stderr
+    rows = json.loads(result.stdout)
+    spectra = sc.read_spectra(COLORCHECKER)
+    XYZ = sc.tristimulus(spectra, "1931", "D65")
+    dominant = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(sc.weights(spectra.wavelengths_nm, "1931", "D65").sum(0)))
+    np.testing.assert_allclose([r["wavelength_nm"] for r in rows], dominant.wavelength_nm, rtol=1e-12)
+    np.testing.assert_allclose([r["purity"] for r in rows], dominant.excitation_purity, rtol=1e-12)
+    assert rows[16]["kind"] == "complementary"  # magenta
+    # The BabelColor 'dark skin' patch is #735244 in the published sRGB (D65) values.
+    assert rows[0]["srgb"] == "#735244"
+
+
+def test_describe_table_is_readable():
+    result = run("describe", COLORCHECKER)
+    assert result.returncode == 0, result.stderr
+    header = result.stdout.splitlines()[0].split()
+    assert header[:6] == ["name", "X", "Y", "Z", "x", "y"] and "purity" in header
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("400,0.1\n500,0.2\n", "missing header"),
+        ("wavelength_nm,a\n400,0.1\n500,x\n", "'x' is not a number"),
+        ("wavelength_nm,a\n500,0.1\n400,0.2\n", "strictly increasing"),
+        ("wavelength_nm,a\n400,0.1\n500,-0.2\n", "negative reflectance"),
+        ("wavelength_nm,a\n400,10\n500,20\n", "--percent"),
+        ("wavelength_nm,a\n0.4,0.1\n0.5,0.2\n", "micrometres"),
+        ("wavelength_nm,a\n300,0.1\n500,0.2\n", "outside"),
+    ],
+)
+def test_malformed_files_give_one_line_not_a_traceback(tmp_path, content, message):
+    path = tmp_path / "bad.csv"
+    path.write_text(content)
+    result = run("describe", str(path))
+    assert result.returncode == 2
+    assert message in result.stderr and "Traceback" not in result.stderr
+
+
+def test_missing_file():
+    result = run("xyz", "/no/such/file.csv")
+    assert result.returncode == 2 and "no such file" in result.stderr
