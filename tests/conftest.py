@@ -26,8 +26,7 @@ def pytest_collection_modifyitems(config, items):
         return
     if os.environ.get("SPECTROCOLOR_REQUIRE_BROWSER"):
         raise pytest.UsageError(
-            f"{CHROMIUM} is missing but SPECTROCOLOR_REQUIRE_BROWSER is set: "
-            "install it with `apt-get install chromium`"
+            f"{CHROMIUM} is missing but SPECTROCOLOR_REQUIRE_BROWSER is set: install it with `apt-get install chromium`"
         )
     skip = pytest.mark.skip(
         reason=f"BROWSER TESTS SKIPPED: {CHROMIUM} not found; `apt-get install chromium` to run them"

@@ -39,7 +39,9 @@ def test_wyszecki_stiles_example_on_the_seeds_own_tables(columns, raw_sums, XYZ1
     np.testing.assert_allclose(sc.xy(XYZ100), xy, atol=1e-6)
 
 
-@pytest.mark.parametrize(("observer", "XYZ1"), [("1964", (0.663953, 0.654719, 0.504441)), ("1931", (0.673539, 0.669432, 0.511754))])
+@pytest.mark.parametrize(
+    ("observer", "XYZ1"), [("1964", (0.663953, 0.654719, 0.504441)), ("1931", (0.673539, 0.669432, 0.511754))]
+)
 def test_wyszecki_stiles_example_on_full_precision_cie_tables(observer, XYZ1):
     t = _seed003_tables()
     XYZ100 = sc.tristimulus(Spectrum(t["wavelength_nm"], t["beta"]), observer, "D65")
@@ -110,7 +112,10 @@ def test_errors_are_clear():
 
 
 @pytest.mark.parametrize("step", [1, 5, 10, 20])
-@pytest.mark.parametrize(("observer", "colour_observer"), [("1931", "CIE 1931 2 Degree Standard Observer"), ("1964", "CIE 1964 10 Degree Standard Observer")])
+@pytest.mark.parametrize(
+    ("observer", "colour_observer"),
+    [("1931", "CIE 1931 2 Degree Standard Observer"), ("1964", "CIE 1964 10 Degree Standard Observer")],
+)
 def test_agrees_with_colour_science_integration(step, observer, colour_observer):
     colour = pytest.importorskip("colour")
     import warnings
@@ -123,7 +128,9 @@ def test_agrees_with_colour_science_integration(step, observer, colour_observer)
     cmfs = colour.MSDS_CMFS[colour_observer]
     illuminant = colour.SDS_ILLUMINANTS["D65"]
     if step == 1:
-        illuminant = illuminant.copy().interpolate(colour.SpectralShape(300, 780, 1), interpolator=colour.LinearInterpolator)
+        illuminant = illuminant.copy().interpolate(
+            colour.SpectralShape(300, 780, 1), interpolator=colour.LinearInterpolator
+        )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         theirs = colour.colorimetry.msds_to_XYZ_integration(values, cmfs, illuminant, shape=shape)
@@ -152,7 +159,11 @@ def test_tristimulus_is_linear(a, b, scale):
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.sampled_from(["A", "C", "D50", "D65", "E", "FL2", "LED-B3"]), st.sampled_from(["1931", "1964"]), st.sampled_from([5, 10, 20]))
+@given(
+    st.sampled_from(["A", "C", "D50", "D65", "E", "FL2", "LED-B3"]),
+    st.sampled_from(["1931", "1964"]),
+    st.sampled_from([5, 10, 20]),
+)
 def test_perfect_white_property(illuminant, observer, step):
     g = sc.wavelength_grid(380, 780, step)
     XYZ = sc.tristimulus(Spectrum.constant(1.0, g), observer, illuminant)

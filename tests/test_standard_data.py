@@ -64,7 +64,9 @@ def test_every_illuminant_loads(name):
     assert spd.values.ndim == 1 and np.all(spd.values >= 0) and spd.values.max() > 0
 
 
-@pytest.mark.parametrize(("alias", "canonical"), [("d65", "D65"), ("FL 11", "FL11"), ("F2", "FL2"), ("led_b3", "LED-B3")])
+@pytest.mark.parametrize(
+    ("alias", "canonical"), [("d65", "D65"), ("FL 11", "FL11"), ("F2", "FL2"), ("led_b3", "LED-B3")]
+)
 def test_illuminant_aliases(alias, canonical):
     assert sc.illuminant(alias).names == (canonical,)
 

@@ -72,6 +72,16 @@ _PUBLIC: dict[str, str] = {
     "write_strip": "pictures",
     "chromaticity_diagram": "plot",
     "spectrum_plot": "plot",
+    # spectral images and reports (images: Pillow/tifffile/xarray/dask imported only when used)
+    "read_cube": "images",
+    "SpectralCube": "images",
+    "cube_to_xyz": "images",
+    "cube_to_lab": "images",
+    "cube_to_rgb": "images",
+    "write_image": "images",
+    "measurement_report": "report",
+    "MeasurementReport": "report",
+    "write_report": "report",
 }
 
 

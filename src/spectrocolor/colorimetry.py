@@ -34,9 +34,11 @@ from functools import lru_cache
 import numpy as np
 
 from .errors import ColorimetryError, SpectrumError
-from .illuminants import canonical_illuminant_name, illuminant as named_illuminant
+from .illuminants import canonical_illuminant_name
+from .illuminants import illuminant as named_illuminant
 from .interpolation import interpolation_matrix
-from .observers import canonical_observer_name, observer as named_observer
+from .observers import canonical_observer_name
+from .observers import observer as named_observer
 from .spectrum import Spectrum, validate_wavelengths
 
 METHODS = ("sum", "1nm")
@@ -87,7 +89,9 @@ def _illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
         return named_illuminant(illuminant, grid).values
     if isinstance(illuminant, Spectrum):
         if illuminant.values.ndim != 1:
-            raise ColorimetryError(f"illuminant: expected one spectral distribution, got batch {illuminant.batch_shape}")
+            raise ColorimetryError(
+                f"illuminant: expected one spectral distribution, got batch {illuminant.batch_shape}"
+            )
         source = illuminant.wavelengths_nm
         position = np.searchsorted(source, grid)
         position = np.clip(position, 0, source.size - 1)

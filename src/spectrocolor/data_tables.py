@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 
 import numpy as np
 
 
-@lru_cache(maxsize=None)
+@cache
 def load_table(relative_path: str) -> tuple[tuple[str, ...], np.ndarray]:
     """Column names and a read-only float array ``(rows, columns)`` of a shipped CSV table."""
     text = resources.files("spectrocolor").joinpath("data", relative_path).read_text(encoding="utf-8")

@@ -11,7 +11,7 @@ c₂ = 1.438 776 877 × 10⁻² m·K). Sources of the files: ``data/PROVENANCE.m
 from __future__ import annotations
 
 import re
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 
@@ -93,7 +93,7 @@ def _illuminant_A(grid: np.ndarray) -> np.ndarray:
     return 100.0 * (560.0 / grid) ** 5 * np.expm1(c2_nm_K / (560.0 * T)) / np.expm1(c2_nm_K / (grid * T))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _table(name: str) -> Spectrum:
     header, table = load_table(f"illuminants/{name}.csv")
     return Spectrum(table[:, 0], table[:, 1], (name,))

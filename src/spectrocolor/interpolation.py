@@ -24,25 +24,26 @@ from .errors import SpectrumError
 METHODS = ("linear", "sprague", "cubic")
 
 # Sprague's fifth-degree polynomial, coefficients of (y[-2], ..., y[3]) for a0..a5, divided by 24.
-_SPRAGUE_A = np.array(
-    [
-        [0, 0, 24, 0, 0, 0],
-        [2, -16, 0, 16, -2, 0],
-        [-1, 16, -30, 16, -1, 0],
-        [-9, 39, -70, 66, -33, 7],
-        [13, -64, 126, -124, 61, -12],
-        [-5, 25, -50, 50, -25, 5],
-    ],
-    dtype=float,
-) / 24.0
+_SPRAGUE_A = (
+    np.array(
+        [
+            [0, 0, 24, 0, 0, 0],
+            [2, -16, 0, 16, -2, 0],
+            [-1, 16, -30, 16, -1, 0],
+            [-9, 39, -70, 66, -33, 7],
+            [13, -64, 126, -124, 61, -12],
+            [-5, 25, -50, 50, -25, 5],
+        ],
+        dtype=float,
+    )
+    / 24.0
+)
 
 # CIE 167:2005 boundary extension: two extra points each side from the first/last six.
-_SPRAGUE_START = np.array(
-    [[884, -1960, 3033, -2648, 1080, -180], [508, -540, 488, -367, 144, -24]], dtype=float
-) / 209.0
-_SPRAGUE_END = np.array(
-    [[-24, 144, -367, 488, -540, 508], [-180, 1080, -2648, 3033, -1960, 884]], dtype=float
-) / 209.0
+_SPRAGUE_START = (
+    np.array([[884, -1960, 3033, -2648, 1080, -180], [508, -540, 488, -367, 144, -24]], dtype=float) / 209.0
+)
+_SPRAGUE_END = np.array([[-24, 144, -367, 488, -540, 508], [-180, 1080, -2648, 3033, -1960, 884]], dtype=float) / 209.0
 
 
 def _check_inside(source_nm: np.ndarray, target_nm: np.ndarray) -> None:
@@ -103,16 +104,12 @@ def _cubic_matrix(source_nm: np.ndarray, target_nm: np.ndarray) -> np.ndarray:
     from scipy.interpolate import CubicSpline
 
     if source_nm.size < 4:
-        raise SpectrumError(
-            f"method: 'cubic' needs at least 4 source wavelengths, got {source_nm.size}"
-        )
+        raise SpectrumError(f"method: 'cubic' needs at least 4 source wavelengths, got {source_nm.size}")
     spline = CubicSpline(source_nm, np.eye(source_nm.size), axis=0, bc_type="not-a-knot")
     return spline(target_nm)
 
 
-def interpolation_matrix(
-    source_nm: np.ndarray, target_nm: np.ndarray, method: str = "linear"
-) -> np.ndarray:
+def interpolation_matrix(source_nm: np.ndarray, target_nm: np.ndarray, method: str = "linear") -> np.ndarray:
     """Matrix ``P`` (M, K) with ``values_on_target = values_on_source @ P.T``.
 
     Parameters

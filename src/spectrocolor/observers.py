@@ -9,7 +9,7 @@ CIE 170-2:2015 *Fundamental chromaticity diagram with physiological axes*, XYZ f
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 from .data_tables import load_table
 from .errors import ColorimetryError
@@ -71,7 +71,7 @@ def canonical_observer_name(name: str) -> str:
     return canonical
 
 
-@lru_cache(maxsize=None)
+@cache
 def _observer(canonical: str) -> Spectrum:
     header, table = load_table(_FILES[canonical])
     return Spectrum(table[:, 0], table[:, 1:].T.copy(), header[1:])

@@ -37,9 +37,7 @@ def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarr
         raise SpectrumError(f"stop_nm: must exceed start_nm ({start_nm!r}), got {stop_nm!r}")
     count = (stop_nm - start_nm) / step_nm
     if abs(count - round(count)) > 1e-9 * max(1.0, count):
-        raise SpectrumError(
-            f"step_nm: {step_nm!r} does not divide {start_nm!r}–{stop_nm!r} nm into whole steps"
-        )
+        raise SpectrumError(f"step_nm: {step_nm!r} does not divide {start_nm!r}–{stop_nm!r} nm into whole steps")
     return start_nm + step_nm * np.arange(round(count) + 1, dtype=float)
 
 
@@ -82,9 +80,7 @@ def _as_values(values: ArrayLike, size: int) -> np.ndarray:
     if array.dtype.kind != "f":
         raise SpectrumError(f"values: expected real numbers, got dtype {array.dtype}")
     if array.ndim == 0 or array.shape[-1] != size:
-        raise SpectrumError(
-            f"values: last axis must have one entry per wavelength ({size}), got shape {array.shape}"
-        )
+        raise SpectrumError(f"values: last axis must have one entry per wavelength ({size}), got shape {array.shape}")
     return array
 
 
@@ -125,8 +121,7 @@ class Spectrum:
         expected = 1 if self._values.ndim == 1 else self._values.shape[0]
         if self._values.ndim > 2 or len(names) != expected:
             raise SpectrumError(
-                f"names: expected {expected} name(s) for values of shape {self._values.shape}, "
-                f"got {len(names)}"
+                f"names: expected {expected} name(s) for values of shape {self._values.shape}, got {len(names)}"
             )
         return names
 
@@ -164,10 +159,7 @@ class Spectrum:
         step = self.interval_nm
         spacing = f"{step:g} nm" if step is not None else "irregular"
         named = f", names={list(self._names)[:4]}{'…' if len(self._names) > 4 else ''}" if self._names else ""
-        return (
-            f"Spectrum({grid[0]:g}–{grid[-1]:g} nm, {spacing}, K={grid.size}, "
-            f"batch_shape={self.batch_shape}{named})"
-        )
+        return f"Spectrum({grid[0]:g}–{grid[-1]:g} nm, {spacing}, K={grid.size}, batch_shape={self.batch_shape}{named})"
 
     # ------------------------------------------------------------------ constructors
     @classmethod

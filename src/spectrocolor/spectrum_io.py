@@ -64,9 +64,7 @@ def _parse_csv(text: str, source: str) -> Spectrum:
     data = np.empty((len(rows) - 1, len(header)))
     for r, (line_number, row) in enumerate(rows[1:]):
         if len(row) != len(header):
-            raise SpectrumError(
-                f"{source}, line {line_number}: {len(row)} cells, but the header has {len(header)}"
-            )
+            raise SpectrumError(f"{source}, line {line_number}: {len(row)} cells, but the header has {len(header)}")
         for c, cell in enumerate(row):
             try:
                 data[r, c] = float(cell)

@@ -26,13 +26,17 @@ def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: st
         default=default_illuminant,
         help="CIE illuminant lighting the reflectance/transmittance samples (default %(default)s)",
     )
-    parser.add_argument("--observer", default="1931", help="1931 (2°), 1964 (10°), 2015-2, 2015-10 (default %(default)s)")
+    parser.add_argument(
+        "--observer", default="1931", help="1931 (2°), 1964 (10°), 2015-2, 2015-10 (default %(default)s)"
+    )
     parser.add_argument(
         "--interval",
         type=float,
         help="sum only at multiples of this interval in nm (e.g. 10 or 20; the file must hold those samples)",
     )
-    parser.add_argument("--method", choices=("sum", "1nm"), default="sum", help="summation method (default %(default)s)")
+    parser.add_argument(
+        "--method", choices=("sum", "1nm"), default="sum", help="summation method (default %(default)s)"
+    )
     parser.add_argument("--range", nargs=2, type=float, metavar=("START", "STOP"), help="use only START–STOP nm")
     parser.add_argument("--percent", action="store_true", help="the file's values are percentages (0–100)")
     parser.add_argument("--light", action="store_true", help="the spectra are lights (no illuminant; relative XYZ)")
@@ -110,7 +114,9 @@ def emit(rows: list[dict], fmt: str, stream=None) -> None:
     header = (c.rjust(w) if n else c.ljust(w) for c, w, n in zip(columns, widths, numeric, strict=True))
     buffer.write("  ".join(header).rstrip() + "\n")
     for r in cells:
-        buffer.write("  ".join(v.rjust(w) if _numeric(v) else v.ljust(w) for v, w in zip(r, widths, strict=True)).rstrip() + "\n")
+        buffer.write(
+            "  ".join(v.rjust(w) if _numeric(v) else v.ljust(w) for v, w in zip(r, widths, strict=True)).rstrip() + "\n"
+        )
     stream.write(buffer.getvalue())
 
 
@@ -186,7 +192,9 @@ def _white_on_grid(spectra: Spectrum, illuminant: str, observer: str) -> np.ndar
 
 def _describe_command(args: argparse.Namespace) -> int:
     if args.light:
-        raise UserError("describe: reports surface colours under an illuminant; use `spectrocolor xyz --light` for lights")
+        raise UserError(
+            "describe: reports surface colours under an illuminant; use `spectrocolor xyz --light` for lights"
+        )
     spectra = load_samples(args)
     XYZ = compute_XYZ(spectra, args)
     emit(describe_rows(spectra, XYZ, args.illuminant, args.observer), args.format)
