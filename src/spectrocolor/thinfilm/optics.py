@@ -223,21 +223,33 @@ def thin_film_reflectance(thickness_nm, wavelengths_nm, film, **kwargs) -> np.nd
     return thin_film(thickness_nm, wavelengths_nm, film, **kwargs).reflectance
 
 
-def _coherent_stack(eta0, etas, eta_sub, qs, thicknesses, wl):
+def _layer_trig(qs, thicknesses, wl):
+    """``cos δ`` and ``sin δ`` of every layer, ``δ = 2π d N cos θ / λ`` (shared by s and p)."""
+    out = []
+    for j, q in enumerate(qs):
+        e = np.exp(2j * np.pi * thicknesses[..., j, None] * q / wl)
+        inverse = 1.0 / e
+        out.append((0.5 * (e + inverse), -0.5j * (e - inverse)))
+    return out
+
+
+def _coherent_stack(eta0, etas, eta_sub, trig):
     """Amplitude r and power T of a coherent stack from characteristic matrices.
 
     With ``N = n + ik`` the layer matrix is ``[[cos δ, −i sin δ / η], [−i η sin δ, cos δ]]``.
     """
-    m11 = m22 = 1.0 + 0j
-    m12 = m21 = 0j
-    for j, (eta, q) in enumerate(zip(etas, qs, strict=True)):
-        delta = 2 * np.pi * thicknesses[..., j, None] * q / wl
-        c, s = np.cos(delta), np.sin(delta)
+    m11 = m12 = m21 = m22 = None
+    for eta, (c, s) in zip(etas, trig, strict=True):
         a12, a21 = -1j * s / eta, -1j * eta * s
-        m11, m12, m21, m22 = (m11 * c + m12 * a21, m11 * a12 + m12 * c,
-                              m21 * c + m22 * a21, m21 * a12 + m22 * c)
-    b = m11 + m12 * eta_sub
-    c = m21 + m22 * eta_sub
+        if m11 is None:
+            m11, m12, m21, m22 = c, a12, a21, c
+        else:
+            m11, m12, m21, m22 = (m11 * c + m12 * a21, m11 * a12 + m12 * c,
+                                  m21 * c + m22 * a21, m21 * a12 + m22 * c)
+    if m11 is None:
+        b, c = 1.0 + 0j, eta_sub
+    else:
+        b, c = m11 + m12 * eta_sub, m21 + m22 * eta_sub
     denominator = eta0 * b + c
     r = (eta0 * b - c) / denominator
     transmittance = 4 * eta0.real * eta_sub.real / np.abs(denominator) ** 2
@@ -305,12 +317,12 @@ def stack_optics(thicknesses_nm, wavelengths_nm, layers: Sequence, *, ambient=1.
     q0, q_sub = _normal_index(n0, kx), _normal_index(n_sub, kx)
     qs = [_normal_index(n, kx) for n in n_layers]
 
+    trig = _layer_trig(qs, thicknesses, wl)
     if substrate_thickness_nm is None:
         def compute(pol):
             eta0 = _admittance(n0, q0, pol)
             etas = [_admittance(n, q, pol) for n, q in zip(n_layers, qs, strict=True)]
-            r, t = _coherent_stack(eta0, etas, _admittance(n_sub, q_sub, pol), qs,
-                                   thicknesses, wl)
+            r, t = _coherent_stack(eta0, etas, _admittance(n_sub, q_sub, pol), trig)
             return np.abs(r) ** 2, t
 
         reflectance, transmittance = _mean_over_polarisations(compute, polarisation)
@@ -327,14 +339,12 @@ def stack_optics(thicknesses_nm, wavelengths_nm, layers: Sequence, *, ambient=1.
     n_slab = n_sub.real.astype(complex)
     q_slab, q_exit = _normal_index(n_slab, kx), _normal_index(n_exit, kx)
     single_pass = np.exp(-4 * np.pi * q_sub.imag * d_sub / wl)
-    reversed_thicknesses = thicknesses[..., ::-1]
 
     def compute(pol):
         eta0, eta_slab = _admittance(n0, q0, pol), _admittance(n_slab, q_slab, pol)
         etas = [_admittance(n, q, pol) for n, q in zip(n_layers, qs, strict=True)]
-        r_front, t_front = _coherent_stack(eta0, etas, eta_slab, qs, thicknesses, wl)
-        r_back_side, t_back_side = _coherent_stack(eta_slab, etas[::-1], eta0, qs[::-1],
-                                                   reversed_thicknesses, wl)
+        r_front, t_front = _coherent_stack(eta0, etas, eta_slab, trig)
+        r_back_side, t_back_side = _coherent_stack(eta_slab, etas[::-1], eta0, trig[::-1])
         eta_exit = _admittance(n_exit, q_exit, pol)
         r_exit = np.abs((eta_slab - eta_exit) / (eta_slab + eta_exit)) ** 2
         t_exit = 1.0 - r_exit

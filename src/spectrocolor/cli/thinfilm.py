@@ -1,0 +1,245 @@
+"""``spectrocolor thinfilm``: interference colours of thin films (seed 000 and beyond).
+
+Sub-commands:
+
+* ``zawischa`` -- seed 000's strip exactly as specified (PNG/PPM, CSV, optional xy locus plot);
+* ``strip`` -- colour against thickness for any film/stack, light, observer, angle;
+* ``locus`` -- the film colours' xy locus in the chromaticity diagram with the sRGB triangle;
+* ``map`` -- an image from a thickness map (wedge, draining film, bubble, or a user's file).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from . import UserError
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "thinfilm", help="interference colours of thin films (soap, oil, coatings)",
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    commands = parser.add_subparsers(dest="thinfilm_command", metavar="SUBCOMMAND")
+    commands.required = True
+
+    z = commands.add_parser("zawischa", help="seed 000's strip (two-beam, beta 0.95, 6504 K)")
+    z.add_argument("--out", required=True, help="strip image, .png or .ppm")
+    z.add_argument("--csv", help="write opd_nm,X,Y,Z,x,y,r8,g8,b8 (one row per column)")
+    z.add_argument("--locus", help="also write the xy locus plot (.png/.svg/.pdf, matplotlib)")
+    z.set_defaults(handler=_zawischa)
+
+    s = commands.add_parser("strip", help="colour against film thickness")
+    _film_options(s)
+    _colour_options(s)
+    s.add_argument("--max-thickness", type=float, default=1500.0, help="nm (default 1500)")
+    s.add_argument("--columns", type=int, default=1000)
+    s.add_argument("--tick-every", type=float, default=100.0, help="nm between ticks")
+    s.add_argument("--out", required=True, help=".png or .ppm")
+    s.add_argument("--csv", help="write thickness_nm,X,Y,Z,x,y,r8,g8,b8")
+    s.set_defaults(handler=_strip)
+
+    loc = commands.add_parser("locus", help="xy locus of the film colours (matplotlib)")
+    _film_options(loc)
+    _colour_options(loc)
+    loc.add_argument("--max-thickness", type=float, default=1500.0, help="nm")
+    loc.add_argument("--points", type=int, default=1000)
+    loc.add_argument("--out", required=True, help=".png, .svg or .pdf")
+    loc.set_defaults(handler=_locus)
+
+    m = commands.add_parser("map", help="image of a thickness map through a lookup table")
+    _film_options(m)
+    _colour_options(m)
+    m.add_argument("--kind", choices=("wedge", "draining", "bubble", "file"), default="wedge")
+    m.add_argument("--input", help="thickness map for --kind file (.npy in nm, or .png)")
+    m.add_argument("--nm-per-count", type=float, help="PNG maps: nm per grey count")
+    m.add_argument("--width", type=int, default=1920)
+    m.add_argument("--height", type=int, default=1080)
+    m.add_argument("--max-thickness", type=float, default=1500.0, help="wedge: nm")
+    m.add_argument("--time", type=float, default=3000.0, help="draining: seconds")
+    m.add_argument("--film-height", type=float, default=0.02, help="draining: metres")
+    m.add_argument("--step", type=float, default=0.5, help="table thickness step, nm")
+    m.add_argument("--out", required=True, help=".png or .ppm")
+    m.set_defaults(handler=_map)
+
+
+def _film_options(p) -> None:
+    p.add_argument("--model", choices=("exact", "two-beam"), default="exact",
+                   help="exact multiple-beam optics, or the two-beam model of seed 000")
+    p.add_argument("--beta", type=float, default=0.95, help="two-beam model's beta")
+    p.add_argument("--film", default="water",
+                   help="film medium: water, oil, bk7, fused-silica, a number, or n,k CSV")
+    p.add_argument("--ambient", default="air")
+    p.add_argument("--substrate", default="air")
+    p.add_argument("--under", default="",
+                   help="fixed layers between film and substrate: 'medium:nm,medium:nm'")
+    p.add_argument("--angle", type=float, default=0.0, help="angle of incidence, degrees")
+    p.add_argument("--polarisation", choices=("s", "p", "unpolarised"), default="unpolarised")
+    p.add_argument("--quantity", choices=("reflectance", "transmittance"), default="reflectance")
+
+
+def _colour_options(p) -> None:
+    p.add_argument("--illuminant", default="blackbody:6504",
+                   help="CIE name (D65, A, ...) or blackbody:T (default blackbody:6504)")
+    p.add_argument("--observer", default="1931", help="1931 or 1964")
+    p.add_argument("--exposure", choices=("global-max", "perfect-reflector"),
+                   default="global-max")
+    p.add_argument("--gain", type=float, default=1.0, help="with --exposure perfect-reflector")
+    p.add_argument("--space", default="sRGB")
+    p.add_argument("--gamut", default="preserve-luminance",
+                   help="flag, clip, preserve-luminance or desaturate")
+
+
+def _film_function(args):
+    """A callable ``f(thickness_nm, wavelengths_nm, angle_deg=...) -> FilmOptics``."""
+    from ..thinfilm import media
+    from ..thinfilm.optics import FilmOptics, stack_optics, two_beam_reflectance
+
+    film = media.medium(args.film)
+    ambient, substrate = media.medium(args.ambient), media.medium(args.substrate)
+    fixed = []
+    for item in filter(None, (part.strip() for part in args.under.split(","))):
+        name, sep, thickness = item.rpartition(":")
+        try:
+            fixed.append((media.medium(name), float(thickness)))
+        except ValueError:
+            raise UserError(f"--under: expected 'medium:nm', got {item!r}") from None
+        if not sep:
+            raise UserError(f"--under: expected 'medium:nm', got {item!r}")
+
+    if args.model == "two-beam":
+        if fixed or args.quantity != "reflectance":
+            raise UserError("--model two-beam: a single film in reflection only")
+
+        def two_beam(d, wl, angle_deg=0.0):
+            n = float(np.real(film.refractive_index(np.array([589.3]))[0]))
+            n0 = float(np.real(ambient.refractive_index(np.array([589.3]))[0]))
+            sin0 = n0 * np.sin(np.radians(angle_deg))
+            opd = 2 * np.asarray(d) * np.sqrt(n * n - sin0 * sin0)
+            factor = two_beam_reflectance(opd, wl, beta=args.beta)
+            return FilmOptics(np.asarray(wl, float), factor, np.zeros_like(factor), "unpolarised")
+
+        return two_beam
+
+    def exact(d, wl, angle_deg=0.0):
+        d = np.asarray(d, dtype=float)
+        thicknesses = np.stack(
+            np.broadcast_arrays(d, *[np.full(d.shape, t) for _, t in fixed]), axis=-1)
+        return stack_optics(thicknesses, wl, [film] + [m for m, _ in fixed], ambient=ambient,
+                            substrate=substrate, angle_deg=angle_deg,
+                            polarisation=args.polarisation)
+
+    return exact
+
+
+def _colour_kwargs(args) -> dict:
+    return dict(illuminant=args.illuminant, observer=args.observer, exposure=args.exposure,
+                gain=args.gain, space=args.space, gamut=args.gamut)
+
+
+def _series(args, count: int):
+    from ..thinfilm.colour import film_colours
+
+    film = _film_function(args)
+    if count < 2 or args.max_thickness <= 0:
+        raise UserError("need at least 2 columns/points and a positive --max-thickness")
+    d = np.linspace(0.0, args.max_thickness, count)
+    wl = np.arange(380.0, 781.0, 5.0)
+    optics = film(d, wl, angle_deg=args.angle)
+    return d, film_colours(optics, quantity=args.quantity, **_colour_kwargs(args))
+
+
+def _write_csv(path, first_name, first, colours) -> None:
+    with Path(path).open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow([first_name, "X", "Y", "Z", "x", "y", "r8", "g8", "b8"])
+        for value, XYZ, xy, rgb in zip(first, colours.XYZ100, colours.xy, colours.rgb8,
+                                       strict=True):
+            w.writerow([f"{value:g}", *(f"{v:.10g}" for v in XYZ), *(f"{v:.10g}" for v in xy),
+                        *(int(c) for c in rgb)])
+
+
+def _locus_plot(path, colours, label: str, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plot import chromaticity_diagram
+
+    ax = chromaticity_diagram(curves=[colours.XYZ100], curve_labels=[label], title=title)
+    ax.plot(*colours.xy[0], "o", color="k", ms=4)
+    ax.figure.savefig(path, dpi=150, bbox_inches="tight")
+    plt.close(ax.figure)
+
+
+def _zawischa(args) -> int:
+    from ..pictures import write_strip
+    from ..thinfilm.zawischa import zawischa_strip
+
+    strip = zawischa_strip()
+    write_strip(strip.colours.rgb8, args.out, height=80, ticks=strip.tick_columns,
+                tick_height=10)
+    if args.csv:
+        _write_csv(args.csv, "opd_nm", strip.opd_nm, strip.colours)
+    if args.locus:
+        _locus_plot(args.locus, strip.colours, "soap film, two-beam, s = 5-5000 nm",
+                    "Seed 000 (Zawischa): film colours, 6504 K blackbody")
+    return 0
+
+
+def _strip(args) -> int:
+    from ..pictures import write_strip
+
+    d, colours = _series(args, args.columns)
+    if not args.tick_every > 0:
+        raise UserError("--tick-every must be positive")
+    marks = np.arange(args.tick_every, args.max_thickness + 1e-9, args.tick_every)
+    ticks = np.unique(np.rint(marks / args.max_thickness * (args.columns - 1)).astype(int))
+    write_strip(colours.rgb8, args.out, height=80, ticks=ticks, tick_height=10)
+    if args.csv:
+        _write_csv(args.csv, "thickness_nm", d, colours)
+    return 0
+
+
+def _locus(args) -> int:
+    _, colours = _series(args, args.points)
+    _locus_plot(args.out, colours, f"{args.film} 0-{args.max_thickness:g} nm",
+                f"Film colours, {colours.illuminant}, {args.angle:g}°")
+    return 0
+
+
+def _map(args) -> int:
+    from ..pictures import save_image
+    from ..thinfilm import maps
+
+    film = _film_function(args)
+    angle = None
+    if args.kind == "wedge":
+        thickness = maps.wedge(args.width, args.height, args.max_thickness)
+    elif args.kind == "draining":
+        thickness = maps.draining_film(args.width, args.height, time_s=args.time,
+                                       film_height_m=args.film_height)
+    elif args.kind == "bubble":
+        thickness, angle = maps.bubble(min(args.width, args.height))
+    else:
+        if not args.input:
+            raise UserError("--kind file needs --input PATH (.npy in nm or .png)")
+        thickness = maps.read_thickness_map(args.input, args.nm_per_count)
+    top = float(np.nanmax(thickness))
+    if args.angle and angle is None:
+        angle_fn = film
+
+        def film(d, wl, angle_deg=0.0):
+            return angle_fn(d, wl, angle_deg=args.angle)  # the fixed --angle for every pixel
+
+    table = maps.colour_table(film, max(top, args.step), thickness_step_nm=args.step,
+                              max_angle_deg=None if angle is None else 89.0,
+                              angle_step_deg=2.0, quantity=args.quantity,
+                              **_colour_kwargs(args))
+    save_image(maps.render_thickness_map(thickness, table, angle), args.out)
+    return 0

@@ -1,0 +1,159 @@
+"""Colours of thin films: reflectance spectra -> XYZ under an illuminant -> display codes.
+
+All colorimetry and display work is delegated to the library (:func:`spectrocolor.weights`,
+:func:`spectrocolor.xy`, :func:`spectrocolor.render`); this module only states the choices that
+belong to interference colours: the light (default a 6504 K blackbody, as in seed 000), the
+observer and the exposure rule.
+
+Exposure rules (``exposure``):
+
+* ``"global-max"`` (seed 000): the largest linear R, G or B over the whole series becomes full
+  drive; relative brightness within the series is kept.
+* ``"perfect-reflector"``: XYZ are relative to a perfect reflector under the same light
+  (Y = 100), multiplied by ``gain``, and Y = 100 is the display's white. A soap film reflects
+  only a few per cent, so a gain of 5-10 is typical for a picture.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ColorimetryError, SpectrumError
+from .optics import FilmOptics
+
+EXPOSURES = ("global-max", "perfect-reflector")
+DEFAULT_BLACKBODY_K = 6504.0
+
+
+@dataclass(frozen=True)
+class FilmColours:
+    """Colours of a series of films.
+
+    Attributes
+    ----------
+    XYZ100
+        Tristimulus values relative to a perfect reflector under the light (Y = 100), before
+        exposure, shape ``(..., 3)``.
+    xy
+        Chromaticities, shape ``(..., 2)``.
+    rendering
+        The :class:`spectrocolor.Rendering` (linear and encoded RGB, codes, gamut flags).
+    illuminant, observer, exposure
+        What was used.
+    """
+
+    XYZ100: np.ndarray
+    xy: np.ndarray
+    rendering: object
+    illuminant: str
+    observer: str
+    exposure: str
+
+    @property
+    def rgb8(self) -> np.ndarray:
+        """8-bit codes as ``uint8``, shape ``(..., 3)`` (requires ``bit_depth=8``)."""
+        if self.rendering.bit_depth != 8:
+            raise ColorimetryError("rgb8: this rendering is not 8-bit")
+        return self.rendering.codes.astype(np.uint8)
+
+
+def light_source(illuminant, wavelengths_nm):
+    """The light as a :class:`spectrocolor.Spectrum` on ``wavelengths_nm`` and its name.
+
+    ``illuminant`` may be ``None`` (blackbody 6504 K, seed 000), a number (a blackbody
+    temperature in K), ``"blackbody:T"``, a CIE illuminant name (``"D65"``, ``"A"``, ...) or a
+    Spectrum sampled at least at ``wavelengths_nm``.
+    """
+    from ..illuminants import blackbody
+    from ..illuminants import illuminant as cie_illuminant
+    from ..spectrum import Spectrum
+
+    if illuminant is None:
+        illuminant = DEFAULT_BLACKBODY_K
+    if isinstance(illuminant, str) and illuminant.lower().startswith("blackbody"):
+        _, _, value = illuminant.partition(":")
+        try:
+            illuminant = float(value)
+        except ValueError:
+            raise ColorimetryError(
+                f"illuminant: write a blackbody as 'blackbody:6504' (kelvin), got {illuminant!r}"
+            ) from None
+    if isinstance(illuminant, (int, float)) and not isinstance(illuminant, bool):
+        spd = blackbody(float(illuminant), wavelengths_nm)
+        return spd, f"blackbody {float(illuminant):g} K"
+    if isinstance(illuminant, str):
+        return cie_illuminant(illuminant, wavelengths_nm), illuminant
+    if isinstance(illuminant, Spectrum):
+        name = illuminant.names[0] if illuminant.names else "user illuminant"
+        return illuminant, name
+    raise ColorimetryError(
+        "illuminant: expected None (blackbody 6504 K), a temperature in K, 'blackbody:T', a CIE "
+        f"name such as 'D65', or a Spectrum; got {type(illuminant).__name__}"
+    )
+
+
+def film_colours(films, *, quantity: str = "reflectance", illuminant=None,
+                 observer: str = "1931", exposure: str = "global-max", gain: float = 1.0,
+                 space="sRGB", gamut: str = "preserve-luminance", bit_depth: int = 8,
+                 method: str = "sum") -> FilmColours:
+    """Colours of films seen in reflection (or transmission) under a light.
+
+    Parameters
+    ----------
+    films
+        A :class:`~spectrocolor.thinfilm.optics.FilmOptics` or a :class:`spectrocolor.Spectrum`
+        of reflectance (or transmittance, or two-beam) factors, shape ``(..., K)``.
+    quantity
+        ``"reflectance"`` or ``"transmittance"`` (FilmOptics only).
+    illuminant
+        See :func:`light_source`; default blackbody 6504 K.
+    observer
+        ``"1931"`` or ``"1964"`` (any name :func:`spectrocolor.observer` accepts).
+    exposure
+        ``"global-max"`` or ``"perfect-reflector"`` (see the module docstring).
+    gain
+        Multiplier for ``"perfect-reflector"`` exposure (must be 1 for ``"global-max"``).
+    space, gamut, bit_depth
+        Passed to :func:`spectrocolor.render`.
+    method
+        Summation method of :func:`spectrocolor.weights`.
+
+    Returns
+    -------
+    FilmColours
+    """
+    from ..colorimetry import weights
+    from ..coordinates import xy as chromaticity
+    from ..display.render import render
+    from ..spectrum import Spectrum
+
+    if isinstance(films, FilmOptics):
+        spectrum = films.spectrum(quantity)
+    elif isinstance(films, Spectrum):
+        if quantity != "reflectance":
+            raise SpectrumError("quantity: only for FilmOptics; a Spectrum is used as given")
+        spectrum = films
+    else:
+        raise SpectrumError(
+            f"films: expected FilmOptics or Spectrum, got {type(films).__name__}"
+        )
+    if exposure not in EXPOSURES:
+        raise ColorimetryError(f"exposure: expected one of {EXPOSURES}, got {exposure!r}")
+    if not (np.isfinite(gain) and gain > 0):
+        raise ColorimetryError(f"gain: expected a positive number, got {gain!r}")
+    if exposure == "global-max" and gain != 1.0:
+        raise ColorimetryError('gain: only with exposure="perfect-reflector"')
+    wl = spectrum.wavelengths_nm
+    light, light_name = light_source(illuminant, wl)
+    XYZ100 = spectrum.values @ weights(wl, observer, light, method)
+    rendering = render(
+        XYZ100 * gain if exposure == "perfect-reflector" else XYZ100,
+        space=space,
+        normalise="global-max" if exposure == "global-max" else "none",
+        gamut=gamut,
+        bit_depth=bit_depth,
+    )
+    return FilmColours(XYZ100, chromaticity(XYZ100), rendering, light_name, str(observer),
+                       exposure)

@@ -1,0 +1,263 @@
+"""Pictures of films from thickness maps, through a thickness (× angle) → colour lookup table.
+
+Computing a spectrum per pixel of a 3840 × 2160 frame would take minutes; the colour of a film
+depends only on its thickness (and the angle of incidence), so the colours are computed once
+on a fine thickness grid (default 0.5 nm; a few thousand spectra) and every pixel takes the
+nearest entry. Exposure is set once for the whole table (``"global-max"``: the brightest colour
+the table holds becomes full drive), so every frame rendered through one table is consistent.
+
+Thickness maps: :func:`wedge`, :func:`draining_film`, :func:`bubble`, or a user's array from
+:func:`read_thickness_map` (``.npy`` in nm, or a 16-bit PNG with a stated nm per count).
+NaN marks pixels without film; they get the ``background`` colour.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SpectrumError
+from .colour import film_colours
+from .optics import FilmOptics
+
+
+@dataclass(frozen=True)
+class ColourTable:
+    """8-bit colours of a film on a uniform thickness grid (and optionally an angle grid).
+
+    Attributes
+    ----------
+    thickness_step_nm
+        Spacing of the thickness grid; entry ``i`` is ``i * thickness_step_nm``.
+    angle_step_deg
+        Spacing of the angle grid (entry ``j`` is ``j * angle_step_deg``, the last one capped at
+        89.9°); ``None`` when the table was built for one angle.
+    rgb8
+        ``uint8`` codes, shape ``(angles, thicknesses, 3)``.
+    description
+        What the table was built from (film, light, observer, exposure).
+    """
+
+    thickness_step_nm: float
+    angle_step_deg: float | None
+    rgb8: np.ndarray
+    description: str
+
+    @property
+    def max_thickness_nm(self) -> float:
+        return (self.rgb8.shape[1] - 1) * self.thickness_step_nm
+
+    def lookup(self, thickness_nm, angle_deg=None, background=(0, 0, 0)) -> np.ndarray:
+        """Colour codes of a thickness map, shape ``(..., 3)`` ``uint8``.
+
+        Parameters
+        ----------
+        thickness_nm
+            Film thickness per pixel in nm, any shape; NaN = no film (``background``).
+        angle_deg
+            Angle of incidence per pixel (same shape, NaN allowed where thickness is NaN);
+            required if and only if the table has an angle grid.
+        """
+        d = np.asarray(thickness_nm)
+        if d.dtype.kind != "f":
+            d = d.astype(np.float32)
+        film = ~np.isnan(d)
+        if np.any(d[film] < 0) or np.any(d[film] > self.max_thickness_nm + 0.5 * self.
+                                          thickness_step_nm):
+            raise SpectrumError(
+                f"thickness_nm: values must lie in 0-{self.max_thickness_nm:g} nm (the table's "
+                "range; build a larger table) or be NaN for no film"
+            )
+        index = np.rint(np.where(film, d, 0) / self.thickness_step_nm).astype(np.intp)
+        if self.angle_step_deg is None:
+            if angle_deg is not None:
+                raise SpectrumError("angle_deg: this table was built for one angle only")
+        else:
+            if angle_deg is None:
+                raise SpectrumError("angle_deg: this table has an angle grid; give an angle map")
+            a = np.asarray(angle_deg, dtype=d.dtype)
+            if a.shape != d.shape:
+                raise SpectrumError(f"angle_deg: expected shape {d.shape}, got {a.shape}")
+            angle_index = np.rint(np.where(film, a, 0) / self.angle_step_deg).astype(np.intp)
+            if np.any(angle_index < 0) or np.any(angle_index >= self.rgb8.shape[0]):
+                raise SpectrumError("angle_deg: values outside the table's angle range")
+            index += angle_index * self.rgb8.shape[1]
+        out = self.rgb8.reshape(-1, 3)[index]
+        out[~film] = np.asarray(background, dtype=np.uint8)
+        return out
+
+
+def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.5,
+                 max_angle_deg: float | None = None, angle_step_deg: float = 1.0,
+                 wavelengths_nm=None, **colour_options) -> ColourTable:
+    """Build a :class:`ColourTable` for a film model.
+
+    Parameters
+    ----------
+    film
+        Callable ``film(thickness_nm, wavelengths_nm, angle_deg=...) -> FilmOptics`` such as
+        :func:`~spectrocolor.thinfilm.films.soap_film` (reflectance is used).
+    max_thickness_nm
+        Largest thickness in the table (nm).
+    thickness_step_nm
+        Thickness grid spacing (nm).
+    max_angle_deg
+        ``None``: normal incidence only. Otherwise an angle grid ``0, angle_step_deg, ...``
+        up to this angle (< 90).
+    wavelengths_nm
+        Spectral grid (default 380-780 nm at 5 nm).
+    **colour_options
+        Passed to :func:`~spectrocolor.thinfilm.colour.film_colours` (illuminant, observer,
+        exposure, gain, space, gamut).
+    """
+    if not (np.isfinite(max_thickness_nm) and max_thickness_nm > 0):
+        raise SpectrumError(f"max_thickness_nm: expected a positive number, got {max_thickness_nm}")
+    if not (np.isfinite(thickness_step_nm) and thickness_step_nm > 0):
+        raise SpectrumError(f"thickness_step_nm: expected > 0, got {thickness_step_nm}")
+    wl = np.arange(380.0, 781.0, 5.0) if wavelengths_nm is None else wavelengths_nm
+    count = int(np.ceil(max_thickness_nm / thickness_step_nm - 1e-9)) + 1
+    d = np.arange(count) * thickness_step_nm
+    if max_angle_deg is None:
+        angles, angle_step = np.zeros(1), None
+    else:
+        if not (0 < max_angle_deg < 90 and angle_step_deg > 0):
+            raise SpectrumError("max_angle_deg must be in (0, 90) and angle_step_deg > 0")
+        angles = np.arange(int(np.ceil(max_angle_deg / angle_step_deg - 1e-9)) + 1) * angle_step_deg
+        angles = np.minimum(angles, 89.9)
+        angle_step = float(angle_step_deg)
+    optics = film(d, wl, angle_deg=angles[:, None])
+    if not isinstance(optics, FilmOptics):
+        raise SpectrumError("film: must return FilmOptics (e.g. soap_film, thin_film)")
+    colours = film_colours(optics, **colour_options)
+    description = (f"{getattr(film, '__name__', 'film')}, {colours.illuminant}, observer "
+                   f"{colours.observer}, exposure {colours.exposure}")
+    return ColourTable(float(thickness_step_nm), angle_step, colours.rgb8, description)
+
+
+def render_thickness_map(thickness_nm, table: ColourTable, angle_deg=None,
+                         background=(0, 0, 0)) -> np.ndarray:
+    """An ``(H, W, 3)`` ``uint8`` image of a thickness map (nm); see :meth:`ColourTable.lookup`."""
+    d = np.asarray(thickness_nm)
+    if d.ndim != 2:
+        raise SpectrumError(f"thickness_nm: expected an (H, W) map, got shape {d.shape}")
+    return table.lookup(d, angle_deg, background)
+
+
+def _size(width: int, height: int) -> None:
+    if int(width) != width or int(height) != height or width < 1 or height < 1:
+        raise SpectrumError(f"width and height must be positive integers, got {width}, {height}")
+
+
+def wedge(width: int, height: int, max_thickness_nm: float,
+          min_thickness_nm: float = 0.0) -> np.ndarray:
+    """A wedge: thickness rising linearly from left to right (nm), shape ``(height, width)``."""
+    _size(width, height)
+    row = np.linspace(min_thickness_nm, max_thickness_nm, width, dtype=np.float32)
+    return np.broadcast_to(row, (height, width)).copy()
+
+
+def draining_film(width: int, height: int, *, time_s: float, film_height_m: float = 0.05,
+                  viscosity_Pa_s: float = 1.0e-3, density_kg_m3: float = 1000.0) -> np.ndarray:
+    """A vertical soap film draining under gravity: ``h(x, t) = 2 sqrt(η x / (ρ g t))`` (nm).
+
+    The similarity solution of lubrication flow in a vertical film with immobile (surfactant-
+    laden) surfaces: the flux per unit width ``q = ρ g h³ / (12 η)`` and ``∂h/∂t + ∂q/∂x = 0``
+    give the profile above, ``x`` measured down from the top edge. The film is thinnest (black)
+    at the top and thickens downward; it thins everywhere as ``t^(-1/2)``.
+
+    Parameters
+    ----------
+    width, height
+        Image size in pixels; the film spans ``film_height_m`` vertically.
+    time_s
+        Time since the film was drawn (s, > 0).
+
+    References
+    ----------
+    K. J. Mysels, K. Shinoda and S. Frankel, *Soap Films: Studies of their Thinning and a
+    Bibliography* (Pergamon, 1959).
+    """
+    _size(width, height)
+    if not (time_s > 0 and film_height_m > 0 and viscosity_Pa_s > 0 and density_kg_m3 > 0):
+        raise SpectrumError("time_s, film_height_m, viscosity_Pa_s, density_kg_m3 must be > 0")
+    x = (np.arange(height, dtype=np.float64) + 0.5) / height * film_height_m
+    h_nm = 2.0 * np.sqrt(viscosity_Pa_s * x / (density_kg_m3 * 9.80665 * time_s)) * 1e9
+    return np.broadcast_to(h_nm.astype(np.float32)[:, None], (height, width)).copy()
+
+
+def bubble(size: int, *, top_thickness_nm: float = 80.0, bottom_thickness_nm: float = 900.0,
+           swirl: float = 0.15) -> tuple[np.ndarray, np.ndarray]:
+    """A soap bubble seen from afar: thickness (nm) and angle of incidence (degrees) per pixel.
+
+    A sphere filling a ``size × size`` image; the viewer sees the mirror image of a uniform
+    sky, so the angle of incidence at a point is the angle between its normal and the line of
+    sight. Drainage makes the film thin at the top and thick at the bottom (linear in height);
+    ``swirl`` adds an illustrative marbling of that relative amplitude (0 for none). Pixels
+    outside the sphere are NaN.
+    """
+    _size(size, size)
+    c = (np.arange(size, dtype=np.float32) + 0.5) / size * 2 - 1
+    u, v = np.meshgrid(c, c)
+    r2 = u * u + v * v
+    inside = r2 < 1.0
+    z = np.sqrt(np.where(inside, 1.0 - r2, 0.0))
+    thickness = top_thickness_nm + (bottom_thickness_nm - top_thickness_nm) * (1 + v) / 2
+    thickness *= 1 + swirl * np.sin(7 * u + 3 * np.sin(5 * v)) * np.cos(4 * v - 2 * u)
+    angle = np.degrees(np.arccos(np.clip(z, 0.0, 1.0)))
+    nan = np.float32(np.nan)
+    return np.where(inside, thickness, nan), np.where(inside, angle, nan)
+
+
+def read_thickness_map(path, nm_per_count: float | None = None) -> np.ndarray:
+    """Read a thickness map: ``.npy`` (float, nm) or ``.png`` (8/16-bit grey, counts).
+
+    Parameters
+    ----------
+    nm_per_count
+        Required for PNG: thickness in nm per grey count (e.g. 0.05 maps a 16-bit range to
+        0-3277 nm). Must not be given for ``.npy`` (already in nm).
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".npy":
+        if nm_per_count is not None:
+            raise SpectrumError("nm_per_count: a .npy map is already in nm; do not give a scale")
+        data = np.load(path, allow_pickle=False)
+        if data.ndim != 2 or data.dtype.kind not in "fiu":
+            raise SpectrumError(f"{path}: expected a 2-D numeric array, got {data.shape}")
+        return data.astype(np.float32)
+    if suffix == ".png":
+        if nm_per_count is None or not nm_per_count > 0:
+            raise SpectrumError(
+                "nm_per_count: a PNG holds grey counts; state the thickness per count in nm"
+            )
+        from PIL import Image
+
+        with Image.open(path) as image:
+            if image.mode not in ("I;16", "I;16B", "I", "L"):
+                raise SpectrumError(
+                    f"{path}: expected a greyscale PNG (8 or 16 bit), got mode {image.mode}"
+                )
+            counts = np.asarray(image)
+        return counts.astype(np.float32) * np.float32(nm_per_count)
+    raise SpectrumError(f"{path}: thickness maps must be .npy or .png")
+
+
+def draining_film_gif(path, table: ColourTable, width: int, height: int, times_s,
+                      frame_ms: int = 100, **film_options) -> Path:
+    """An animated GIF of :func:`draining_film` at the given times, rendered through ``table``.
+
+    Needs Pillow. Thicknesses beyond the table's range are an error, so build the table up
+    to the thickest frame (the earliest time, bottom edge).
+    """
+    from PIL import Image
+
+    frames = [Image.fromarray(render_thickness_map(
+        draining_film(width, height, time_s=t, **film_options), table)) for t in times_s]
+    if not frames:
+        raise SpectrumError("times_s: need at least one time")
+    path = Path(path)
+    frames[0].save(path, save_all=True, append_images=frames[1:], duration=frame_ms, loop=0)
+    return path
