@@ -317,7 +317,7 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
         for threshold in (1.0, 1e-2, 1e2, 1e-4, 1e4):
             if pending.size == 0:
                 break
-            active = ratio > np.minimum(threshold, third)
+            active = ratio > np.maximum(threshold, third)
             lo, up = active & ~at_upper, active & at_upper
             r, m, lm, it, ok = _pdas(prob, b[pending], lower, upper, lo, up, _MAX_PDAS_ITER)
             rho[pending], mu[pending], lam[pending] = r, m, lm

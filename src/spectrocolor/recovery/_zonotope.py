@@ -79,19 +79,23 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
     ratio = np.empty(N)
     excess = np.empty(N)
     facet = np.empty(N, dtype=np.int64)
+    scaled = facets.normals if cone else facets.normals / facets.support[:, None]
     for start in range(0, N, _CHUNK):
         d = b[start:start + _CHUNK] - facets.centre
-        proj = d @ facets.normals.T
+        rows = np.arange(len(d))
+        rel = d @ scaled.T
+        k = np.argmax(rel, axis=1)
+        top = rel[rows, k]
         if cone:
             norm = np.linalg.norm(d, axis=1)
-            k = np.argmax(proj, axis=1)
-            top = proj[np.arange(len(d)), k]
-            excess[start:start + len(d)] = top
             ratio[start:start + len(d)] = np.where(norm > 0, top / np.where(norm > 0, norm, 1), 0)
+            excess[start:start + len(d)] = top
         else:
-            rel = proj / facets.support
-            k = np.argmax(rel, axis=1)
-            ratio[start:start + len(d)] = rel[np.arange(len(d)), k]
-            excess[start:start + len(d)] = np.max(proj - facets.support, axis=1)
+            ratio[start:start + len(d)] = top
+            out = np.flatnonzero(top > 1.0)
+            exc = np.full(len(d), -np.inf)
+            if out.size:
+                exc[out] = np.max(d[out] @ facets.normals.T - facets.support, axis=1)
+            excess[start:start + len(d)] = exc
         facet[start:start + len(d)] = k
     return ratio, excess, facet

@@ -1,0 +1,1 @@
+"""Reflectance recovery: smoothest reflectances (van Trigt), optimal colours, metamers."""

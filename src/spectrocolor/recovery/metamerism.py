@@ -1,0 +1,115 @@
+"""Metamers: Cohen's fundamental metamer and metameric black, metamerism index, colour shifts.
+
+For weights ``W`` (K, 3) of an observer under an illuminant (``XYZ100 = ρ @ W``), Cohen's
+projector ``R = W (WᵀW)⁻¹ Wᵀ`` splits every reflectance into its *fundamental metamer*
+``R ρ`` (the part that the observer sees, shared by all its metamers) and its *metameric
+black* ``ρ − R ρ`` (invisible: ``(ρ − Rρ) @ W = 0``).
+
+References
+----------
+J. B. Cohen, W. E. Kappauf, "Metameric color stimuli, fundamental metamers, and Wyszecki's
+metameric blacks", Am. J. Psychol. 95, 537–564 (1982).
+CIE 015:2018 *Colorimetry*, §8.2 (special metamerism index: change in illuminant).
+C. van Trigt (1990), J. Opt. Soc. Am. A 7, 1891, Fig. 1 (colour shifts D65 → A).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..colorimetry import weights
+from ..coordinates import lab
+from ..differences import delta_e_2000
+from ..errors import SpectrumError
+from ..spectrum import Spectrum
+
+
+def _reflectance(spectrum, argument: str) -> Spectrum:
+    if not isinstance(spectrum, Spectrum):
+        raise SpectrumError(f"{argument}: expected a Spectrum of reflectance factors, got {type(spectrum).__name__}")
+    return spectrum
+
+
+def cohen_projector(wavelengths_nm, illuminant="D65", observer="1931") -> np.ndarray:
+    """Cohen's matrix ``R`` (K, K): the orthogonal projector onto the span of the weights."""
+    W = np.asarray(weights(wavelengths_nm, observer, illuminant))
+    return W @ np.linalg.solve(W.T @ W, W.T)
+
+
+def fundamental_metamer(spectrum: Spectrum, illuminant="D65", observer="1931") -> Spectrum:
+    """The fundamental metamer ``R ρ`` of reflectance(s) ``(..., K)``: same XYZ, no black."""
+    s = _reflectance(spectrum, "spectrum")
+    R = cohen_projector(s.wavelengths_nm, illuminant, observer)
+    return Spectrum(s.wavelengths_nm, s.values @ R.T, s.names)
+
+
+def metameric_black(spectrum: Spectrum, illuminant="D65", observer="1931") -> Spectrum:
+    """The metameric black ``ρ − R ρ``: tristimulus values exactly zero (to rounding)."""
+    s = _reflectance(spectrum, "spectrum")
+    R = cohen_projector(s.wavelengths_nm, illuminant, observer)
+    return Spectrum(s.wavelengths_nm, s.values - s.values @ R.T, s.names)
+
+
+def metamerism_index(
+    spectrum1: Spectrum, spectrum2: Spectrum, reference="D65", test="A", observer="1931"
+) -> np.ndarray:
+    """CIE special metamerism index for a change in illuminant, with CIEDE2000.
+
+    ΔE00 between the two samples under the ``test`` illuminant (each in CIELAB relative to
+    the test illuminant's white). The pair should match under ``reference``; if it does not,
+    CIE 015 corrects the second sample multiplicatively in XYZ by the ratio of the
+    reference-illuminant values, which is applied here.
+
+    Returns
+    -------
+    ndarray (...)
+        ΔE00 under the test illuminant.
+    """
+    s1, s2 = _reflectance(spectrum1, "spectrum1"), _reflectance(spectrum2, "spectrum2")
+    if not np.array_equal(s1.wavelengths_nm, s2.wavelengths_nm):
+        raise SpectrumError("spectrum2: must share spectrum1's wavelength grid; resample it first")
+    grid = s1.wavelengths_nm
+    W_ref = np.asarray(weights(grid, observer, reference))
+    W_test = np.asarray(weights(grid, observer, test))
+    ref1, ref2 = s1.values @ W_ref, s2.values @ W_ref
+    with np.errstate(divide="ignore", invalid="ignore"):
+        correction = np.where(ref2 > 0, ref1 / ref2, 1.0)
+    test1, test2 = s1.values @ W_test, s2.values @ W_test * correction
+    white = W_test.sum(axis=0)
+    return delta_e_2000(lab(test1, white), lab(test2, white))
+
+
+@dataclass(frozen=True)
+class ColourShift:
+    """CIELAB of samples under the source illuminant and, adapted, under the target.
+
+    ``lab_source`` (..., 3) is relative to the source white; ``lab_target`` (..., 3) is the
+    sample's colour under the target illuminant, adapted back to the source white with
+    ``method`` and expressed relative to the source white; ``shift_ab`` = a*b* difference.
+    """
+
+    lab_source: np.ndarray
+    lab_target: np.ndarray
+    shift_ab: np.ndarray
+    method: str
+
+
+def colour_shift(spectrum: Spectrum, source="D65", target="A", observer="1931",
+                 method: str = "bradford") -> ColourShift:
+    """Colour shifts of reflectances when the light changes (van Trigt 1990, Fig. 1).
+
+    The samples' XYZ under ``target`` are mapped to corresponding colours under ``source``
+    by a chromatic adaptation transform (:func:`spectrocolor.adapt`), and compared in
+    CIELAB with their XYZ under ``source``.
+    """
+    from ..display.adaptation import adapt
+
+    s = _reflectance(spectrum, "spectrum")
+    W_s = np.asarray(weights(s.wavelengths_nm, observer, source))
+    W_t = np.asarray(weights(s.wavelengths_nm, observer, target))
+    white_s, white_t = W_s.sum(axis=0), W_t.sum(axis=0)
+    lab_s = lab(s.values @ W_s, white_s)
+    lab_t = lab(adapt(s.values @ W_t, white_t, white_s, method=method), white_s)
+    return ColourShift(lab_s, lab_t, lab_t[..., 1:] - lab_s[..., 1:], method)

@@ -1,0 +1,56 @@
+"""``spectrocolor recover`` end to end."""
+
+import numpy as np
+import pytest
+
+import spectrocolor as sc
+from spectrocolor.cli import recover
+
+
+def main(argv):
+    """The CLI's own dispatch, with only this sub-command registered (independent of the others)."""
+    import argparse
+    from unittest import mock
+
+    from spectrocolor import cli
+
+    def parser():
+        p = argparse.ArgumentParser(prog="spectrocolor")
+        sub = p.add_subparsers(dest="command", required=True)
+        recover.register(sub)
+        return p
+
+    with mock.patch.object(cli, "build_parser", parser):
+        return cli.main(argv)
+
+
+def test_recover_xyz_round_trip(tmp_path):
+    out = tmp_path / "refl.csv"
+    assert main(["recover", "--xyz", "30", "25", "10", "--range", "400", "700", "10",
+                 "--out", str(out)]) == 0
+    s = sc.read_spectra(out)
+    np.testing.assert_allclose(sc.tristimulus(s, "1931", "D65"), [30, 25, 10], atol=1e-8)
+    assert s.values.min() >= 0 and s.values.max() <= 1
+
+
+def test_recover_hex_and_csv_with_plot(tmp_path):
+    out, png = tmp_path / "hex.csv", tmp_path / "hex.png"
+    assert main(["recover", "--hex", "#ff0000", "808080", "--range", "400", "700", "10",
+                 "--out", str(out), "--plot", str(png)]) == 0
+    assert sc.read_spectra(out).values.shape == (2, 31) and png.stat().st_size > 1000
+    table = tmp_path / "colours.csv"
+    table.write_text("X,Y,Z\n20,20,20\n90,10,5\n")
+    assert main(["recover", "--csv", str(table), "--out", str(tmp_path / "c.csv")]) == 1
+    s = sc.read_spectra(tmp_path / "c.csv")
+    assert s.names == ("colour_1",)  # the infeasible colour is reported and skipped
+
+
+def test_recover_bad_hex_is_one_line(tmp_path, capsys):
+    assert main(["recover", "--hex", "zz0000", "--out", str(tmp_path / "x.csv")]) == 2
+    assert "RRGGBB" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("args", [["--xyz", "1", "1", "1", "--bounds", "weird"]])
+def test_recover_bad_bounds(args, tmp_path):
+    with pytest.raises(SystemExit):
+        main(["recover", *args, "--out", str(tmp_path / "x.csv")])

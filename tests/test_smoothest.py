@@ -1,0 +1,221 @@
+"""Smoothest reflectance (van Trigt 1990): exactness against independent solvers."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.optimize import minimize
+
+import spectrocolor as sc
+from spectrocolor.recovery.smoothest import smoothest_reflectance
+
+GRID = (400.0, 700.0, 10.0)
+
+
+def _weights(grid=GRID, illuminant="D65"):
+    return np.asarray(sc.weights(sc.wavelength_grid(*grid), "1931", illuminant))
+
+
+def _roughness(rho, step):
+    return np.sum(np.diff(rho, axis=-1) ** 2, axis=-1) / step
+
+
+def _dense_kkt(W, step, b):
+    """Independent dense KKT solve of min Σ(Δρ)²/h s.t. ρ @ W = b (natural ends)."""
+    K = W.shape[0]
+    D = (np.eye(K, k=1) - np.eye(K))[:-1]
+    H = 2 * D.T @ D / step
+    kkt = np.block([[H, W], [W.T, np.zeros((3, 3))]])
+    rhs = np.concatenate([np.zeros((len(b), K)), b], axis=1)
+    return np.linalg.solve(kkt, rhs.T).T[:, :K]
+
+
+def _ilss(W, step, b, upper):
+    """Burns' ILSS, written independently: solve, clamp violators to the bounds, fix them, repeat."""
+    K = W.shape[0]
+    D = (np.eye(K, k=1) - np.eye(K))[:-1]
+    H = 2 * D.T @ D / step
+    fixed = np.zeros(K, dtype=bool)
+    values = np.zeros(K)
+    for _ in range(K):
+        free = ~fixed
+        Hf = H[np.ix_(free, free)]
+        kkt = np.block([[Hf, W[free]], [W[free].T, np.zeros((3, 3))]])
+        rhs = np.concatenate([-H[np.ix_(free, fixed)] @ values[fixed], b - values[fixed] @ W[fixed]])
+        rho = values.copy()
+        rho[free] = np.linalg.lstsq(kkt, rhs, rcond=None)[0][: free.sum()]
+        low, high = (rho < 0) & free, (rho > upper) & free
+        if not (low.any() or high.any()):
+            return rho
+        values[low], values[high] = 0.0, upper
+        fixed |= low | high
+    return rho
+
+
+def _srgb_xyz(n, rng, white):
+    M = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
+    M = M * (white / M.sum(axis=1))[:, None]
+    return rng.random((n, 3)) ** 2 @ M.T
+
+
+def _near_boundary(W, n, rng, depths):
+    """Colours at given relative depths inside the solid along rays to optimal colours."""
+    rho = (rng.normal(size=(n, 3)) @ W.T > 0).astype(float)
+    centre = W.sum(axis=0) / 2
+    return np.concatenate([centre + (rho @ W - centre) * (1 - d) for d in depths])
+
+
+def test_unconstrained_equals_dense_kkt():
+    W = _weights()
+    b = _srgb_xyz(50, np.random.default_rng(0), W.sum(axis=0))
+    r = smoothest_reflectance(b, wavelengths=GRID, bounds=None)
+    np.testing.assert_allclose(r.spectrum.values, _dense_kkt(W, 10.0, b), atol=1e-12)
+    assert np.all(r.feasible)
+
+
+def test_unconstrained_natural_ends_and_linearity():
+    W = _weights()
+    b = _srgb_xyz(4, np.random.default_rng(1), W.sum(axis=0))
+    r = smoothest_reflectance(b, wavelengths=GRID, bounds=None).spectrum.values
+    combo = smoothest_reflectance(2 * b[0] - b[1], wavelengths=GRID, bounds=None).spectrum.values
+    np.testing.assert_allclose(combo, 2 * r[0] - r[1], atol=1e-12)
+
+
+def test_discretisation_converges_to_the_continuous_problem():
+    """Halving the step changes the continuous-ρ roughness less and less (free ends)."""
+    b = np.array([30.0, 25.0, 10.0])
+    values = [
+        smoothest_reflectance(b, wavelengths=(400, 700, s), bounds=None).roughness
+        for s in (10, 5, 2.5, 1.25)
+    ]
+    d = np.abs(np.diff(values))
+    assert d[1] < 0.6 * d[0] and d[2] < 0.6 * d[1]
+
+
+def _check_kkt_independently(W, step, b, rho, upper):
+    """Optimality shown from ρ alone: fit μ on the free set, then check multiplier signs."""
+    K = W.shape[0]
+    D = (np.eye(K, k=1) - np.eye(K))[:-1]
+    g = 2 * D.T @ D @ rho / step
+    at_low, at_up = rho == 0.0, rho == upper
+    free = ~(at_low | at_up)
+    mu = np.linalg.lstsq(W[free], g[free], rcond=None)[0]
+    lam = g - W @ mu
+    scale = 1 + np.abs(g).max()
+    assert np.abs(lam[free]).max(initial=0) < 1e-8 * scale
+    assert lam[at_low].min(initial=0) > -1e-8 * scale
+    assert lam[at_up].max(initial=0) < 1e-8 * scale
+
+
+@pytest.mark.parametrize("bounds", ["unit", "nonnegative"])
+def test_bounded_equals_independent_qp_solver(bounds):
+    """Objective equal to SciPy SLSQP's (within 1e-9) and never worse; KKT checked independently."""
+    W = _weights()
+    rng = np.random.default_rng(2)
+    upper = 1.0 if bounds == "unit" else np.inf
+    b = _srgb_xyz(40, rng, W.sum(axis=0))
+    if bounds == "unit":
+        b = np.concatenate([b, _near_boundary(W, 10, rng, [1e-2, 1e-4])])
+    r = smoothest_reflectance(b, wavelengths=GRID, bounds=bounds)
+    assert np.all(r.feasible) and np.all(r.certificate.converged)
+    ours = r.roughness
+    for i in range(len(b)):
+        res = minimize(
+            lambda x: _roughness(x, 10.0),
+            np.clip(r.spectrum.values[i] + 0.01, 0, upper),
+            jac=lambda x: 2 * np.diff(np.diff(np.concatenate([[x[0]], x, [x[-1]]]))) * -1 / 10.0,
+            constraints=[{"type": "eq", "fun": lambda x, i=i: (x @ W - b[i]) / 100,
+                          "jac": lambda x: W.T / 100}],
+            bounds=[(0, None if upper == np.inf else upper)] * W.shape[0],
+            method="SLSQP", options={"ftol": 1e-15, "maxiter": 500},
+        )
+        assert np.abs(res.x @ W - b[i]).max() < 1e-6
+        assert ours[i] <= res.fun + 1e-9
+        assert abs(ours[i] - res.fun) < 1e-9 * max(1.0, res.fun) or ours[i] < res.fun
+        _check_kkt_independently(W, 10.0, b[i], r.spectrum.values[i], upper)
+
+
+def test_never_worse_than_ilss():
+    W = _weights()
+    rng = np.random.default_rng(3)
+    b = np.concatenate([_srgb_xyz(60, rng, W.sum(axis=0)), _near_boundary(W, 20, rng, [1e-2])])
+    r = smoothest_reflectance(b, wavelengths=GRID, bounds="unit")
+    worse = 0
+    for i in range(len(b)):
+        ilss = _ilss(W, 10.0, b[i], 1.0)
+        if np.abs(ilss @ W - b[i]).max() < 1e-8 and ilss.min() >= 0 and ilss.max() <= 1:
+            assert r.roughness[i] <= _roughness(ilss, 10.0) + 1e-10
+            worse += r.roughness[i] < _roughness(ilss, 10.0) - 1e-9
+    assert worse > 0  # ILSS never releases a bound, so it is strictly worse somewhere
+
+
+@pytest.mark.parametrize("step", [10.0, 5.0])
+def test_round_trip_bounds_and_success_near_the_boundary(step):
+    grid = (380.0, 780.0, step)
+    W = _weights(grid)
+    rng = np.random.default_rng(4)
+    b = np.concatenate([_srgb_xyz(2000, rng, W.sum(axis=0)),
+                        _near_boundary(W, 200, rng, [1e-1, 1e-3, 1e-6])])
+    r = smoothest_reflectance(b, wavelengths=grid, bounds="unit")
+    rho = r.spectrum.values
+    assert np.all(r.feasible)
+    assert np.all(r.certificate.converged)
+    assert np.abs(sc.tristimulus(r.spectrum, "1931", "D65") - b).max() < 1e-10
+    assert rho.min() >= 0.0 and rho.max() <= 1.0
+    assert np.any(rho == 0.0) and np.any(rho == 1.0)  # bounds reached exactly
+    assert r.certificate.multiplier_sign_violation.max() <= 1e-12
+    assert r.certificate.stationarity.max() < 1e-9
+
+
+def test_black_white_and_boundary_colours_exact():
+    W = _weights()
+    b = np.stack([np.zeros(3), W.sum(axis=0), W[5:12].sum(axis=0)])
+    r = smoothest_reflectance(b, wavelengths=GRID)
+    assert np.all(r.spectrum.values[0] == 0) and np.all(r.spectrum.values[1] == 1)
+    expected = np.zeros(W.shape[0])
+    expected[5:12] = 1
+    np.testing.assert_allclose(r.spectrum.values[2], expected, atol=1e-9)
+    assert np.all(r.feasible)
+
+
+def test_infeasible_colours():
+    W = _weights()
+    outside = np.array([[90.0, 10.0, 5.0], *(1.001 * W.sum(axis=0, keepdims=True))])
+    r = smoothest_reflectance(outside, wavelengths=GRID)
+    assert not r.feasible.any() and np.all(np.isnan(r.spectrum.values))
+    assert np.all(r.distance_outside > 0)
+    with pytest.raises(sc.ColorimetryError, match="outside the object-colour solid"):
+        smoothest_reflectance(outside[0], wavelengths=GRID)
+    with pytest.raises(sc.ColorimetryError, match="outside the cone"):
+        smoothest_reflectance([-1.0, 5.0, 5.0], wavelengths=GRID, bounds="nonnegative")
+
+
+def test_bad_arguments():
+    with pytest.raises(sc.ColorimetryError, match="bounds"):
+        smoothest_reflectance([1, 1, 1], bounds="positive")
+    with pytest.raises(sc.ColorimetryError, match="shape"):
+        smoothest_reflectance([1, 1])
+    with pytest.raises(sc.ColorimetryError, match="NaN"):
+        smoothest_reflectance([1, np.nan, 1])
+    with pytest.raises(sc.SpectrumError, match="wavelengths"):
+        smoothest_reflectance([1, 1, 1], wavelengths=(400, 700))
+
+
+def test_batch_shape_is_kept():
+    b = np.full((2, 3, 3), 20.0)
+    r = smoothest_reflectance(b, wavelengths=GRID)
+    assert r.spectrum.values.shape == (2, 3, 31) and r.feasible.shape == (2, 3)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(0.0, 1.0), min_size=31, max_size=31))
+def test_property_reflectance_round_trip(values):
+    """Any reflectance's colour is feasible; the recovery reproduces it and is no rougher."""
+    W = _weights()
+    rho = np.array(values)
+    b = rho @ W
+    r = smoothest_reflectance(b, wavelengths=GRID)
+    assert r.feasible
+    assert np.abs(r.spectrum.values @ W - b).max() < 1e-10
+    assert r.roughness <= _roughness(rho, 10.0) + 1e-9
+    assert 0 <= r.spectrum.values.min() and r.spectrum.values.max() <= 1
