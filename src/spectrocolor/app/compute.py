@@ -27,6 +27,7 @@ DISPLAYS = ("sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy")
 GAMUTS = ("flag", "clip", "preserve-luminance", "desaturate")
 NORMALISATIONS = ("fixed", "per-colour")
 CHANNELS = ("R", "G", "B")
+NEUTRAL_PURITY = 1e-9  # excitation purity below which a colour is the white itself
 
 
 def grid(step_nm: float) -> np.ndarray:
@@ -95,7 +96,7 @@ def model(step_nm: float, observer: str, display: str, illuminant_levels=None) -
         "display_white_xy": np.asarray(space.white_xy).tolist(),
         "primaries_xy": np.asarray(space.primaries_xy).tolist(),
         "locus": {"wavelengths_nm": locus.wavelengths_nm[keep].tolist(),
-                  "xy": np.asarray(locus.xy)[keep].tolist()},
+                  "xy": np.round(np.asarray(locus.xy)[keep], 6).tolist()},
         "tints": np.clip(tints, 0, 1).tolist(),
     }
 
@@ -124,6 +125,8 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         dom_nm[lit] = d.wavelength_nm
         dom_comp[lit] = d.complementary
         purity[lit] = d.excitation_purity
+    # At the white itself (to round-off) there is no dominant wavelength.
+    dom_nm[~(purity > NEUTRAL_PURITY)] = np.nan
     W = sc.weights(wl, observer, reference)
     scale = fixed_scale(display, W) if normalise == "fixed" else None
     r = sc.render(XYZ, display, normalise=normalise, gamut=gamut, scale=scale)
@@ -181,15 +184,18 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
 def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     """The smoothest distribution (0..full) with the same XYZ as ``target_levels``.
 
-    Uses :func:`spectrocolor.smoothest_reflectance` with bounds 0 <= ρ <= 1 (van Trigt, seed 004)
+    Uses :func:`spectrocolor.recovery.smoothest.smoothest_reflectance` with bounds 0 <= ρ <= 1 (van Trigt, seed 004)
     under E (or the given illuminant), on the page's grid.
     """
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     target = np.asarray(target_levels, dtype=float) / FULL_LEVEL
     XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer, reference)
-    rho = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
-                                   wavelengths=(START_NM, STOP_NM, float(step_nm)), bounds="unit")
+    from spectrocolor.recovery.smoothest import smoothest_reflectance
+
+    rho = smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
+                                wavelengths=(START_NM, STOP_NM, float(step_nm)),
+                                bounds="unit").spectrum
     values = np.asarray(rho.values, dtype=float)
     if rho.wavelengths_nm.shape != wl.shape or not np.allclose(rho.wavelengths_nm, wl):
         values = rho.resample(wl).values
@@ -265,7 +271,8 @@ def import_spectra(path, step_nm: float, method: str, scale: str) -> dict:
         values = values * FULL_LEVEL
     if values.min() < 0 or values.max() > FULL_LEVEL * (1 + 1e-9):
         raise sc.SpectrumError(
-            f"after scaling '{scale}' the levels run from {values.min():.4g} to {values.max():.4g}; "
+            f"after scaling '{scale}' the levels run from {values.min():.4g} to "
+            f"{values.max():.4g}; "
             f"they must lie in 0-{FULL_LEVEL} (choose scale 'peak' or 'unit')")
     names = list(s.names) if s.names else [f"spectrum {i + 1}" for i in range(len(values))]
     step = np.diff(s.wavelengths_nm)

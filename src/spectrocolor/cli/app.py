@@ -1,0 +1,70 @@
+"""``spectrocolor app``: serve the SPECTRA explorer on this machine and open it in a browser."""
+
+from __future__ import annotations
+
+import os
+import socket
+import sys
+
+from . import UserError
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "app",
+        help="start the SPECTRA explorer (a local web app) and open it in the browser",
+        description="Serve the explorer of Sällström's five SPECTRA settings on a local port.",
+    )
+    p.add_argument("--port", type=int, default=8765,
+                   help="TCP port (default 8765; 0 picks a free one)")
+    p.add_argument("--host", default="127.0.0.1",
+                   help="address to bind (default 127.0.0.1: only this machine can connect)")
+    p.add_argument("--no-browser", action="store_true", help="print the URL, open nothing")
+    p.set_defaults(handler=run)
+
+
+def _has_display() -> bool:
+    if sys.platform in ("darwin", "win32"):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def _bind(host: str, port: int) -> socket.socket:
+    if not 0 <= port <= 65535:
+        raise UserError(f"--port must be 0-65535, got {port}")
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind((host, port))
+    except OSError as exc:
+        sock.close()
+        raise UserError(f"cannot listen on {host}:{port} ({exc.strerror}); try --port 0") from None
+    return sock
+
+
+def run(args) -> int:
+    try:
+        import uvicorn
+
+        from ..app.server import create_app
+    except ImportError as exc:
+        raise UserError(
+            f"the explorer needs the 'app' extra ({exc.name} is missing): "
+            "pip install 'spectrocolor[app]'") from None
+    sock = _bind(args.host, args.port)
+    host, port = sock.getsockname()[:2]
+    shown = f"[{host}]" if ":" in host else host
+    url = f"http://{shown}:{port}/"
+    print(f"spectrocolor explorer: {url}  (Ctrl+C stops it)", flush=True)
+    if not args.no_browser and _has_display():
+        import webbrowser
+
+        webbrowser.open(url)
+    config = uvicorn.Config(create_app(), log_level="warning")
+    server = uvicorn.Server(config)
+    try:
+        server.run(sockets=[sock])
+    except KeyboardInterrupt:
+        pass
+    return 0

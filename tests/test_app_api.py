@@ -1,0 +1,248 @@
+"""The explorer's JSON API: every endpoint, the seed's presets and the validation of requests.
+
+Independent cross-checks use colour-science (test-only) and plain NumPy on the CIE tables."""
+
+from __future__ import annotations
+
+import json
+
+import colour
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+import spectrocolor as sc
+from spectrocolor.app import presets as P
+from spectrocolor.app.server import create_app
+
+WL = np.arange(400.0, 701.0, 10.0)
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app())
+
+
+def evaluate(client, spectra, **kw):
+    body = {"spectra": [list(map(float, s)) for s in spectra], **kw}
+    r = client.post("/api/evaluate", json=body)
+    assert r.status_code == 200, r.text
+    return r.json()
+
+
+def cie_xyz(levels, illuminant=None):
+    """Independent XYZ: CIE 1931 CMFs at the bins, summed; white Y = 100 (E or illuminant)."""
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    xbar = np.array([cmfs[w] for w in WL])
+    s = np.ones(31) if illuminant is None else np.asarray(illuminant, float)
+    k = 100 / (s @ xbar[:, 1])
+    return k * (np.asarray(levels, float) / 30 * s) @ xbar
+
+
+def test_page_and_assets_are_served_without_external_urls(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "SPECTRA explorer" in page.text
+    for asset in ("/static/app.js", "/static/style.css"):
+        r = client.get(asset)
+        assert r.status_code == 200
+        assert "http://" not in r.text and "https://" not in r.text
+    assert "https://" not in page.text and "http://" not in page.text
+
+
+def test_options_lists_the_choices(client):
+    o = client.get("/api/options").json()
+    assert o["displays"][:3] == ["sRGB", "SPECTRA 7000K", "Display P3"]
+    assert "flag" in o["gamuts"] and o["full_level"] == 30
+
+
+def test_evaluate_matches_an_independent_summation_and_srgb(client):
+    r = evaluate(client, [P.STRAW], normalise="per-colour")
+    c = r["colours"][0]
+    np.testing.assert_allclose(c["XYZ"], cie_xyz(P.STRAW), rtol=1e-10)
+    rgb = colour.RGB_COLOURSPACES["sRGB"].matrix_XYZ_to_RGB @ np.array(c["XYZ"])
+    np.testing.assert_allclose(c["rgb_unmapped"], rgb / rgb.max(), atol=2e-4)  # IEC vs derived
+    assert c["status"] == "Optimised!" and max(c["rgb_linear"]) == pytest.approx(1.0)
+    assert c["dominant_nm"] == pytest.approx(582, abs=1.5) and not c["complementary"]
+
+
+def test_full_spectrum_is_the_white_and_has_no_dominant_wavelength(client):
+    r = evaluate(client, [[30] * 31])
+    c = r["colours"][0]
+    assert c["XYZ"][1] == pytest.approx(100.0)
+    assert c["dominant_nm"] is None and c["lab"][0] == pytest.approx(100.0)
+
+
+def test_flag_names_the_negative_channel(client):
+    # a single line at 520 nm lies far outside the sRGB gamut: red and blue go negative
+    line = [0.0] * 31
+    line[12] = 30.0
+    c = evaluate(client, [line], gamut="flag")["colours"][0]
+    assert not c["in_gamut"] and c["negative"] == ["R", "B"]
+    assert c["status"].startswith("cannot be reproduced") and "R, B negative" in c["status"]
+    assert c["codes"] == [0, 0, 0]
+
+
+def test_fixed_scale_is_spectra_r_max_for_its_monitor(client):
+    # Seed 002 note 10: R_max = 1.58 for SPECTRA's matrix, 31 bins, equal energy
+    m = client.post("/api/model", json={"display": "SPECTRA 7000K"}).json()
+    assert m["fixed_scale"] == pytest.approx(1.58, abs=0.005)
+    assert m["bit_depth"] == 6 and m["transfer"]["kind"] == "levels"
+    assert len(m["weights"]) == 31 and len(m["tints"]) == 31
+
+
+def test_sunset_is_the_seed_formula(client):
+    p = client.get("/api/presets", params={"step_nm": 10}).json()
+    sunset = p["setting1"][7]
+    assert [c["d"] for c in sunset["cycle"]] == [0.0, 0.15, 0.3, 0.6, 1.0, 1.5, 3.0]
+    for c in sunset["cycle"]:
+        np.testing.assert_allclose(c["levels"], 30 * np.exp(-((700 / WL) ** 4 - 1) * c["d"]))
+    names = [q["name"] for q in p["setting1"]]
+    assert names == ["straw", "light blue", "grey", "green", "magenta", "yellow", "blue", "sunset"]
+    ys = [evaluate(client, [c["levels"]])["colours"][0]["xy"] for c in sunset["cycle"][1:]]
+    assert all(b[0] > a[0] for a, b in zip(ys, ys[1:], strict=False))  # redder as d grows
+
+
+def test_setting1_presets_have_the_described_hues(client):
+    p = client.get("/api/presets").json()["setting1"]
+    cs = evaluate(client, [q["levels"] for q in p[:4]])["colours"]
+    cs += evaluate(client, [q["levels"] for q in p[4:7]])["colours"]
+    straw, light_blue, grey, green, magenta, yellow, blue = cs
+    assert 570 < straw["dominant_nm"] < 590 and 570 < yellow["dominant_nm"] < 590
+    assert yellow["purity"] > straw["purity"]
+    assert 470 < light_blue["dominant_nm"] < 495 and 440 < blue["dominant_nm"] < 480
+    assert blue["purity"] > light_blue["purity"]
+    assert grey["dominant_nm"] is None
+    assert 520 < green["dominant_nm"] < 560 and magenta["complementary"]
+
+
+def test_setting2_metameric_pairs(client):
+    p = client.get("/api/presets").json()["setting2"]
+    left = {q["key"]: q for q in p["left"]}
+    right = {q["key"]: q for q in p["right"]}
+    # 3 left (neutral) and 6 right (grey), and 6 left/6 right, match as lights
+    for a, b in ((left["3"], right["6"]), (left["6"], right["6"]), (left["5"], right["5"])):
+        de = evaluate(client, [a["levels"], b["levels"]], pairs=[[0, 1]])["delta_e_2000"][0]
+        assert de < 0.5, (a["name"], b["name"], de)
+    # 7: D65 (the CIE table) and the three-band light have the same chromaticity
+    d65 = np.asarray(left["7"]["levels"])
+    table = sc.illuminant("D65", WL).values
+    np.testing.assert_allclose(d65, table * 30 / table.max())
+    r = evaluate(client, [d65, right["7"]["levels"]], normalise="per-colour", pairs=[[0, 1]])
+    assert r["delta_e_2000"][0] > 5  # different lightness without X ...
+    xy0, xy1 = (np.array(c["xy"]) for c in r["colours"])
+    assert np.abs(xy0 - xy1).max() < 1e-3  # ... metameric chromaticity (after X)
+    assert [c["codes"] for c in r["colours"]][0] == r["colours"][1]["codes"]
+
+
+def test_setting3_pairs_conserve_the_total(client):
+    p = client.get("/api/presets").json()["setting3"]
+    assert len(p) == 6
+    for q in p[2:]:
+        np.testing.assert_allclose(np.add(q["left"], q["right"]), 30)
+    assert max(np.add(p[0]["left"], p[0]["right"])) <= 30
+
+
+def test_setting4_metamers_match_under_d65_and_not_under_a(client):
+    p = client.get("/api/presets").json()["setting4"]
+    ills = {q["name"]: q["levels"] for q in p["illuminants"]}
+    assert set(ills) == {"E", "D65", "T65 three-band", "A"}
+    for q in p["samples"]:
+        de = {}
+        for name, s in ills.items():
+            r = evaluate(client, [[30] * 31, q["left"], q["right"]], illuminant=s, pairs=[[1, 2]])
+            de[name] = r["delta_e_2000"][0]
+            np.testing.assert_allclose(r["colours"][1]["XYZ"], cie_xyz(q["left"], s), rtol=1e-9)
+        assert de["D65"] < 0.3, (q["name"], de)
+        assert de["A"] > 1.5 and de["T65 three-band"] > 1.5, (q["name"], de)
+
+
+def test_setting5_moss_green_filters_make_a_red(client):
+    p = client.get("/api/presets").json()["setting5"]
+    assert len(p) == 8
+    moss = np.array(p[6]["left"])
+    r = evaluate(client, [moss, moss * moss / 30])["colours"]
+    assert 495 < r[0]["dominant_nm"] < 560
+    assert r[1]["dominant_nm"] > 590 and not r[1]["complementary"]
+    assert r[1]["XYZ"][1] < r[0]["XYZ"][1]
+
+
+def test_fine_grid_presets_are_resampled(client):
+    p = client.get("/api/presets", params={"step_nm": 5}).json()
+    assert len(p["wavelengths_nm"]) == 61 and len(p["setting1"][0]["levels"]) == 61
+    np.testing.assert_allclose(p["setting1"][0]["levels"][::2], P.STRAW)
+
+
+def test_metamer_has_the_same_colour(client):
+    target = P.GREEN
+    r = client.post("/api/metamer", json={"target": target})
+    assert r.status_code == 200, r.text
+    out = r.json()
+    np.testing.assert_allclose(out["XYZ_metamer"], out["XYZ_target"], atol=1e-6)
+    assert 0 <= min(out["levels"]) and max(out["levels"]) <= 30 + 1e-9
+    assert not np.allclose(out["levels"], target, atol=0.5)
+
+
+def test_import_resamples_explicitly_and_export_round_trips(client):
+    wl = np.arange(380, 781, 5)
+    csv = "wavelength_nm,a,b\n" + "\n".join(f"{w},{0.5},{w / 1000}" for w in wl)
+    r = client.post("/api/import", json={"filename": "m.csv", "content": csv, "scale": "unit"})
+    assert r.status_code == 200, r.text
+    got = r.json()
+    assert got["names"] == ["a", "b"] and "resampled to 31 bins" in got["note"]
+    np.testing.assert_allclose(got["levels"][0], 15)
+    np.testing.assert_allclose(got["levels"][1], WL / 1000 * 30)
+    short = "wavelength_nm,a\n" + "\n".join(f"{w},1" for w in range(450, 701, 10))
+    bad = client.post("/api/import", json={"filename": "s.csv", "content": short})
+    assert bad.status_code == 422 and "never extrapolates" in bad.json()["error"]
+    ex = client.post("/api/export", json={"format": "json", "names": ["a"], "spectra": [P.STRAW]})
+    assert ex.status_code == 200 and "attachment" in ex.headers["content-disposition"]
+    back = sc.Spectrum.from_dict(json.loads(ex.text))
+    np.testing.assert_allclose(back.values, P.STRAW)
+
+
+@pytest.mark.parametrize(
+    ("path", "body", "needle"),
+    [
+        ("/api/evaluate", {"spectra": [[1] * 30]}, "31"),
+        ("/api/evaluate", {"spectra": [[1] * 31], "step_nm": 5}, "needs 61"),
+        ("/api/evaluate", {"spectra": [[31] * 31]}, "less than or equal to 30"),
+        ("/api/evaluate", {"spectra": [[-1] * 31]}, "greater than or equal to 0"),
+        ("/api/evaluate", {"spectra": [[1] * 31] * 5}, "at most 4"),
+        ("/api/evaluate", {"spectra": [[1] * 31], "display": "CRT"}, "display"),
+        ("/api/evaluate", {"spectra": [[1] * 31], "gamut": "magic"}, "gamut"),
+        ("/api/evaluate", {"spectra": [[1] * 31], "pairs": [[0, 3]]}, "not sent"),
+        ("/api/evaluate", {"spectra": [[1] * 31], "path": "/etc/passwd"}, "path"),
+        ("/api/evaluate", {"spectra": [[1] * 31], "illuminant": [0] * 31}, "dark"),
+        ("/api/model", {"observer": "1888"}, "observer"),
+        ("/api/metamer", {"target": [0] * 31}, "black"),
+        ("/api/import", {"filename": "x.csv", "content": "no header"}, "x.csv"),
+        ("/api/export", {"names": ["../x"], "spectra": [[1] * 31]}, "names"),
+    ],
+)
+def test_malformed_requests_get_a_clear_4xx(client, path, body, needle):
+    r = client.post(path, json=body)
+    assert 400 <= r.status_code < 500
+    assert needle in r.json()["error"], r.json()
+
+
+def test_non_finite_numbers_and_huge_bodies_are_refused(client):
+    text = '{"spectra": [[NaN' + ", 1" * 30 + "]]}"
+    r = client.post("/api/evaluate", content=text, headers={"content-type": "application/json"})
+    assert r.status_code == 422 and "finite" in r.json()["error"]
+    big = client.post("/api/evaluate", content=b"[" + b"1," * 1_500_000 + b"1]",
+                      headers={"content-type": "application/json"})
+    assert big.status_code == 413
+    assert client.get("/api/presets", params={"step_nm": "3"}).status_code == 422
+
+
+def test_cli_registers_app_and_binds_loopback():
+    import argparse
+
+    from spectrocolor.cli import COMMAND_MODULES
+    from spectrocolor.cli import app as cli_app
+
+    assert "app" in COMMAND_MODULES
+    parser = argparse.ArgumentParser()
+    cli_app.register(parser.add_subparsers())
+    args = parser.parse_args(["app", "--no-browser", "--port", "0"])
+    assert args.host == "127.0.0.1" and args.port == 0 and args.no_browser
