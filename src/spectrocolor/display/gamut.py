@@ -69,6 +69,10 @@ def _snap(rgb: np.ndarray, tolerance: float) -> np.ndarray:
     return out
 
 
+def _inside(rgb: np.ndarray) -> np.ndarray:
+    return ((rgb >= 0) & (rgb <= 1)).all(axis=-1, keepdims=True)
+
+
 def flag_black(rgb_linear, tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
     """SPECTRA's strategy: out-of-gamut colours are shown black (seed 002, STEP 3)."""
     rgb = _snap(_rgb(rgb_linear), tolerance)
@@ -87,11 +91,12 @@ def preserve_luminance(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOL
     Negative channels are set to 0 and the remaining channels are multiplied by
     ``Y / (Y - sum_neg Y_c c) = Y / sum_pos Y_c c`` so that the luminance
     ``Y = Y_R R + Y_G G + Y_B B`` is kept exactly. The seed's Fortran applies the correction
-    channel by channel inside its loop, after earlier channels were already gamma-encoded, so a
-    colour with two negative channels there gets a wrong luminance; here all negatives are
-    handled in one step. A colour whose luminance is <= 0 becomes black. Channels that exceed
-    1 after the correction are clipped to 1; only then is Y not kept (reported by the caller
-    through ``over``).
+    inside its channel loop, after the earlier channels have already been encoded and written,
+    so a negative green or blue no longer rescales red (and green): e.g. linear
+    (0.9, -0.05, -0.02) in sRGB comes out 24 % too bright there. Here all negative channels
+    are handled in one step before anything is encoded. A colour whose luminance is <= 0
+    becomes black. Channels that exceed 1 after the correction are clipped to 1; only then is
+    Y not kept (reported by the caller through ``over``).
 
     Parameters
     ----------
@@ -104,10 +109,10 @@ def preserve_luminance(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOL
     contributions = rgb * y_c
     Y = contributions.sum(axis=-1, keepdims=True)
     positive_part = np.where(rgb > 0, contributions, 0.0).sum(axis=-1, keepdims=True)
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(all="ignore"):
         factor = np.where((Y > 0) & (positive_part > 0), Y / positive_part, 0.0)
-    out = np.where(rgb > 0, rgb * factor, 0.0)
-    return np.clip(out, 0.0, 1.0)
+    out = np.clip(np.where(rgb > 0, rgb * factor, 0.0), 0.0, 1.0)
+    return np.where(_inside(rgb), rgb, out)
 
 
 def desaturate(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
@@ -127,14 +132,14 @@ def desaturate(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
     rgb = _snap(_rgb(rgb_linear), tolerance)
     y_c = np.asarray(luminance_row, dtype=float)
     g = (rgb @ y_c / y_c.sum())[..., None]
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(all="ignore"):
         t_low = np.where(rgb < 0, -rgb / (g - rgb), 0.0)
         t_high = np.where(rgb > 1, (rgb - 1) / (rgb - g), 0.0)
     t = np.clip(np.maximum(t_low, t_high).max(axis=-1, keepdims=True), 0.0, 1.0)
     out = (1 - t) * rgb + t * g
     out = np.where(g <= 0, 0.0, np.where(g >= 1, 1.0, out))
     # the exact solution lands on the cube's faces; remove round-off beyond them
-    return np.clip(out, 0.0, 1.0)
+    return np.where(_inside(rgb), rgb, np.clip(out, 0.0, 1.0))
 
 
 def apply_gamut(

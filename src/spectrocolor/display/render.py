@@ -110,9 +110,13 @@ def render(
 
     Examples
     --------
-    >>> r = render([[95.047, 100.0, 108.883]], space="sRGB")
-    >>> r.codes.tolist(), bool(r.in_gamut[0])
-    ([[255, 255, 255]], True)
+    >>> r = render([[20.0, 21.0, 22.0], [1.0, 60.0, 5.0]], space="sRGB", gamut="flag")
+    >>> r.codes.tolist(), r.in_gamut.tolist()
+    ([[128, 126, 124], [0, 0, 0]], [True, False])
+
+    The CIE D65 white (95.047, 100, 108.883) is *not* exactly sRGB's white (which is defined by
+    x, y = 0.3127, 0.3290): its red channel is 1.00016, out of gamut. Adapt reflectance colours
+    to ``space.white_XYZ`` (:func:`~spectrocolor.display.adaptation.adapt`) or use a tolerance.
     """
     sp = rgb_space(space)
     XYZ = np.asarray(XYZ100, dtype=float)

@@ -1,0 +1,288 @@
+"""Plots (matplotlib, imported only when a plot is made): chromaticity diagrams, spectra.
+
+Figures are made with :class:`matplotlib.figure.Figure` (no pyplot state, safe in servers);
+pass ``ax`` to draw into your own axes.
+
+The filled horseshoe
+--------------------
+Every pixel inside the spectral locus is painted with its own chromaticity at the highest
+luminance the display allows (largest channel = 1). Chromaticities inside the display's gamut
+triangle are shown exactly. Those outside it cannot be shown by any display with these
+primaries; they are painted with the nearest displayable chromaticity *on the line toward the
+display's white point* (the ``"desaturate"`` gamut strategy: same hue angle about the white,
+less saturation), so the colours outside the triangle are honest about hue and wrong about
+saturation -- the triangle drawn on top marks where exactness ends.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import ColorimetryError
+
+__all__ = ["chromaticity_diagram", "spectrum_plot", "planckian_locus_xy", "horseshoe_image"]
+
+_LOCUS_LABELS_NM = (380, 460, 470, 480, 490, 500, 510, 520, 540, 560, 580, 600, 620, 700)
+_PLANCK_LABELS_K = (1500, 2000, 3000, 4000, 6500, 10000)
+
+
+def _axes(ax, figsize):
+    if ax is not None:
+        return ax
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize, layout="constrained").add_subplot()
+
+
+def _to_kind(xy: np.ndarray, kind: str) -> np.ndarray:
+    if kind == "xy":
+        return xy
+    from .coordinates import uv_1976
+
+    return uv_1976(xy=xy)
+
+
+def _from_kind(coords: np.ndarray, kind: str) -> np.ndarray:
+    if kind == "xy":
+        return coords
+    from .coordinates import xy_from_uv_1976
+
+    return xy_from_uv_1976(coords)
+
+
+def _as_xy(values, argument: str) -> np.ndarray:
+    """(N, 3) XYZ or (N, 2) CIE 1931 xy -> (N, 2) xy."""
+    from .coordinates import xy
+
+    a = np.asarray(values, dtype=float)
+    if a.ndim == 1:
+        a = a[None]
+    if a.ndim != 2 or a.shape[1] not in (2, 3):
+        raise ColorimetryError(
+            f"{argument} must be (N, 3) XYZ or (N, 2) xy chromaticities, got shape {a.shape}"
+        )
+    return xy(a) if a.shape[1] == 3 else a
+
+
+def planckian_locus_xy(temperatures_K, observer: str = "1931") -> np.ndarray:
+    """xy of blackbody radiators (CIE summation at 1 nm over the observer's range), (N, 2)."""
+    from .colorimetry import tristimulus
+    from .coordinates import xy
+    from .illuminants import blackbody
+    from .spectrum import Spectrum
+
+    temps = np.atleast_1d(np.asarray(temperatures_K, dtype=float))
+    spectra = [blackbody(float(t)) for t in temps]
+    batch = Spectrum(spectra[0].wavelengths_nm, np.stack([s.values for s in spectra]))
+    return xy(tristimulus(batch, observer))
+
+
+def horseshoe_image(kind: str = "xy", observer: str = "1931", space="sRGB", resolution: int = 400):
+    """RGBA image (H, W, 4) of the filled spectral-locus region and its extent.
+
+    See the module docstring for how colours outside the display gamut are painted. The image
+    holds ``space``'s encoded values; PNG files and browsers assume sRGB, so pictures meant for
+    files use ``space="sRGB"``.
+
+    Returns
+    -------
+    image : ndarray (H, W, 4) float in [0, 1] (transparent outside the locus)
+    extent : (left, right, bottom, top) in the diagram's coordinates
+    """
+    from matplotlib.path import Path
+
+    from .chromaticity import spectral_locus
+    from .display.gamut import desaturate
+    from .display.spaces import rgb_space
+
+    kind = _kind(kind)
+    sp = rgb_space(space)
+    locus = _to_kind(np.asarray(spectral_locus(observer).xy), kind)
+    lo, hi = locus.min(axis=0), locus.max(axis=0)
+    n = int(resolution)
+    xs = np.linspace(lo[0], hi[0], n)
+    ys = np.linspace(lo[1], hi[1], max(2, int(n * (hi[1] - lo[1]) / (hi[0] - lo[0]))))
+    gx, gy = np.meshgrid(xs, ys[::-1])
+    coords = np.stack([gx, gy], axis=-1)
+    inside = Path(np.vstack([locus, locus[:1]])).contains_points(coords.reshape(-1, 2))
+    inside = inside.reshape(gx.shape)
+    xy_ = _from_kind(coords[inside], kind)
+    XYZ = np.column_stack([xy_[:, 0] / xy_[:, 1], np.ones(len(xy_)), (1 - xy_.sum(1)) / xy_[:, 1]])
+    rgb = sp.rgb_linear_from_XYZ(XYZ)
+    rgb = rgb / rgb.max(axis=1, keepdims=True)
+    rgb = desaturate(rgb, sp.luminance_row)
+    rgb = rgb / rgb.max(axis=1, keepdims=True)
+    image = np.zeros((*gx.shape, 4))
+    image[inside, :3] = sp.transfer.encode(rgb)
+    image[inside, 3] = 1.0
+    return image, (xs[0], xs[-1], ys[0], ys[-1])
+
+
+def _kind(kind: str) -> str:
+    if kind not in ("xy", "uv"):
+        raise ColorimetryError(f"kind must be 'xy' or 'uv' (CIE 1976 u'v'), got {kind!r}")
+    return kind
+
+
+def chromaticity_diagram(
+    kind: str = "xy",
+    observer: str = "1931",
+    spaces=("sRGB",),
+    whites=("D65",),
+    planckian: bool = True,
+    points=None,
+    labels=None,
+    curves=None,
+    curve_labels=None,
+    fill: bool = True,
+    ax=None,
+    title: str | None = None,
+):
+    """The CIE 1931 xy or CIE 1976 u'v' chromaticity diagram.
+
+    Parameters
+    ----------
+    kind : {"xy", "uv"}
+    observer : str
+        Observer of the spectral locus, the whites and the Planckian locus.
+    spaces : sequence of RGB space names or RGBSpace
+        Gamut triangles to draw (with their white points).
+    whites : sequence of illuminant names, or dict label -> XYZ
+        White points to mark.
+    planckian : bool
+        Draw the Planckian locus (1000-20000 K) with a few temperatures labelled.
+    points : (N, 3) XYZ or (N, 2) CIE 1931 xy, optional
+        Points to mark; ``labels`` (N,) names them.
+    curves : list of (M, 3) XYZ or (M, 2) xy arrays, optional
+        Curves to draw (e.g. the colours of a thin film); ``curve_labels`` for the legend.
+    fill : bool
+        Paint the horseshoe in sRGB (the encoding of PNG files and browsers; see the module
+        docstring for colours outside the sRGB gamut).
+    ax : matplotlib Axes, optional
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from .chromaticity import spectral_locus
+    from .colorimetry import white_point
+    from .display.spaces import rgb_space
+
+    kind = _kind(kind)
+    ax = _axes(ax, (6.4, 6.4))
+    locus_all = spectral_locus(observer)
+    wl = np.asarray(locus_all.wavelengths_nm)
+    locus = _to_kind(np.asarray(locus_all.xy), kind)
+    if fill:
+        image, extent = horseshoe_image(kind, observer, "sRGB")
+        ax.imshow(image, extent=extent, origin="upper", interpolation="bilinear", zorder=0)
+    ax.plot(locus[:, 0], locus[:, 1], color="black", lw=1.2, zorder=3)
+    ax.plot(locus[[0, -1], 0], locus[[0, -1], 1], color="black", lw=1.0, ls="--", zorder=3,
+            label="purple line")
+    centre = locus.mean(axis=0)
+    for nm in _LOCUS_LABELS_NM:
+        if not wl[0] <= nm <= wl[-1]:
+            continue
+        p = np.array([np.interp(nm, wl, locus[:, 0]), np.interp(nm, wl, locus[:, 1])])
+        out = (p - centre) / np.hypot(*(p - centre))
+        ax.plot(*np.column_stack([p, p + 0.012 * out]), color="black", lw=0.8, zorder=3)
+        ax.annotate(f"{nm}", p + 0.03 * out, ha="center", va="center", fontsize=7, zorder=4)
+    for i, spec in enumerate(spaces or ()):
+        sp = rgb_space(spec)
+        tri = _to_kind(sp.primaries_xy, kind)
+        ax.fill(tri[:, 0], tri[:, 1], fill=False, lw=1.2, zorder=4, label=sp.name,
+                color=f"C{i}")
+    if isinstance(whites, dict):
+        named_whites = {k: np.asarray(v, float) for k, v in whites.items()}
+    else:
+        named_whites = {name: white_point(name, observer) for name in (whites or ())}
+    for label, XYZ in named_whites.items():
+        c = _to_kind(_as_xy(XYZ, "whites"), kind)[0]
+        ax.plot(*c, marker="o", mfc="white", mec="black", ms=6, zorder=6, ls="none")
+        ax.annotate(label, c, xytext=(5, 5), textcoords="offset points", fontsize=8, zorder=6)
+    if planckian:
+        temps = np.geomspace(1000, 20000, 60)
+        pl = _to_kind(planckian_locus_xy(temps, observer), kind)
+        ax.plot(pl[:, 0], pl[:, 1], color="0.25", lw=0.9, zorder=5, label="Planckian locus")
+        marks = _to_kind(planckian_locus_xy(_PLANCK_LABELS_K, observer), kind)
+        ax.plot(marks[:, 0], marks[:, 1], "|", color="0.25", ms=6, zorder=5)
+        for t, c in zip(_PLANCK_LABELS_K, marks, strict=True):
+            ax.annotate(f"{t} K", c, xytext=(0, -11), textcoords="offset points",
+                        fontsize=6, ha="center", color="0.2", zorder=5)
+    for i, curve in enumerate(curves or ()):
+        c = _to_kind(_as_xy(curve, "curves"), kind)
+        name = None if curve_labels is None else curve_labels[i]
+        ax.plot(c[:, 0], c[:, 1], lw=1.2, zorder=7, color=f"C{i + 3}", label=name)
+    if points is not None:
+        pts = _to_kind(_as_xy(points, "points"), kind)
+        if labels is not None and len(labels) != len(pts):
+            raise ColorimetryError(f"labels must name each of the {len(pts)} points")
+        ax.plot(pts[:, 0], pts[:, 1], "o", mfc="none", mec="black", ms=5, zorder=8)
+        for text, c in zip(labels or (), pts, strict=False):
+            ax.annotate(str(text), c, xytext=(4, -9), textcoords="offset points", fontsize=7,
+                        zorder=8)
+    names = ("x", "y") if kind == "xy" else ("u′", "v′")
+    ax.set_xlabel(names[0])
+    ax.set_ylabel(names[1])
+    ax.set_aspect("equal")
+    lim = (-0.02, 0.82, -0.02, 0.9) if kind == "xy" else (-0.06, 0.66, -0.02, 0.62)
+    ax.set_xlim(lim[0], lim[1])
+    ax.set_ylim(lim[2], lim[3])
+    ax.grid(True, lw=0.3, color="0.85", zorder=-1)
+    ax.legend(loc="upper right" if kind == "xy" else "lower left", fontsize=7, framealpha=0.9)
+    diagram = "CIE 1931 xy" if kind == "xy" else "CIE 1976 u′v′"
+    ax.set_title(title if title is not None else f"{diagram} chromaticity diagram, observer {observer}")
+    return ax
+
+
+def spectrum_plot(spectrum, index=None, style: str = "bars", ax=None, title=None,
+                  ylabel: str = "relative spectral power"):
+    """Plot one spectrum as bars (or a filled area) tinted by wavelength (SPECTRA's palette).
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        A single spectrum, or a batch with ``index`` choosing one (``spectrum.values[index]``).
+    index : int or tuple, optional
+    style : {"bars", "area"}
+    ax : matplotlib Axes, optional
+    title, ylabel : str
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from .pictures import wavelength_tint
+    from .spectrum import Spectrum
+
+    if not isinstance(spectrum, Spectrum):
+        raise ColorimetryError(f"spectrum must be a Spectrum, got {type(spectrum).__name__}")
+    values = spectrum.values if index is None else spectrum.values[index]
+    if values.ndim != 1:
+        raise ColorimetryError(
+            f"spectrum holds a batch of shape {spectrum.batch_shape}; pass index= to pick one"
+        )
+    if style not in ("bars", "area"):
+        raise ColorimetryError(f"style must be 'bars' or 'area', got {style!r}")
+    wl = spectrum.wavelengths_nm
+    tint = wavelength_tint(wl) / 255.0
+    ax = _axes(ax, (6.4, 3.2))
+    if style == "bars":
+        width = np.min(np.diff(wl)) * 0.9 if wl.size > 1 else 5.0
+        ax.bar(wl, values, width=width, color=tint, edgecolor="0.3", linewidth=0.3)
+    else:
+        fine = np.linspace(wl[0], wl[-1], max(200, 4 * wl.size))
+        v = np.interp(fine, wl, values)
+        colours = wavelength_tint(fine) / 255.0
+        for i in range(fine.size - 1):  # one polygon per slice of the area
+            ax.fill_between(fine[i : i + 2], v[i : i + 2], color=colours[i], lw=0)
+        ax.plot(wl, values, color="0.2", lw=0.8)
+    ax.set_xlabel("wavelength (nm)")
+    ax.set_ylabel(ylabel)
+    ax.set_xlim(wl[0] - 5, wl[-1] + 5)
+    if title is None and spectrum.names:
+        title = spectrum.names[0 if index is None else int(np.ravel(index)[0])]
+    if title:
+        ax.set_title(title)
+    return ax

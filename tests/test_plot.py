@@ -1,0 +1,101 @@
+"""Chromaticity diagrams and spectrum plots: structure and pixel colours checked independently."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import spectrocolor as sc
+from spectrocolor.plot import horseshoe_image, planckian_locus_xy
+
+pytest.importorskip("matplotlib")
+
+
+def _pixel(image, extent, point):
+    left, right, bottom, top = extent
+    h, w = image.shape[:2]
+    col = int(round((point[0] - left) / (right - left) * (w - 1)))
+    row = int(round((top - point[1]) / (top - bottom) * (h - 1)))
+    return image[row, col]
+
+
+def test_horseshoe_colours_inside_srgb_are_exact():
+    colour = pytest.importorskip("colour")
+    image, extent = horseshoe_image("xy", resolution=300)
+    left, right, bottom, top = extent
+    h, w = image.shape[:2]
+    for point in [(0.3127, 0.3290), (0.4, 0.4), (0.25, 0.3), (0.5, 0.35)]:
+        col = int(round((point[0] - left) / (right - left) * (w - 1)))
+        row = int(round((top - point[1]) / (top - bottom) * (h - 1)))
+        x = left + col * (right - left) / (w - 1)
+        y = top - row * (top - bottom) / (h - 1)
+        XYZ = colour.xyY_to_XYZ([x, y, 1.0])
+        npm = colour.models.normalised_primary_matrix(
+            colour.RGB_COLOURSPACES["sRGB"].primaries, colour.RGB_COLOURSPACES["sRGB"].whitepoint
+        )
+        rgb = np.linalg.inv(npm) @ XYZ
+        assert rgb.min() >= 0
+        expected = colour.models.eotf_inverse_sRGB(rgb / rgb.max())
+        np.testing.assert_allclose(image[row, col, :3], expected, atol=1e-9)
+        assert image[row, col, 3] == 1.0
+
+
+def test_horseshoe_outside_srgb_is_on_the_gamut_boundary_and_outside_locus_is_transparent():
+    image, extent = horseshoe_image("xy", resolution=300)
+    green = _pixel(image, extent, (0.1, 0.7))  # outside sRGB, inside the locus
+    assert green[3] == 1.0
+    assert green[:3].max() == pytest.approx(1.0) and green[:3].min() == pytest.approx(0.0)
+    assert _pixel(image, extent, (0.7, 0.1))[3] == 0.0  # below the purple line
+    assert _pixel(image, extent, (0.01, 0.01))[3] == 0.0
+
+
+def test_planckian_locus_against_colour_science():
+    colour = pytest.importorskip("colour")
+    ours = planckian_locus_xy([2000, 6504], "1931")
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    for t, xy in zip([2000, 6504], ours, strict=True):
+        sd = colour.sd_blackbody(t, colour.SpectralShape(360, 830, 1))
+        ref = colour.XYZ_to_xy(colour.sd_to_XYZ(sd, cmfs, method="Integration"))
+        np.testing.assert_allclose(xy, ref, atol=2e-5)
+
+
+@pytest.mark.parametrize("kind", ["xy", "uv"])
+def test_chromaticity_diagram_draws_everything(kind, artifacts_dir):
+    ax = sc.chromaticity_diagram(
+        kind=kind,
+        spaces=("sRGB", "Display P3"),
+        points=[[0.3, 0.5], [0.5, 0.3]],
+        labels=["p1", "p2"],
+        curves=[np.array([[0.2, 0.2], [0.3, 0.3], [0.4, 0.3]])],
+        curve_labels=["a curve"],
+    )
+    texts = {t.get_text() for t in ax.texts}
+    assert {"520", "580", "620", "D65", "p1", "p2", "6500 K"} <= texts
+    legend = {t.get_text() for t in ax.get_legend().get_texts()}
+    assert {"sRGB", "Display P3", "purple line", "Planckian locus", "a curve"} <= legend
+    ax.figure.savefig(artifacts_dir / f"test_diagram_{kind}.png", dpi=80)
+
+
+def test_spectrum_plot_bars_are_tinted():
+    s = sc.Spectrum(np.arange(400.0, 701.0, 10.0), np.linspace(1, 2, 31), names=["ramp"])
+    ax = sc.spectrum_plot(s)
+    bars = ax.patches
+    assert len(bars) == 31
+    np.testing.assert_allclose(
+        np.array([b.get_facecolor()[:3] for b in bars]),
+        sc.wavelength_tint(s.wavelengths_nm) / 255,
+        atol=1e-12,
+    )
+    assert ax.get_title() == "ramp"
+    area = sc.spectrum_plot(s, style="area")
+    assert len(area.collections) > 100
+
+
+def test_errors():
+    with pytest.raises(sc.ColorimetryError, match="kind must be"):
+        sc.chromaticity_diagram(kind="Lab")
+    with pytest.raises(sc.ColorimetryError, match="labels must name"):
+        sc.chromaticity_diagram(points=[[0.3, 0.3]], labels=["a", "b"], fill=False)
+    batch = sc.Spectrum(np.arange(400.0, 701.0, 10.0), np.ones((2, 31)))
+    with pytest.raises(sc.ColorimetryError, match="index="):
+        sc.spectrum_plot(batch)
