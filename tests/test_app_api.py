@@ -90,6 +90,17 @@ def test_fixed_scale_is_spectra_r_max_for_its_monitor(client):
     assert len(m["weights"]) == 31 and len(m["tints"]) == 31
 
 
+def test_bar_tints_are_the_library_palette_on_the_canvas_scale(client):
+    from spectrocolor.pictures import wavelength_tint
+
+    m = client.post("/api/model", json={}).json()
+    expected = wavelength_tint(np.asarray(m["wavelengths_nm"])) / 255.0
+    np.testing.assert_allclose(m["tints"], expected, rtol=0, atol=1e-12)
+    # 580 nm is yellow (seed 002: the unique yellow), 470 nm blue
+    yellow = np.asarray(m["tints"])[np.asarray(m["wavelengths_nm"]) == 580][0]
+    assert yellow[0] > 0.5 and yellow[1] > 0.5 and yellow[2] < 0.2
+
+
 def test_sunset_is_the_seed_formula(client):
     p = client.get("/api/presets", params={"step_nm": 10}).json()
     sunset = p["setting1"][7]

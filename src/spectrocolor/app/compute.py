@@ -78,7 +78,7 @@ def model(step_nm: float, observer: str, display: str, illuminant_levels=None) -
     white_XYZ = np.ones(len(wl)) @ W
     locus = sc.spectral_locus(observer)
     keep = (locus.wavelengths_nm >= 380) & (locus.wavelengths_nm <= 700)
-    tints = np.asarray(wavelength_tint(wl), dtype=float)
+    tints = np.asarray(wavelength_tint(wl), dtype=float) / 255.0  # rgb8 → 0–1 for the canvas
     return {
         "wavelengths_nm": wl.tolist(),
         "full_level": FULL_LEVEL,
@@ -97,7 +97,7 @@ def model(step_nm: float, observer: str, display: str, illuminant_levels=None) -
         "primaries_xy": np.asarray(space.primaries_xy).tolist(),
         "locus": {"wavelengths_nm": locus.wavelengths_nm[keep].tolist(),
                   "xy": np.round(np.asarray(locus.xy)[keep], 6).tolist()},
-        "tints": np.clip(tints, 0, 1).tolist(),
+        "tints": tints.tolist(),
     }
 
 
@@ -184,16 +184,14 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
 def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     """The smoothest distribution (0..full) with the same XYZ as ``target_levels``.
 
-    Uses :func:`spectrocolor.recovery.smoothest.smoothest_reflectance` with bounds 0 <= ρ <= 1 (van Trigt, seed 004)
+    Uses :func:`spectrocolor.smoothest_reflectance` with bounds 0 <= ρ <= 1 (van Trigt, seed 004)
     under E (or the given illuminant), on the page's grid.
     """
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     target = np.asarray(target_levels, dtype=float) / FULL_LEVEL
     XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer, reference)
-    from spectrocolor.recovery.smoothest import smoothest_reflectance
-
-    rho = smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
+    rho = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
                                 wavelengths=(START_NM, STOP_NM, float(step_nm)),
                                 bounds="unit").spectrum
     values = np.asarray(rho.values, dtype=float)
