@@ -110,14 +110,15 @@ class MappedArray:
 
     def _open(self) -> np.ndarray:
         stored = np.memmap(
-            self.path, dtype=self.dtype, mode="r", offset=self.offset,
+            self.path, dtype=np.dtype(self.stored_dtype), mode="r", offset=self.offset,
             shape=self.file_shape,
         )
         return stored.transpose(self.axes)
 
     @property
     def dtype(self) -> np.dtype:
-        return np.dtype(self.stored_dtype)
+        """The dtype of what reads return: the stored type in native byte order."""
+        return np.dtype(self.stored_dtype).newbyteorder("=")
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -129,13 +130,13 @@ class MappedArray:
 
     @property
     def nbytes(self) -> int:
-        return int(np.prod(self.file_shape)) * self.dtype.itemsize
+        return int(np.prod(self.file_shape)) * np.dtype(self.stored_dtype).itemsize
 
     def __getitem__(self, key) -> np.ndarray:
         rows, rest = _split_row_key(key, self.shape[0])
         if rows is not None and self.axes[0] in (0, 1):
             return self._read_rows(*rows)[rest]
-        return np.array(self._open()[key])
+        return np.asarray(self._open()[key], dtype=self.dtype)
 
     def _read_rows(self, start: int, stop: int) -> np.ndarray:
         """Rows start:stop as (rows, columns, bands), read with plain file reads (no mapping).
@@ -143,7 +144,7 @@ class MappedArray:
         Mapping the whole file would count the file against the address-space limit of the
         process; reading only the rows keeps memory (and address space) bounded by the block.
         """
-        dtype = self.dtype
+        dtype = np.dtype(self.stored_dtype)
         first, second, third = self.file_shape
         with open(self.path, "rb") as handle:
             if self.axes[0] == 0:  # rows are the stored outer axis: one contiguous read
@@ -159,11 +160,10 @@ class MappedArray:
                         handle, dtype=dtype, count=(stop - start) * third
                     ).reshape(stop - start, third)
         # block is stored-order with the row axis cut; apply the same transposition
-        return block.transpose(self.axes)
+        return block.transpose(self.axes).astype(self.dtype, copy=False)
 
     def __array__(self, dtype=None, copy=None) -> np.ndarray:
-        array = np.array(self._open())
-        return array if dtype is None else array.astype(dtype)
+        return np.asarray(self._open(), dtype=self.dtype if dtype is None else dtype)
 
     def __len__(self) -> int:
         return self.shape[0]

@@ -271,6 +271,7 @@ def _envi_list(text: str) -> list[str]:
 def _read_envi(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
     if path.suffix.lower() == ".hdr":
         header = path
+        fields = read_envi_header(header)
         stem = path.with_suffix("")
         raw = next(
             (Path(str(stem) + s) for s in _ENVI_RAW_SUFFIXES if Path(str(stem) + s).is_file()),
@@ -283,7 +284,7 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
             )
     else:
         raw, header = path, _envi_header_for(path)
-    fields = read_envi_header(header)
+        fields = read_envi_header(header)
     samples = _envi_int(fields, "samples", header)
     lines = _envi_int(fields, "lines", header)
     bands = _envi_int(fields, "bands", header)

@@ -1,0 +1,165 @@
+"""``spectrocolor image``: a spectral cube to a display image (PNG) or XYZ/CIELAB (float TIFF)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from . import UserError
+
+_ADAPT_CHOICES = ("none", "bradford", "von kries", "cat02", "cat16")
+
+
+def register(subparsers) -> None:
+    """Add the ``image`` sub-command."""
+    p = subparsers.add_parser(
+        "image",
+        help="convert a spectral cube (ENVI, TIFF, .npy/.npz, netCDF, band folder) to an image",
+        description=(
+            "Read a spectral cube, compute every pixel's colour in bounded-memory row blocks "
+            "(or on a dask cluster with --scheduler) and write a PNG (display RGB, 8 or 16 bit) "
+            "or a float TIFF (XYZ, CIELAB or linear RGB)."
+        ),
+    )
+    p.add_argument("cube", metavar="CUBE",
+                   help="cube file (.hdr/raw, .tif, .npy, .npz, .nc, .h5) or folder of band images")
+    p.add_argument("--out", required=True, help="output: .png (display codes) or .tif (floats)")
+    p.add_argument("--illuminant", required=True,
+                   help="illuminant for reflectance cubes (e.g. D65, A, C), or 'none' for "
+                   "radiance cubes (lights)")
+    p.add_argument("--observer", default="1931", help="observer (default 1931)")
+    p.add_argument("--method", choices=("sum", "1nm"), default="sum",
+                   help="summation method (default sum)")
+    p.add_argument("--quantity", choices=("rgb", "xyz", "lab"), default="rgb",
+                   help="what to write (default rgb; xyz and lab need a .tif output)")
+    p.add_argument("--wavelengths", default=None,
+                   help="band wavelengths in nm: 'START:STOP:STEP' or a comma list (required "
+                   "for .npy; replaces those in the file otherwise)")
+    p.add_argument("--wavelength-units", default=None,
+                   help="units of wavelengths the file gives without units (nm or um)")
+    p.add_argument("--variable", default=None, help="netCDF/HDF5 variable to read")
+    p.add_argument("--scale", type=float, default=None,
+                   help="factor from stored values to reflectance (e.g. 0.0001); default: 1, or "
+                   "1/'reflectance scale factor' of an ENVI header")
+    p.add_argument("--space", default="sRGB", help="display RGB space (default sRGB)")
+    p.add_argument("--gamut", choices=("flag", "clip", "preserve-luminance", "desaturate"),
+                   default="clip", help="out-of-gamut strategy (default clip)")
+    p.add_argument("--exposure", type=float, default=1.0,
+                   help="multiplier on XYZ before display (default 1)")
+    p.add_argument("--adapt", choices=_ADAPT_CHOICES, default="bradford",
+                   help="adapt the illuminant's white to the display white (default bradford)")
+    p.add_argument("--bit-depth", type=int, choices=(8, 16), default=8,
+                   help="PNG bits per channel (default 8)")
+    p.add_argument("--chunks", default=None,
+                   help="rows per block (NumPy path), or 'ROWS,COLS' dask chunks with "
+                   "--scheduler (default: 64 MiB blocks; 512,512 on dask)")
+    p.add_argument("--scheduler", default=None,
+                   help="dask.distributed scheduler address (e.g. tcp://host:8786) to run on")
+    p.add_argument("--progress", action="store_true", help="show a progress bar")
+    p.set_defaults(handler=_image)
+
+
+def parse_wavelengths(text: str) -> np.ndarray:
+    """'400:700:10' (inclusive) or '400,410,420' -> wavelengths in nm."""
+    try:
+        if ":" in text:
+            start, stop, step = (float(part) for part in text.split(":"))
+            if step <= 0:
+                raise ValueError
+            count = int(round((stop - start) / step)) + 1
+            return start + step * np.arange(count)
+        return np.array([float(part) for part in text.split(",") if part.strip()])
+    except ValueError as exc:
+        raise UserError(
+            f"--wavelengths: expected 'START:STOP:STEP' (nm, STEP > 0) or a comma list of nm; "
+            f"got {text!r}"
+        ) from exc
+
+
+def _chunks(text: str | None, dask: bool):
+    if text is None:
+        return (512, 512) if dask else None
+    try:
+        parts = [int(part) for part in text.split(",")]
+    except ValueError as exc:
+        raise UserError(f"--chunks: expected ROWS or ROWS,COLS (integers); got {text!r}") from exc
+    if any(part < 1 for part in parts) or len(parts) > 2:
+        raise UserError(f"--chunks: expected ROWS or ROWS,COLS (positive); got {text!r}")
+    if dask:
+        return (parts[0], parts[-1])
+    if len(parts) != 1:
+        raise UserError("--chunks ROWS,COLS needs --scheduler; without it give rows per block")
+    return parts[0]
+
+
+def _image(args: argparse.Namespace) -> int:
+    from ..images import plan_conversion, read_cube, write_image
+    from ..images.convert import run_blocks
+
+    suffix = args.out.lower().rsplit(".", 1)[-1]
+    if suffix not in ("png", "tif", "tiff"):
+        raise UserError(f"--out must end in .png or .tif/.tiff; got {args.out!r}")
+    if suffix == "png" and args.quantity != "rgb":
+        raise UserError(f"--quantity {args.quantity} gives floats: write it to a .tif file")
+    wavelengths = parse_wavelengths(args.wavelengths) if args.wavelengths else None
+    cube = read_cube(args.cube, wavelengths_nm=wavelengths,
+                     wavelength_units=args.wavelength_units, variable=args.variable)
+    scale = args.scale
+    if scale is None:
+        factor = cube.metadata.get("reflectance scale factor")
+        scale = 1.0 / factor if factor else 1.0
+        if factor:
+            print(f"using the header's reflectance scale factor {factor:g} (scale {scale:g})",
+                  file=sys.stderr)
+    illuminant = None if args.illuminant.lower() == "none" else args.illuminant
+    output = "codes" if suffix == "png" else "rgb_linear"
+    plan = plan_conversion(
+        args.quantity, cube.wavelengths_nm, illuminant=illuminant, observer=args.observer,
+        method=args.method, scale=scale, space=args.space, gamut=args.gamut,
+        exposure=args.exposure, adaptation=None if args.adapt == "none" else args.adapt,
+        bit_depth=args.bit_depth, output=output,
+    )
+    if args.scheduler:
+        result = _on_cluster(cube, plan, args)
+    else:
+        result = run_blocks(cube.values, plan, rows_per_block=_chunks(args.chunks, False),
+                            progress=args.progress)
+    if suffix == "png":
+        write_image(args.out, result)
+    else:
+        metadata = {"quantity": plan.quantity, "illuminant": args.illuminant,
+                    "observer": args.observer, "source": cube.source}
+        if plan.white_XYZ is not None:
+            metadata["white_XYZ"] = [float(v) for v in plan.white_XYZ]
+        write_image(args.out, result.astype(np.float32), metadata=metadata)
+    height, width = result.shape[:2]
+    print(f"wrote {args.out}: {width} x {height} pixels, {plan.quantity}, "
+          f"{cube.wavelengths_nm.size} bands {cube.wavelengths_nm[0]:g}-"
+          f"{cube.wavelengths_nm[-1]:g} nm, illuminant {args.illuminant}, observer "
+          f"{args.observer}")
+    return 0
+
+
+def _on_cluster(cube, plan, args) -> np.ndarray:
+    """Run the plan's block function over dask chunks on the scheduler at ``args.scheduler``."""
+    import dask.array as da
+    from distributed import Client
+
+    chunks = _chunks(args.chunks, True)
+    source = da.from_array(cube.values, chunks=(*chunks, -1))
+    lazy = source.map_blocks(plan.function, **plan.keywords, dtype=plan.dtype,
+                             chunks=(*source.chunks[:2], (3,)))
+    try:
+        client = Client(args.scheduler, timeout="10s")
+    except OSError as exc:
+        raise UserError(f"--scheduler: cannot reach {args.scheduler!r} ({exc})") from exc
+    with client:
+        if args.progress:
+            from distributed import progress
+
+            future = client.compute(lazy)
+            progress(future)
+            return np.asarray(future.result())
+        return np.asarray(client.compute(lazy).result())
