@@ -51,6 +51,17 @@ _PUBLIC: dict[str, str] = {
     "cct": "temperature",
     "CCT": "temperature",
     "xy_from_cct": "temperature",
+    # reflectance recovery (smoothest reflectance, optimal colours, metamers)
+    "smoothest_reflectance": "recovery.smoothest",
+    "SmoothestResult": "recovery.smoothest",
+    "object_colour_membership": "recovery.optimal",
+    "optimal_colours": "recovery.optimal",
+    "macadam_limits": "recovery.optimal",
+    "fundamental_metamer": "recovery.metamerism",
+    "metameric_black": "recovery.metamerism",
+    "cohen_projector": "recovery.metamerism",
+    "metamerism_index": "recovery.metamerism",
+    "colour_shift": "recovery.metamerism",
     # display
     "RGBSpace": "display.spaces",
     "rgb_space": "display.spaces",
@@ -82,6 +93,23 @@ _PUBLIC: dict[str, str] = {
     "measurement_report": "report",
     "MeasurementReport": "report",
     "write_report": "report",
+    # thin films
+    "Medium": "thinfilm.media",
+    "medium": "thinfilm.media",
+    "FilmOptics": "thinfilm.optics",
+    "two_beam_reflectance": "thinfilm.optics",
+    "optical_path_difference": "thinfilm.optics",
+    "thin_film": "thinfilm.optics",
+    "thin_film_reflectance": "thinfilm.optics",
+    "stack_optics": "thinfilm.optics",
+    "soap_film": "thinfilm.films",
+    "oil_on_water": "thinfilm.films",
+    "film_on_glass": "thinfilm.films",
+    "film_colours": "thinfilm.colour",
+    "FilmColours": "thinfilm.colour",
+    "colour_table": "thinfilm.maps",
+    "render_thickness_map": "thinfilm.maps",
+    "zawischa_strip": "thinfilm.zawischa",
 }
 
 

@@ -14,7 +14,7 @@ import sys
 
 from ..errors import ColorimetryError, SpectrumError
 
-COMMAND_MODULES: tuple[str, ...] = ("colorimetry", "app", "render", "image", "report")
+COMMAND_MODULES: tuple[str, ...] = ("colorimetry", "app", "render", "image", "report", "thinfilm", "recover")
 
 
 class UserError(Exception):
