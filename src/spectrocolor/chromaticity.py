@@ -313,7 +313,7 @@ def dominant_wavelength(xy, white, observer: str = "1931") -> DominantWavelength
     --------
     >>> result = dominant_wavelength([0.54369557, 0.32107944], [0.3127, 0.3290])
     >>> round(float(result.wavelength_nm), 2), bool(result.complementary)
-    (616.65, False)
+    (616.4, False)
     """
     hit = _boundary(xy, white, observer)
     return DominantWavelength(hit.wavelength_nm, hit.complementary, hit.excitation_purity)
