@@ -255,3 +255,15 @@ def test_memory_is_linear_in_the_number_of_points():
     segments = len(sc.spectral_locus("1931").wavelengths_nm)
     # an N x segments float64 intermediate alone would take 8 * segments bytes per point
     assert peak / len(points) < 8 * segments / 4
+
+
+def test_grey_reflectances_are_neutral_not_a_rounding_artefact():
+    # A flat grey under D65 has the illuminant's chromaticity up to float rounding; its
+    # hue is undefined, so no wavelength may be invented for it (NaN, purity 0).
+    grid = sc.wavelength_grid(380, 780, 5)
+    greys = sc.Spectrum(grid, np.linspace(0.05, 0.95, 19)[:, None] * np.ones(grid.size))
+    XYZ = sc.tristimulus(greys, "1931", "D65")
+    result = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(sc.weights(grid, "1931", "D65").sum(0)))
+    assert np.all(np.isnan(result.wavelength_nm))
+    np.testing.assert_array_equal(result.excitation_purity, 0.0)
+    assert not result.complementary.any()

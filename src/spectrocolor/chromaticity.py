@@ -41,7 +41,9 @@ Conventions, and how they differ from colour-science 0.4.7
 * ``wavelength_nm`` is always positive; ``complementary`` says whether it is a
   complementary wavelength. (``colour.dominant_wavelength`` returns complementary
   wavelengths as negative numbers.)
-* The white itself: wavelength NaN, complementary False, excitation purity 0.
+* The white itself, and any colour within ``WHITE_TOLERANCE`` (1e-12 in x, y: floating-point
+  rounding, e.g. a flat grey reflectance) of it: wavelength NaN, complementary False, excitation
+  purity 0. The hue of such a colour is undefined, so no wavelength is invented for it.
 * Colours outside the gamut get their boundary point as usual and an excitation purity
   greater than 1; ``result.outside_locus`` flags them (purity > 1 + 1e-9).
 * NaN chromaticities (e.g. black) give NaN wavelength and purity.
@@ -229,6 +231,10 @@ def _segment_hits(angles, theta):
     return np.where(on_locus, k, -1)
 
 
+#: Chromaticity distance from the white (x, y units) below which a colour counts as the white.
+WHITE_TOLERANCE = 1e-12
+
+
 def _boundary(xy, white, observer: str) -> _Boundary:
     canonical = canonical_observer_name(observer)
     points = _colours(xy, "xy", 2, "chromaticity coordinates x, y")
@@ -238,7 +244,7 @@ def _boundary(xy, white, observer: str) -> _Boundary:
 
     d = points - white_xy
     valid = np.all(np.isfinite(points), axis=-1)
-    at_white = valid & (d[..., 0] == 0) & (d[..., 1] == 0)
+    at_white = valid & (np.hypot(d[..., 0], d[..., 1]) <= WHITE_TOLERANCE)
     theta = np.arctan2(d[..., 1], d[..., 0])
     theta = np.where(valid, theta, 0.0)
 

@@ -41,10 +41,6 @@ _COLUMNS = (
     "in_sRGB_gamut",
 )
 
-#: Excitation purity below this is rounding noise around the white: no dominant wavelength.
-_ACHROMATIC_PURITY = 1e-9
-
-
 @dataclass(frozen=True)
 class MeasurementReport:
     """Colorimetry of N reflectance samples under one illuminant and observer.
@@ -182,10 +178,8 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
     white_xy = white[:2] / white.sum()
     dominant = dominant_wavelength(chromaticity, white_xy, observer)
     purity = np.asarray(dominant.excitation_purity, dtype=float)
-    # a sample at the white (to rounding) has no hue: no dominant wavelength
-    achromatic = purity < _ACHROMATIC_PURITY
-    wavelength = np.where(achromatic, np.nan, np.asarray(dominant.wavelength_nm, dtype=float))
-    complementary = np.asarray(dominant.complementary, dtype=bool) & ~achromatic
+    wavelength = np.asarray(dominant.wavelength_nm, dtype=float)  # NaN at the white (no hue)
+    complementary = np.asarray(dominant.complementary, dtype=bool)
     srgb = rgb_space("sRGB")
     rendering = render(adapt(XYZ, white, srgb.white_XYZ, method="bradford"), space=srgb,
                        gamut="clip", bit_depth=8)
