@@ -45,6 +45,7 @@ _PUBLIC: dict[str, str] = {
     "delta_e_2000": "differences",
     # chromaticity
     "spectral_locus": "chromaticity",
+    "SpectralLocus": "chromaticity",
     "dominant_wavelength": "chromaticity",
     "DominantWavelength": "chromaticity",
     "colorimetric_purity": "chromaticity",

@@ -76,7 +76,9 @@ def blackbody(
 ) -> Spectrum:
     """Planckian radiator at ``temperature_K``, relative SPD equal to 100 at ``normalise_at_nm``.
 
-    Defaults: 360–830 nm at 1 nm and the CODATA 2018 second radiation constant. Seed 000
+    Defaults: 360–830 nm at 1 nm and the CODATA 2018 second radiation constant. CIE 015 defines
+    the Planckian locus for correlated colour temperature with c₂ = 1.4388e-2 m·K (pass
+    ``c2_m_K=1.4388e-2`` to match it; the two differ by 1.6e-5 in temperature). Seed 000
     (Zawischa) lights its soap films with ``blackbody(6504)``.
     """
     if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
