@@ -111,6 +111,8 @@ _PUBLIC: dict[str, str] = {
     "colour_table": "thinfilm.maps",
     "render_thickness_map": "thinfilm.maps",
     "zawischa_strip": "thinfilm.zawischa",
+    # ASTM E308 / E2022 weights
+    "astm_e308_weights": "astm_e308",
 }
 
 

@@ -17,6 +17,11 @@ Summation methods (the ``method`` argument):
     CIE 015's recommendation for coarser data: interpolate the spectrum linearly to 1 nm and
     sum with the 1 nm observer and illuminant. Interpolation is linear in ρ, so this is still
     a K × 3 matrix (``P.T @ W_1nm``) and costs nothing extra per spectrum.
+``"astm-e308"``
+    The industry route for 1, 5, 10 and 20 nm reflectance data: ASTM E308 Table 6 weights
+    computed by ASTM E2022 (Lagrange interpolation to 1 nm folded into the weights, E308's
+    range adjustment); reflectances only (an illuminant is required). See
+    :mod:`spectrocolor.astm_e308`.
 
 The cache holds weights per (grid, observer, illuminant name, method); weight arrays are
 read-only.
@@ -33,84 +38,26 @@ from functools import lru_cache
 
 import numpy as np
 
-from .errors import ColorimetryError, SpectrumError
+from .astm_e308 import astm_e308_weights
+from .errors import ColorimetryError
 from .illuminants import canonical_illuminant_name
 from .illuminants import illuminant as named_illuminant
 from .interpolation import interpolation_matrix
 from .observers import canonical_observer_name
-from .observers import observer as named_observer
+from .sampling import cmfs_on, illuminant_on, interval_weights_nm, resolve_observer
 from .spectrum import Spectrum, validate_wavelengths
 
-METHODS = ("sum", "1nm")
+METHODS = ("sum", "1nm", "astm-e308")
 #: Maximum luminous efficacy of radiation for photopic vision, lm/W (CIE 015:2018 §7.1).
 K_M_LM_PER_W = 683.0
 
 
-def interval_weights_nm(wavelengths_nm: np.ndarray) -> np.ndarray:
-    """Δλ for each sample: the constant step on a uniform grid, else half the span to the neighbours."""
-    steps = np.diff(wavelengths_nm)
-    if steps.size == 0:
-        return np.ones(1)
-    if np.allclose(steps, steps[0], rtol=1e-9, atol=0):
-        return np.full(wavelengths_nm.size, float(steps[0]))
-    delta = np.empty(wavelengths_nm.size)
-    delta[0], delta[-1] = steps[0] / 2, steps[-1] / 2
-    delta[1:-1] = (steps[:-1] + steps[1:]) / 2
-    return delta
-
-
-def _resolve_observer(observer) -> tuple[str, Spectrum]:
-    """(label, colour-matching functions) for a name/alias or a user's (3, K) Spectrum."""
-    if isinstance(observer, Spectrum):
-        if observer.values.shape[:-1] != (3,):
-            raise ColorimetryError(
-                f"observer: a custom observer must be a Spectrum of shape (3, K) (x̄, ȳ, z̄), got {observer.values.shape}"
-            )
-        return "custom observer", observer
-    name = canonical_observer_name(observer)
-    return name, named_observer(name)
-
-
-def _cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
-    observer_name, cmfs = _resolve_observer(observer)
-    try:
-        matrix = interpolation_matrix(cmfs.wavelengths_nm, grid, "linear")
-    except SpectrumError:
-        lo, hi = cmfs.wavelengths_nm[[0, -1]]
-        raise ColorimetryError(
-            f"wavelengths_nm: {grid[0]:g}–{grid[-1]:g} nm reaches outside the {observer_name} "
-            f"observer's {lo:g}–{hi:g} nm; restrict the spectrum (Spectrum.restrict({lo:g}, {hi:g}))"
-        ) from None
-    return matrix @ cmfs.values.T  # (K, 3)
-
-
-def _illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
-    if isinstance(illuminant, str):
-        return named_illuminant(illuminant, grid).values
-    if isinstance(illuminant, Spectrum):
-        if illuminant.values.ndim != 1:
-            raise ColorimetryError(
-                f"illuminant: expected one spectral distribution, got batch {illuminant.batch_shape}"
-            )
-        source = illuminant.wavelengths_nm
-        position = np.searchsorted(source, grid)
-        position = np.clip(position, 0, source.size - 1)
-        if not np.allclose(source[position], grid, rtol=0, atol=1e-9):
-            raise ColorimetryError(
-                "illuminant: its wavelengths do not include every sample of the summation grid "
-                f"({grid[0]:g}–{grid[-1]:g} nm, K={grid.size}); resample it explicitly with "
-                ".resample(wavelengths_nm) or pass a CIE illuminant by name"
-            )
-        return illuminant.values[position]
-    raise ColorimetryError(f"illuminant: expected a name such as 'D65' or a Spectrum, got {type(illuminant).__name__}")
-
-
 def _sum_weights(grid: np.ndarray, observer_name: str, illuminant) -> np.ndarray:
-    cmfs = _cmfs_on(grid, observer_name)
+    cmfs = cmfs_on(grid, observer_name)
     delta = interval_weights_nm(grid)
     if illuminant is None:
         return cmfs * delta[:, None]
-    spd = _illuminant_on(grid, illuminant)
+    spd = illuminant_on(grid, illuminant)
     weighted = cmfs * (spd * delta)[:, None]
     white_Y = weighted[:, 1].sum()
     if not white_Y > 0:
@@ -121,6 +68,8 @@ def _sum_weights(grid: np.ndarray, observer_name: str, illuminant) -> np.ndarray
 def _compute_weights(grid: np.ndarray, observer_name: str, illuminant, method: str) -> np.ndarray:
     if method == "sum":
         result = _sum_weights(grid, observer_name, illuminant)
+    elif method == "astm-e308":
+        result = astm_e308_weights(grid, observer_name, illuminant)
     else:
         fine = np.arange(np.ceil(grid[0] - 1e-9), np.floor(grid[-1] + 1e-9) + 1.0)
         if fine.size < 2:
@@ -157,8 +106,9 @@ def weights(wavelengths_nm, observer: str = "1931", illuminant=None, method: str
         or a :class:`Spectrum` sampled at the summation grid, and the spectra are reflectance or
         transmittance factors (0–1): ``W`` is normalised so the perfect white has ``Y = 100``.
     method
-        ``"sum"`` (default, summation at the given samples) or ``"1nm"`` (linear interpolation
-        to 1 nm, then summation); see the module docstring.
+        ``"sum"`` (default, summation at the given samples), ``"1nm"`` (linear interpolation
+        to 1 nm, then summation) or ``"astm-e308"`` (ASTM E2022/E308 weighting factors for
+        uniform 1, 5, 10 or 20 nm data, reflectances only); see the module docstring.
 
     Returns
     -------
@@ -208,8 +158,8 @@ def tristimulus(
     --------
     >>> from spectrocolor import Spectrum, wavelength_grid
     >>> white = Spectrum.constant(1.0, wavelength_grid(380, 780, 5))
-    >>> tristimulus(white, "1931", "D65").round(3)
-    array([ 95.047, 100.   , 108.883])
+    >>> tristimulus(white, "1931", "D65").round(3).tolist()
+    [95.043, 100.0, 108.88]
     """
     if not isinstance(spectrum, Spectrum):
         raise ColorimetryError(
@@ -244,6 +194,6 @@ def white_point(illuminant, observer: str = "1931", wavelengths_nm=None, method:
         spd = named_illuminant(illuminant) if isinstance(illuminant, str) else illuminant
         if not isinstance(spd, Spectrum):
             raise ColorimetryError(f"illuminant: expected a name or a Spectrum, got {type(illuminant).__name__}")
-        lo, hi = _resolve_observer(observer)[1].wavelengths_nm[[0, -1]]
+        lo, hi = resolve_observer(observer)[1].wavelengths_nm[[0, -1]]
         wavelengths_nm = spd.restrict(max(lo, 380.0), min(hi, 780.0)).wavelengths_nm
     return np.array(weights(wavelengths_nm, observer, illuminant, method).sum(axis=0))

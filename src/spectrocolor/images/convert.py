@@ -234,7 +234,7 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer: str = "
     --------
     >>> import numpy as np
     >>> grey = np.full((2, 3, 31), 0.5)
-    >>> cube_to_xyz(grey, np.arange(400, 701, 10), illuminant="D65")[0, 0, 1].round(6)
+    >>> float(cube_to_xyz(grey, np.arange(400, 701, 10), illuminant="D65")[0, 0, 1].round(6))
     50.0
     """
     values, wavelengths = _values_and_wavelengths(cube, wavelengths_nm)

@@ -1,0 +1,215 @@
+"""ASTM E308 tristimulus weights for 1, 5, 10 and 20 nm data, computed by ASTM E2022.
+
+Industry computes XYZ from 10 nm or 20 nm reflectance data with the weighting-factor tables of
+ASTM E308. Those tables are not a subsampling of the CIE 1 nm functions: ASTM E2022 builds them
+so that summing ``R(λⱼ) Wⱼ`` over the measured wavelengths equals the 1 nm summation
+``k Σ S(λ) x̄(λ) R̃(λ)`` of a reflectance ``R̃`` interpolated to 1 nm from the measured values.
+Because that interpolation is linear in R, each 1 nm product ``S x̄`` is distributed onto the
+measured wavelengths with the interpolation coefficients:
+
+* inside the data, every 1 nm wavelength between two measured ones uses the cubic Lagrange
+  polynomial through the four nearest measured wavelengths (two on each side);
+* in the first and last measurement interval, the quadratic through the three end wavelengths
+  (E2022 §7, "Lagrange interpolating coefficients" for inner and boundary intervals);
+* ``k = 100 / Σ Wⱼ,ȳ``: the perfect white has Y = 100 (identical to ``100 / Σ S ȳ`` at 1 nm,
+  as the Lagrange coefficients of each 1 nm wavelength sum to one).
+
+**Which table.** The weights reproduce E308 **Table 6**: weights for spectral data that have
+already been corrected for the instrument's spectral bandpass (or were measured with a bandpass
+narrow enough to need none). No bandpass correction is folded into the weights (E308 Table 5
+weights additionally assume a triangular bandpass equal to the interval; not provided here) and
+none is applied to the data. This is the same table colour-science's
+``tristimulus_weighting_factors_ASTME2022`` computes.
+
+**Range.** Weights are computed over E308's reference range, 360–780 nm (widened to the data's
+range when the data extend beyond it, and narrowed to where the observer and illuminant are
+defined), on the data's own interval, then shortened to the measured range as E308 prescribes:
+the weights of unmeasured wavelengths are added to the weights of the shortest and longest
+measured wavelength (this amounts to assuming the reflectance stays constant beyond the data).
+1 nm wavelengths of the reference range that fall beyond the last whole interval (for example
+360–364 nm when the data are at 10 nm from 405 nm) go to the end weight in the same way.
+
+**Not provided:** E308's alternatives for 5 nm data (plain summation, spectrocolor's
+``method="sum"``) and for 20 nm data (interpolating the data to 10 nm first).
+
+References
+----------
+ASTM E2022-11, *Standard Practice for Calculation of Weighting Factors for Tristimulus
+Integration*, §7 (weights from 1 nm data with Lagrange interpolation of the measured data).
+ASTM E308-17, *Standard Practice for Computing the Colors of Objects by Using the CIE System*,
+§7 (tristimulus integration with weights; Table 6; adjustment of weights to a shorter range).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import ColorimetryError
+from .illuminants import canonical_illuminant_name
+from .illuminants import illuminant as named_illuminant
+from .sampling import cmfs_on, illuminant_on, resolve_observer
+from .spectrum import Spectrum, validate_wavelengths
+
+#: Measurement intervals for which ASTM E308 gives (and E2022 computes) weights, nm.
+INTERVALS_NM = (1, 5, 10, 20)
+#: Wavelength range of the ASTM E308 weighting tables, nm.
+REFERENCE_RANGE_NM = (360.0, 780.0)
+
+
+def _validated_grid(wavelengths_nm) -> tuple[np.ndarray, int]:
+    """The data grid and its interval; uniform, 1/5/10/20 nm, starting and ending on whole nm."""
+    grid = validate_wavelengths(wavelengths_nm)
+    if grid.size < 2:
+        raise ColorimetryError("wavelengths_nm: ASTM E308 weights need at least two measured wavelengths")
+    steps = np.diff(grid)
+    step = round(float(steps[0]))
+    if not np.allclose(steps, step, rtol=0, atol=1e-9) or step not in INTERVALS_NM:
+        found = np.unique(np.round(steps, 6))[:4]
+        raise ColorimetryError(
+            f"wavelengths_nm: ASTM E308 weights need a uniform interval of 1, 5, 10 or 20 nm, got steps "
+            f"{', '.join(f'{s:g}' for s in found)} nm; resample the data or use method 'sum' or '1nm'"
+        )
+    if not np.allclose(grid[[0, -1]], np.round(grid[[0, -1]]), rtol=0, atol=1e-9):
+        raise ColorimetryError(
+            f"wavelengths_nm: ASTM E308 weights need a grid that starts and ends on whole nanometres, "
+            f"got {grid[0]:g}–{grid[-1]:g} nm"
+        )
+    return np.round(grid), step
+
+
+def _illuminant_extent(illuminant) -> tuple[float, float]:
+    """Wavelength range on which the illuminant is defined, nm (A is a formula: everywhere)."""
+    if isinstance(illuminant, Spectrum):
+        return float(illuminant.wavelengths_nm[0]), float(illuminant.wavelengths_nm[-1])
+    if isinstance(illuminant, str):
+        if canonical_illuminant_name(illuminant) == "A":
+            return -np.inf, np.inf
+        native = named_illuminant(illuminant).wavelengths_nm
+        return float(native[0]), float(native[-1])
+    raise ColorimetryError(
+        "illuminant: ASTM E308 weights are for reflectance or transmittance factors and need an "
+        f"illuminant (a CIE name such as 'D65' or a Spectrum at 1 nm), got {illuminant!r}"
+    )
+
+
+def _reference_range(grid: np.ndarray, observer, illuminant) -> tuple[float, float]:
+    """E308's 360–780 nm, widened to the data, within the observer's and illuminant's range."""
+    observer_name, cmfs = resolve_observer(observer)
+    defined_lo = max(np.ceil(cmfs.wavelengths_nm[0]), _illuminant_extent(illuminant)[0])
+    defined_hi = min(np.floor(cmfs.wavelengths_nm[-1]), _illuminant_extent(illuminant)[1])
+    if grid[0] < defined_lo or grid[-1] > defined_hi:
+        raise ColorimetryError(
+            f"wavelengths_nm: {grid[0]:g}–{grid[-1]:g} nm reaches outside {defined_lo:g}–{defined_hi:g} nm, "
+            f"where the {observer_name} observer and the illuminant are both defined; restrict the "
+            f"spectrum (Spectrum.restrict({defined_lo:g}, {defined_hi:g}))"
+        )
+    lo = min(grid[0], max(REFERENCE_RANGE_NM[0], defined_lo))
+    hi = max(grid[-1], min(REFERENCE_RANGE_NM[1], defined_hi))
+    return float(lo), float(hi)
+
+
+def _lagrange_basis(t: np.ndarray, count: int) -> np.ndarray:
+    """Lagrange basis polynomials on the nodes 0, 1, …, count − 1 evaluated at ``t``: (M, count)."""
+    nodes = np.arange(count, dtype=float)
+    basis = np.ones((t.size, count))
+    for k in range(count):
+        for m in range(count):
+            if m != k:
+                basis[:, k] *= (t - nodes[m]) / (nodes[k] - nodes[m])
+    return basis
+
+
+def _lagrange_matrix(reference_nm: np.ndarray, fine_nm: np.ndarray) -> np.ndarray:
+    """(M, N) matrix taking values at the uniform ``reference_nm`` to ASTM E2022's 1 nm estimates.
+
+    Cubic Lagrange through the two neighbours on each side inside, quadratic through the three
+    end wavelengths in the first and last interval; fine wavelengths beyond the reference grid
+    take the end value.
+    """
+    N = reference_nm.size
+    step = reference_nm[1] - reference_nm[0]
+    position = (fine_nm - reference_nm[0]) / step
+    matrix = np.zeros((fine_nm.size, N))
+    matrix[position < 0, 0] = 1.0
+    matrix[position > N - 1, N - 1] = 1.0
+    inside = np.flatnonzero((position >= 0) & (position <= N - 1))
+    interval = np.clip(np.floor(position[inside]).astype(int), 0, N - 2)
+    boundary = (interval == 0) | (interval == N - 2)
+    for rows, first, count in (
+        (inside[~boundary], interval[~boundary] - 1, 4),
+        (inside[boundary], np.where(interval[boundary] == 0, 0, N - 3), 3),
+    ):
+        basis = _lagrange_basis(position[rows] - first, count)
+        matrix[rows[:, None], first[:, None] + np.arange(count)] = basis
+    return matrix
+
+
+def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
+    """ASTM E308 Table 6 weights (K, 3) for reflectance data on ``wavelengths_nm``, by ASTM E2022.
+
+    ``XYZ100 = R @ W`` for reflectance or transmittance factors ``R`` (0–1) measured at
+    ``wavelengths_nm``; the perfect white (R = 1) has Y = 100. See the module docstring for the
+    procedure, the table reproduced (Table 6: no bandpass correction in the weights; correct the
+    data for bandpass first if your instrument does not) and the range adjustment.
+
+    Parameters
+    ----------
+    wavelengths_nm
+        The measured wavelengths, nm: uniform with an interval of 1, 5, 10 or 20 nm, starting and
+        ending on whole nanometres, within the observer's and illuminant's range.
+    observer
+        Observer name or alias (see :func:`spectrocolor.observer`) or a (3, K) :class:`Spectrum`
+        of colour-matching functions (used at 1 nm, interpolated linearly if needed).
+    illuminant
+        CIE illuminant name (evaluated at 1 nm by :func:`spectrocolor.illuminant`: A from its
+        formula, tabulated ones linearly interpolated from 5 nm) or a :class:`Spectrum` that
+        includes every whole nanometre of the reference range (normally 360–780 nm; a Spectrum
+        defined on a shorter range shortens the reference range to it, as for the CIE FL
+        illuminants, which start at 380 nm).
+
+    Returns
+    -------
+    numpy.ndarray
+        (K, 3) float64 weights for X, Y, Z; ``W[:, 1].sum() == 100`` to rounding.
+
+    Raises
+    ------
+    ColorimetryError
+        For an interval other than 1, 5, 10, 20 nm, a non-uniform grid, ends that are not whole
+        nm, data outside the observer's or illuminant's range, a missing illuminant, or an
+        illuminant Spectrum without 1 nm values over the reference range.
+
+    References
+    ----------
+    ASTM E2022-11 §7; ASTM E308-17 §7 and Table 6.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid
+    >>> W = astm_e308_weights(wavelength_grid(400, 700, 10), "1931", "D65")
+    >>> W.shape, round(float(W[:, 1].sum()), 9)
+    ((31, 3), 100.0)
+    """
+    grid, step = _validated_grid(wavelengths_nm)
+    lo, hi = _reference_range(grid, observer, illuminant)
+    below = int((grid[0] - lo) // step)  # reference wavelengths below the data
+    above = int((hi - grid[-1]) // step)
+    reference = np.arange(grid[0] - below * step, grid[-1] + above * step + step / 2, step)
+    fine = np.arange(lo, hi + 0.5)
+    try:
+        spd = illuminant_on(fine, illuminant)
+    except ColorimetryError as exc:
+        raise ColorimetryError(
+            f"{exc}. ASTM E2022 weights need the illuminant at every 1 nm from {lo:g} to {hi:g} nm"
+        ) from None
+    products = cmfs_on(fine, observer) * spd[:, None]  # S x̄, S ȳ, S z̄ at 1 nm (Δλ = 1 nm)
+    reference_weights = _lagrange_matrix(reference, fine).T @ products
+    white_Y = reference_weights[:, 1].sum()
+    if not white_Y > 0:
+        raise ColorimetryError("illuminant: Σ S(λ) ȳ(λ) is not positive over the range; no luminance to normalise by")
+    reference_weights *= 100.0 / white_Y
+    # E308 range adjustment: unmeasured wavelengths' weights go to the end measured wavelengths.
+    result = reference_weights[below : below + grid.size].copy()
+    result[0] += reference_weights[:below].sum(axis=0)
+    result[-1] += reference_weights[below + grid.size :].sum(axis=0)
+    return result

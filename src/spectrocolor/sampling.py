@@ -1,0 +1,75 @@
+"""Observers and illuminants sampled on a summation grid: the ingredients of weight matrices.
+
+Shared by :mod:`spectrocolor.colorimetry` (summation and 1 nm weights) and
+:mod:`spectrocolor.astm_e308` (ASTM E2022 weights). Never extrapolates.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import ColorimetryError, SpectrumError
+from .illuminants import illuminant as named_illuminant
+from .interpolation import interpolation_matrix
+from .observers import canonical_observer_name
+from .observers import observer as named_observer
+from .spectrum import Spectrum
+
+
+def interval_weights_nm(wavelengths_nm: np.ndarray) -> np.ndarray:
+    """Δλ for each sample: the constant step on a uniform grid, else half the span to the neighbours."""
+    steps = np.diff(wavelengths_nm)
+    if steps.size == 0:
+        return np.ones(1)
+    if np.allclose(steps, steps[0], rtol=1e-9, atol=0):
+        return np.full(wavelengths_nm.size, float(steps[0]))
+    delta = np.empty(wavelengths_nm.size)
+    delta[0], delta[-1] = steps[0] / 2, steps[-1] / 2
+    delta[1:-1] = (steps[:-1] + steps[1:]) / 2
+    return delta
+
+
+def resolve_observer(observer) -> tuple[str, Spectrum]:
+    """(label, colour-matching functions) for a name/alias or a user's (3, K) Spectrum."""
+    if isinstance(observer, Spectrum):
+        if observer.values.shape[:-1] != (3,):
+            raise ColorimetryError(
+                f"observer: a custom observer must be a Spectrum of shape (3, K) (x̄, ȳ, z̄), got {observer.values.shape}"
+            )
+        return "custom observer", observer
+    name = canonical_observer_name(observer)
+    return name, named_observer(name)
+
+
+def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
+    observer_name, cmfs = resolve_observer(observer)
+    try:
+        matrix = interpolation_matrix(cmfs.wavelengths_nm, grid, "linear")
+    except SpectrumError:
+        lo, hi = cmfs.wavelengths_nm[[0, -1]]
+        raise ColorimetryError(
+            f"wavelengths_nm: {grid[0]:g}–{grid[-1]:g} nm reaches outside the {observer_name} "
+            f"observer's {lo:g}–{hi:g} nm; restrict the spectrum (Spectrum.restrict({lo:g}, {hi:g}))"
+        ) from None
+    return matrix @ cmfs.values.T  # (K, 3)
+
+
+def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
+    if isinstance(illuminant, str):
+        return named_illuminant(illuminant, grid).values
+    if isinstance(illuminant, Spectrum):
+        if illuminant.values.ndim != 1:
+            raise ColorimetryError(
+                f"illuminant: expected one spectral distribution, got batch {illuminant.batch_shape}"
+            )
+        source = illuminant.wavelengths_nm
+        position = np.searchsorted(source, grid)
+        position = np.clip(position, 0, source.size - 1)
+        if not np.allclose(source[position], grid, rtol=0, atol=1e-9):
+            raise ColorimetryError(
+                "illuminant: its wavelengths do not include every sample of the summation grid "
+                f"({grid[0]:g}–{grid[-1]:g} nm, K={grid.size}); resample it explicitly with "
+                ".resample(wavelengths_nm) or pass a CIE illuminant by name"
+            )
+        return illuminant.values[position]
+    raise ColorimetryError(f"illuminant: expected a name such as 'D65' or a Spectrum, got {type(illuminant).__name__}")

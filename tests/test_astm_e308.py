@@ -1,0 +1,203 @@
+"""ASTM E308 / E2022 weights: colour-science cross-checks, exactness and range properties, errors."""
+
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+import spectrocolor as sc
+from spectrocolor import ColorimetryError, Spectrum
+from spectrocolor.astm_e308 import astm_e308_weights
+
+colour = pytest.importorskip("colour")
+
+COLOUR_OBSERVERS = {"1931": "CIE 1931 2 Degree Standard Observer", "1964": "CIE 1964 10 Degree Standard Observer"}
+FINE = np.arange(360.0, 781.0)
+
+
+def _colour_illuminant_1nm(name):
+    """colour-science's own illuminant data at 1 nm, 360–780 nm: A from its formula, D65 linearly."""
+    shape = colour.SpectralShape(360, 780, 1)
+    if name == "A":
+        return colour.sd_CIE_standard_illuminant_A(shape)
+    return colour.SDS_ILLUMINANTS[name].copy().interpolate(shape, interpolator=colour.LinearInterpolator)
+
+
+def _colour_cmfs(observer):
+    return colour.MSDS_CMFS[COLOUR_OBSERVERS[observer]].copy().trim(colour.SpectralShape(360, 780, 1))
+
+
+@pytest.mark.parametrize("observer", ["1931", "1964"])
+@pytest.mark.parametrize("illuminant", ["D65", "A"])
+@pytest.mark.parametrize("step", [5, 10, 20])
+def test_full_range_table_equals_colour_tristimulus_weighting_factors_ASTME2022(observer, illuminant, step):
+    expected = colour.colorimetry.tristimulus_weighting_factors_ASTME2022(
+        _colour_cmfs(observer), _colour_illuminant_1nm(illuminant), colour.SpectralShape(360, 780, step)
+    )
+    W = astm_e308_weights(np.arange(360.0, 781.0, step), observer, illuminant)
+    np.testing.assert_allclose(W, expected, rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("observer", ["1931", "1964"])
+@pytest.mark.parametrize("illuminant", ["D65", "A"])
+@pytest.mark.parametrize(
+    ("step", "start", "stop"), [(10, 400, 700), (10, 380, 780), (20, 400, 700), (20, 360, 740), (5, 420, 730)]
+)
+def test_random_reflectances_equal_colour_sd_to_XYZ_ASTM_E308(observer, illuminant, step, start, stop):
+    """Same method in colour: its E2022 table with the E308 range adjustment (no 20→10 nm or 5 nm
+    shortcuts). colour runs on its own CIE tables, so this also checks our data."""
+    grid = np.arange(float(start), stop + 1.0, step)
+    reflectances = np.random.default_rng(start + step).random((40, grid.size))
+    cmfs, spd = _colour_cmfs(observer), _colour_illuminant_1nm(illuminant)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # colour warns that it trims and aligns shapes
+        expected = np.array(
+            [
+                colour.sd_to_XYZ(
+                    colour.SpectralDistribution(r, grid),
+                    cmfs,
+                    spd,
+                    method="ASTM E308",
+                    mi_5nm_omission_method=False,
+                    mi_20nm_interpolation_method=False,
+                )
+                for r in reflectances
+            ]
+        )
+    ours = sc.tristimulus(Spectrum(grid, reflectances), observer, illuminant, method="astm-e308")
+    np.testing.assert_allclose(ours, expected, rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("step", [1, 5, 10, 20])
+@pytest.mark.parametrize(("start", "stop"), [(360, 780), (400, 700), (380, 720)])
+def test_perfect_white_has_Y_100_and_the_1nm_white_point_of_the_reference_range(step, start, stop):
+    grid = sc.wavelength_grid(start, stop, step)
+    white = sc.tristimulus(Spectrum.constant(1.0, grid), "1931", "D65", method="astm-e308")
+    assert white[1] == pytest.approx(100.0, rel=1e-14)
+    # E308's range adjustment keeps every 1 nm weight of 360–780 nm: the white is the 1 nm one.
+    np.testing.assert_allclose(white, sc.white_point("D65", "1931", wavelengths_nm=FINE), rtol=1e-13)
+
+
+@pytest.mark.parametrize("step", [5, 10, 20])
+@pytest.mark.parametrize("observer", ["1931", "1964"])
+def test_quadratic_reflectance_over_the_full_range_matches_1nm_summation_exactly(step, observer):
+    """Lagrange interpolation (cubic inside, quadratic at the ends) reproduces a quadratic exactly."""
+    grid = np.arange(360.0, 781.0, step)
+
+    def reflectance(wavelength_nm):
+        return 0.2 + 1e-3 * (wavelength_nm - 360) - 1.5e-6 * (wavelength_nm - 360) ** 2
+
+    ours = sc.tristimulus(Spectrum(grid, reflectance(grid)), observer, "A", method="astm-e308")
+    one_nm = sc.tristimulus(Spectrum(FINE, reflectance(FINE)), observer, "A", method="sum")
+    np.testing.assert_allclose(ours, one_nm, rtol=1e-12)
+
+
+@pytest.mark.parametrize("step", [1, 5, 10, 20])
+def test_range_adjustment_equals_holding_the_end_values_on_the_full_range(step):
+    full = np.arange(360.0, 781.0, step)
+    grid = full[(full >= 400) & (full <= 700)]
+    reflectances = np.random.default_rng(step).random((10, grid.size))
+    held = reflectances[:, np.clip(np.searchsorted(grid, full), 0, grid.size - 1)]
+    np.testing.assert_allclose(
+        reflectances @ astm_e308_weights(grid, "1964", "D65"),
+        held @ astm_e308_weights(full, "1964", "D65"),
+        rtol=1e-12,
+    )
+
+
+def test_1nm_data_over_the_reference_range_is_plain_1nm_summation():
+    np.testing.assert_allclose(
+        astm_e308_weights(FINE, "1931", "D65"), sc.weights(FINE, "1931", "D65", method="sum"), rtol=1e-13
+    )
+
+
+def test_grid_not_aligned_with_360_gets_the_uncovered_1nm_weights_at_its_ends():
+    grid = sc.wavelength_grid(405, 705, 10)
+    W = astm_e308_weights(grid, "1931", "D65")
+    assert W.shape == (grid.size, 3)
+    np.testing.assert_allclose(W.sum(axis=0), sc.white_point("D65", "1931", wavelengths_nm=FINE), rtol=1e-13)
+
+
+def test_data_beyond_780_widen_the_reference_range():
+    grid = sc.wavelength_grid(380, 830, 10)
+    white = astm_e308_weights(grid, "1931", "A").sum(axis=0)
+    np.testing.assert_allclose(white, sc.white_point("A", "1931", wavelengths_nm=np.arange(360.0, 831.0)), rtol=1e-13)
+
+
+def test_fluorescent_illuminant_uses_its_own_range():
+    grid = sc.wavelength_grid(380, 780, 10)
+    W = astm_e308_weights(grid, "1931", "FL2")
+    np.testing.assert_allclose(
+        W.sum(axis=0), sc.white_point("FL2", "1931", wavelengths_nm=np.arange(380.0, 781.0)), rtol=1e-13
+    )
+
+
+def test_illuminant_spectrum_on_a_shorter_range_shortens_the_reference_range():
+    spd = sc.illuminant("D65", np.arange(400.0, 701.0))
+    W = astm_e308_weights(sc.wavelength_grid(400, 700, 10), "1931", spd)
+    np.testing.assert_allclose(
+        W.sum(axis=0), sc.white_point(spd, "1931", wavelengths_nm=np.arange(400.0, 701.0)), rtol=1e-13
+    )
+
+
+def test_illuminant_spectrum_at_1nm_equals_the_named_one():
+    spd = sc.illuminant("D65", FINE)
+    grid = sc.wavelength_grid(400, 700, 20)
+    np.testing.assert_array_equal(astm_e308_weights(grid, "1931", spd), astm_e308_weights(grid, "1931", "D65"))
+
+
+def test_weights_are_read_only_and_cached_through_the_public_function():
+    grid = sc.wavelength_grid(400, 700, 10)
+    W = sc.weights(grid, "1931", "D65", method="astm-e308")
+    assert not W.flags.writeable
+    assert sc.weights(grid, "1931", "D65", method="astm-e308") is W
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    a=arrays(np.float64, 16, elements=st.floats(0, 1)),
+    b=arrays(np.float64, 16, elements=st.floats(0, 1)),
+    s=st.floats(-3, 3),
+)
+def test_tristimulus_is_linear(a, b, s):
+    grid = sc.wavelength_grid(400, 700, 20)
+
+    def xyz(values):
+        return sc.tristimulus(Spectrum(grid, values), "1964", "D65", method="astm-e308")
+
+    np.testing.assert_allclose(xyz(a + s * b), xyz(a) + s * xyz(b), rtol=1e-12, atol=1e-10)
+
+
+@pytest.mark.parametrize(
+    ("wavelengths", "message"),
+    [
+        (np.arange(400.0, 701.0, 2), "1, 5, 10 or 20 nm"),
+        (np.r_[400.0, 410, 430, 440], "uniform interval"),
+        (np.arange(400.5, 700, 10), "whole nanometres"),
+        (np.arange(350.0, 701.0, 10), "reaches outside 360–830"),
+        (np.array([500.0]), "at least two"),
+    ],
+)
+def test_bad_grids_are_refused(wavelengths, message):
+    with pytest.raises(ColorimetryError, match=message):
+        astm_e308_weights(wavelengths, "1931", "D65")
+
+
+def test_lights_are_refused():
+    with pytest.raises(ColorimetryError, match="need an illuminant"):
+        sc.weights(sc.wavelength_grid(400, 700, 10), "1931", None, method="astm-e308")
+
+
+def test_illuminant_spectrum_without_1nm_values_is_refused():
+    with pytest.raises(ColorimetryError, match="every 1 nm from 360 to 780"):
+        astm_e308_weights(
+            sc.wavelength_grid(400, 700, 10), "1931", sc.illuminant("D65", sc.wavelength_grid(360, 780, 5))
+        )
+
+
+def test_data_outside_a_fluorescent_illuminants_range_are_refused():
+    with pytest.raises(ColorimetryError, match="380–780"):
+        astm_e308_weights(sc.wavelength_grid(360, 780, 10), "1931", "FL2")
