@@ -17,17 +17,9 @@ import numpy as np
 
 import spectrocolor as sc
 from spectrocolor.astm_e308 import astm_e308_weights
+from timing import best_of
 
 COLOUR_SPECTRA = 200  # colour's ASTM E308 route takes ~10 ms per spectrum
-
-
-def best_of(function, repeats: int = 5) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def main() -> None:

@@ -7,21 +7,12 @@ Prints best-of-N wall times measured in this one run and the ratios the issue as
 
 from __future__ import annotations
 
-import time
 import warnings
 
 import numpy as np
 
 import spectrocolor as sc
-
-
-def best_of(function, repeats: int = 5) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
+from timing import best_of
 
 
 def main() -> None:

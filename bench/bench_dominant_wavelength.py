@@ -7,25 +7,16 @@ Run: .venv/bin/python bench/bench_dominant_wavelength.py
 
 from __future__ import annotations
 
-import time
 import tracemalloc
 
 import colour
 import numpy as np
 
 import spectrocolor as sc
+from timing import best_of
 
 N, SUBSET = 100_000, 2_000
 WHITE = np.array([0.3127, 0.3290])
-
-
-def best_of(function, repeats: int = 3) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def main() -> None:

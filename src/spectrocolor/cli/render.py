@@ -6,9 +6,10 @@ import argparse
 
 import numpy as np
 
+from ..display.adaptation import ADAPTATION_METHODS
 from . import UserError
 
-_ADAPT_CHOICES = ("none", "bradford", "von kries", "cat02", "cat16")
+_ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 
 
 def register(subparsers) -> None:
