@@ -1,8 +1,9 @@
 """Colours per second of the smoothest-reflectance solvers (run by hand, one run).
 
 sRGB cube every 5th level (52³ = 140 608 colours), D65, CIE 1931, 380–780 nm at 10 and
-5 nm: unbounded (closed form) and unit-bounded (exact active set), vs colour-science's
-``XYZ_to_sd`` (Meng 2015, SLSQP, ρ ≥ 0 only) on a few colours.
+5 nm: unbounded (closed form) and unit-bounded (exact active set), the plain NumPy floor
+(one matrix product), colours at relative depth 1e-9 inside the object-colour solid, vs
+colour-science's ``XYZ_to_sd`` (Meng 2015, SLSQP, ρ ≥ 0 only) on a few colours.
 """
 
 import time
@@ -10,6 +11,7 @@ import time
 import numpy as np
 
 import spectrocolor as sc
+from spectrocolor.recovery.smoothest import setup_for
 
 
 def srgb_cube(white):
@@ -22,6 +24,14 @@ def srgb_cube(white):
     return linear @ M.T
 
 
+def near_boundary(grid, n, depth):
+    """Colours at relative depth ``depth`` inside the solid, towards random vertices."""
+    W = np.asarray(sc.weights(sc.wavelength_grid(*grid), "1931", "D65"))
+    rho = (np.random.default_rng(0).normal(size=(n, 3)) @ W.T > 0).astype(float)
+    centre = W.sum(axis=0) / 2
+    return centre + (rho @ W - centre) * (1 - depth)
+
+
 def main():
     rates = {}
     for step in (10.0, 5.0):
@@ -30,13 +40,27 @@ def main():
         XYZ = srgb_cube(white)
         for bounds in (None, "unit"):
             sc.smoothest_reflectance(XYZ[:100], wavelengths=grid, bounds=bounds)  # warm caches
-            t = time.perf_counter()
-            r = sc.smoothest_reflectance(XYZ, wavelengths=grid, bounds=bounds)
-            dt = time.perf_counter() - t
+            dt = np.inf
+            for _ in range(3):  # best of three: the machine is shared
+                t = time.perf_counter()
+                r = sc.smoothest_reflectance(XYZ, wavelengths=grid, bounds=bounds)
+                dt = min(dt, time.perf_counter() - t)
             rates[(step, bounds)] = len(XYZ) / dt
             print(f"{step:>4g} nm  bounds={bounds!s:5}  {len(XYZ)} colours in {dt:.2f} s = "
                   f"{len(XYZ) / dt:,.0f} colours/s  (feasible {r.feasible.mean():.4%}, converged "
                   f"{r.certificate.converged[r.feasible].mean():.4%})")
+        U = setup_for(grid, "1931", "D65")[0].problem.unconstrained
+        t = time.perf_counter()
+        XYZ @ U
+        dt = time.perf_counter() - t
+        print(f"{step:>4g} nm  plain NumPy limit (XYZ @ U only): {len(XYZ) / dt:,.0f} colours/s")
+        near = near_boundary(grid, 20000, 1e-9)
+        t = time.perf_counter()
+        r = sc.smoothest_reflectance(near, wavelengths=grid)
+        dt = time.perf_counter() - t
+        print(f"{step:>4g} nm  bounds=unit  {len(near)} colours at relative depth 1e-9: "
+              f"{len(near) / dt:,.0f} colours/s, converged {r.certificate.converged.mean():.4%}, "
+              f"max residual {r.certificate.primal_residual.max():.1e}")
     import colour
 
     shape = colour.SpectralShape(380, 780, 10)

@@ -107,6 +107,7 @@ def _check_kkt_independently(W, step, b, rho, upper):
     assert lam[at_up].max(initial=0) < 1e-8 * scale
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("bounds", ["unit", "nonnegative"])
 def test_bounded_equals_independent_qp_solver(bounds):
     """Objective equal to SciPy SLSQP's (within 1e-9) and never worse; KKT checked independently."""
@@ -165,6 +166,59 @@ def test_round_trip_bounds_and_success_near_the_boundary(step):
     assert np.any(rho == 0.0) and np.any(rho == 1.0)  # bounds reached exactly
     assert r.certificate.multiplier_sign_violation.max() <= 1e-12
     assert r.certificate.stationarity.max() < 1e-9
+
+
+def _towards_facets(W, n, rng, depth):
+    """Colours at relative depth ``depth`` on rays from the centre through random colours
+    (the rays meet the boundary inside facets, not only at vertices)."""
+    centre = W.sum(axis=0) / 2
+    x = rng.random((n, W.shape[0])) @ W - centre
+    # gauge of the zonotope, computed here from its support function over the facets
+    i, j = np.triu_indices(W.shape[0], 1)
+    normals = np.cross(W[i], W[j])
+    normals = normals[np.linalg.norm(normals, axis=1) > 1e-9]
+    gauge = np.max(np.abs(x @ normals.T) / (0.5 * np.abs(normals @ W.T).sum(axis=1)), axis=1)
+    return centre + x / gauge[:, None] * (1 - depth)
+
+
+@pytest.mark.parametrize(("step", "illuminant"), [(10.0, "D65"), (5.0, "A")])
+def test_every_colour_solved_at_relative_depth_1e_9(step, illuminant):
+    """100 % success, round trip 1e-10, exact bounds and independently checked optimality
+    for thousands of colours a relative distance 1e-9 inside the solid."""
+    grid = (380.0, 780.0, step)
+    W = _weights(grid, illuminant)
+    rng = np.random.default_rng(7)
+    n = 1000 if step == 10.0 else 500
+    b = np.concatenate([_near_boundary(W, n, rng, [1e-9]), _towards_facets(W, n, rng, 1e-9)])
+    r = smoothest_reflectance(b, illuminant, wavelengths=grid, bounds="unit")
+    rho = r.spectrum.values
+    assert np.all(r.feasible) and np.all(r.certificate.converged)
+    assert np.abs(sc.tristimulus(r.spectrum, "1931", illuminant) - b).max() <= 1e-10
+    assert rho.min() >= 0.0 and rho.max() <= 1.0
+    for i in range(len(b)):
+        _check_kkt_independently(W, step, b[i], rho[i], 1.0)
+
+
+def test_exact_fallback_equals_the_batched_solver():
+    """The dense primal active-set method (used where the batched iterations do not
+    settle) reaches the same optimum as the batched iterations on ordinary colours."""
+    from spectrocolor.recovery import _qp
+    from spectrocolor.recovery.smoothest import setup_for
+
+    setup, _, _ = setup_for(GRID, "1931", "D65")
+    prob = setup.problem
+    W = _weights()
+    b = np.concatenate([_srgb_xyz(20, np.random.default_rng(8), W.sum(axis=0)),
+                        _near_boundary(W, 10, np.random.default_rng(9), [1e-3])])
+    batched = _qp.solve_bounded(prob, b, 0.0, 1.0)
+    rho_ip, ratio, at_upper = _qp._interior_point(prob, b, 0.0, 1.0)
+    for i in range(len(b)):
+        rho, mu, lam, _, ok = _qp._primal_active_set(prob, b[i], 0.0, 1.0, rho_ip[i], ratio[i],
+                                                     at_upper[i])
+        assert ok
+        np.testing.assert_allclose(rho, batched.rho[i], atol=1e-9)
+        assert abs(_roughness(rho, 10.0) - _roughness(batched.rho[i], 10.0)) < 1e-9
+        _check_kkt_independently(W, 10.0, b[i], rho, 1.0)
 
 
 def test_black_white_and_boundary_colours_exact():

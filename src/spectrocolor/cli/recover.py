@@ -86,21 +86,10 @@ def _run(args) -> int:
     write_spectra(spectrum, args.out)
     print(f"wrote {len(names)} reflectance(s) to {args.out}")
     if args.plot is not None:
-        import matplotlib
+        from ..recovery.plots import reflectance_curves
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(6, 4))
-        for name, values in zip(names, spectrum.values, strict=True):
-            ax.plot(spectrum.wavelengths_nm, values, label=name)
-        ax.set_xlabel("wavelength (nm)")
-        ax.set_ylabel("reflectance factor")
-        ax.set_title(f"smoothest reflectance, {result.illuminant}, bounds={args.bounds}")
-        if len(names) <= 10:
-            ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=100)
-        plt.close(fig)
+        ax = reflectance_curves(spectrum, title=f"smoothest reflectance, {result.illuminant}, "
+                                f"bounds={args.bounds}")
+        ax.figure.savefig(args.plot, dpi=100)
         print(f"wrote {args.plot}")
     return 0 if keep.size == len(result.feasible) else 1

@@ -1,11 +1,12 @@
 """Batched exact solver for the discrete smoothest-reflectance quadratic programme.
 
-The programme, for each colour ``b`` (3,), is
+The programme, for each colour ``b`` (m,), is
 
     minimise  J(rho) = sum_k (rho[k+1] - rho[k])**2 / h      (free ends)
     subject to  W.T @ rho = b,  lower <= rho <= upper
 
-with ``W`` (K, 3) the tristimulus weights. ``J`` is the exact integral of the squared
+with ``W`` (K, m) the tristimulus weights (m = 3; m = 6 for a metamer that matches
+under two illuminants). ``J`` is the exact integral of the squared
 derivative of the piecewise-linear interpolant of ``rho``; its Hessian ``Q = 2 D.T D / h``
 is the tridiagonal Laplacian of a path, which is singular only on constants, and constants
 are not in the null space of ``W.T`` (every weight column is non-negative and non-zero), so
@@ -14,9 +15,12 @@ the programme is strictly convex on its feasible set.
 Bounded problems are solved by the primal-dual active-set method (a semismooth Newton
 method on the KKT conditions), which both adds and releases bounds. Each iteration solves,
 for every colour at once, one tridiagonal system of size K with four right-hand sides
-(LAPACK ``gtsv`` on the block-diagonal system of the whole batch) and a 3 x 3 system.
-Colours that do not settle (rare; cycling is possible when equality constraints are
-present) are finished by an exact primal active-set method started from a feasible vertex.
+(LAPACK ``gtsv`` on the block-diagonal system of the whole batch) and an m x m system.
+Colours that do not settle (rare, and only very near the boundary of the solid: cycling
+is possible when equality constraints are present, and the reduced systems become
+ill-conditioned) are restarted from the active set predicted by a batched interior-point
+method, and any still unsettled are finished one by one by an exact, dense primal
+active-set method started from a feasible point.
 
 References
 ----------
@@ -42,13 +46,13 @@ class Problem:
 
     Attributes
     ----------
-    W : ndarray (K, 3)
+    W : ndarray (K, m)
         Tristimulus weights, ``XYZ100 = rho @ W``.
     step_nm : float
         Grid step ``h`` in nm.
-    unconstrained : ndarray (3, K)
+    unconstrained : ndarray (m, K)
         ``rho = b @ unconstrained`` solves the programme without bounds.
-    multipliers : ndarray (3, 3)
+    multipliers : ndarray (m, m)
         ``mu = b @ multipliers`` are its Lagrange multipliers.
     """
 
@@ -86,16 +90,17 @@ class Problem:
 
 
 def make_problem(W: np.ndarray, step_nm: float) -> Problem:
-    """Build the programme for weights ``W`` (K, 3) and step ``step_nm``; solve its KKT map."""
+    """Build the programme for weights ``W`` (K, m) and step ``step_nm``; solve its KKT map."""
     W = np.ascontiguousarray(W, dtype=np.float64)
     K = W.shape[0]
-    prob = Problem(W, float(step_nm), np.empty((3, K)), np.empty((3, 3)))
-    kkt = np.zeros((K + 3, K + 3))
+    m = W.shape[1]
+    prob = Problem(W, float(step_nm), np.empty((m, K)), np.empty((m, m)))
+    kkt = np.zeros((K + m, K + m))
     kkt[:K, :K] = prob.hessian_dense()
     kkt[:K, K:] = -W
     kkt[K:, :K] = W.T
-    rhs = np.zeros((K + 3, 3))
-    rhs[K:] = np.eye(3)
+    rhs = np.zeros((K + m, m))
+    rhs[K:] = np.eye(m)
     sol = np.linalg.solve(kkt, rhs)  # columns: response to b = e_j
     unconstrained = np.ascontiguousarray(sol[:K].T)
     multipliers = np.ascontiguousarray(sol[K:].T)
@@ -109,7 +114,7 @@ class Solution:
     """Per-colour results of the bounded solve (arrays with the batch as first axis)."""
 
     rho: np.ndarray  # (N, K)
-    mu: np.ndarray  # (N, 3) multipliers of W.T rho = b  (Q rho - W mu - lam = 0)
+    mu: np.ndarray  # (N, m) multipliers of W.T rho = b  (Q rho - W mu - lam = 0)
     lam: np.ndarray  # (N, K) bound multipliers: > 0 at lower, < 0 at upper bound
     iterations: np.ndarray  # (N,) int
     converged: np.ndarray  # (N,) bool
@@ -119,37 +124,42 @@ def _reduced_solve(prob: Problem, b, lower_active, upper_active, lower, upper):
     """Solve the equality-constrained problem with the given bounds fixed.
 
     Every colour must have at least one active bound (so that the modified tridiagonal
-    matrix is non-singular). Returns rho (N, K), mu (N, 3), ok (N,) bool (False where the
-    3 x 3 reduced matrix is singular, i.e. the free part cannot reproduce ``b``).
+    matrix is non-singular). Returns rho (N, K), mu (N, m), ok (N,) bool (False where the
+    m x m reduced matrix is singular, i.e. the free part cannot reproduce ``b``).
     """
     N, K = lower_active.shape
+    m = prob.W.shape[1]
     active = lower_active | upper_active
+    free = (~active).astype(float)
     diag_q, off_q = prob.hessian_bands()
-    d = np.where(active, 1.0, diag_q)
-    du = np.where(active[:, :-1], 0.0, off_q)
-    dl = np.where(active[:, 1:], 0.0, off_q)
-    # decouple consecutive colours in the stacked block-diagonal system
-    du = np.concatenate([du, np.zeros((N, 1))], axis=1).ravel()[:-1]
+    d = np.where(active, 1.0, diag_q).ravel()
+    # off-diagonals of the stacked block-diagonal system; the link from the last sample
+    # of one colour to the first of the next is zero (it decouples consecutive colours)
+    off = np.zeros((N, K))
+    off[:, :-1] = off_q[0]
+    du = (off * free).ravel()[:-1]
+    dl = (off[:, :-1] * free[:, 1:])
     dl = np.concatenate([dl, np.zeros((N, 1))], axis=1).ravel()[:-1]
-    rhs = np.empty((N, K, 4))
-    rhs[..., 0] = np.where(lower_active, lower, 0.0) + np.where(upper_active, upper, 0.0)
-    rhs[..., 1:] = np.where(active[..., None], 0.0, prob.W)
-    _, _, _, x, info = lapack.dgtsv(dl, d.ravel(), du, rhs.reshape(N * K, 4),
-                                    overwrite_dl=1, overwrite_d=1, overwrite_du=1,
-                                    overwrite_b=1)
+    # right-hand sides in Fortran order, as LAPACK wants them (no hidden copy)
+    rhs = np.empty((1 + m, N * K)).T
+    rhs[:, 0] = (np.where(lower_active, lower, 0.0) + np.where(upper_active, upper, 0.0)).ravel()
+    for j in range(m):
+        rhs[:, 1 + j] = (free * prob.W[:, j]).ravel()
+    _, _, _, x, info = lapack.dgtsv(dl, d, du, rhs, overwrite_dl=1, overwrite_d=1,
+                                    overwrite_du=1, overwrite_b=1)
     if info != 0:  # pragma: no cover - cannot happen with at least one active bound
         raise np.linalg.LinAlgError(f"tridiagonal solve failed (info={info})")
-    x = x.reshape(N, K, 4)
-    p, P = x[..., 0], x[..., 1:]
-    M = np.einsum("kj,nki->nji", prob.W, P)  # W.T P  (N, 3, 3)
+    p = x[:, 0].reshape(N, K)
+    P = [x[:, 1 + i].reshape(N, K) for i in range(m)]
+    M = np.stack([Pi @ prob.W for Pi in P], axis=2)  # W.T P  (N, m, m)
     r = b - p @ prob.W
     det = np.linalg.det(M)
-    scale = np.einsum("nij,nij->n", M, M) ** 1.5
+    scale = np.einsum("nij,nij->n", M, M) ** (0.5 * m)
     ok = np.abs(det) > 1e-13 * scale
-    M[~ok] = np.eye(3)
+    M[~ok] = np.eye(m)
     mu = np.linalg.solve(M, r[..., None])[..., 0]
     mu[~ok] = 0.0
-    rho = p + np.einsum("nki,ni->nk", P, mu)
+    rho = p + sum(Pi * mu[:, i, None] for i, Pi in enumerate(P))
     rho = np.where(lower_active, lower, rho)
     rho = np.where(upper_active, upper, rho)
     return rho, mu, ok
@@ -163,7 +173,7 @@ def _pdas(prob, b, lower, upper, lo_act, up_act, max_iter):
     """
     N, K = b.shape[0], prob.size
     rho = np.full((N, K), np.nan)
-    mu = np.full((N, 3), np.nan)
+    mu = np.full((N, prob.W.shape[1]), np.nan)
     lam = np.full((N, K), np.nan)
     iterations = np.zeros(N, dtype=np.int64)
     converged = np.zeros(N, dtype=bool)
@@ -175,7 +185,7 @@ def _pdas(prob, b, lower, upper, lo_act, up_act, max_iter):
         iterations[pending] = it
         empty = ~(lo_act | up_act).any(axis=1)
         r_i = np.empty((pending.size, K))
-        m_i = np.empty((pending.size, 3))
+        m_i = np.empty((pending.size, prob.W.shape[1]))
         ok = np.ones(pending.size, dtype=bool)
         if empty.any():
             r_i[empty] = bp[empty] @ prob.unconstrained
@@ -208,9 +218,10 @@ def _interior_point(prob, b, lower, upper, iterations=60):
     """Primal-dual interior-point iterations (Mehrotra predictor-corrector), batched.
 
     Used only to find the active set for colours on which the active-set iterations did
-    not settle (typically colours very close to the boundary of the solid). Returns, per
-    index, the complementarity ratio ``z / s`` at the nearer bound (large where the bound
-    is active) and whether that bound is the upper one.
+    not settle (typically colours very close to the boundary of the solid). Returns the
+    final (strictly interior, nearly feasible) iterate ``rho`` and, per index, the
+    complementarity ratio ``z / s`` at the nearer bound (large where the bound is active)
+    and whether that bound is the upper one.
     """
     N, K = b.shape[0], prob.size
     has_upper = np.isfinite(upper)
@@ -223,7 +234,7 @@ def _interior_point(prob, b, lower, upper, iterations=60):
         rho = np.full((N, K), lower) + scale
     z_l = np.ones((N, K))
     z_u = np.ones((N, K)) if has_upper else np.zeros((N, K))
-    mu = np.zeros((N, 3))
+    mu = np.zeros((N, W.shape[1]))
     m = 2 * K if has_upper else K
 
     def newton(r_d, r_p, c_l, c_u, s_l, s_u):
@@ -232,13 +243,13 @@ def _interior_point(prob, b, lower, upper, iterations=60):
         d = (diag_q + sig).ravel()
         off = np.concatenate([np.broadcast_to(off_q, (N, K - 1)), np.zeros((N, 1))], axis=1)
         off = off.ravel()[:-1]
-        rhs = np.empty((N, K, 4))
+        rhs = np.empty((N, K, 1 + W.shape[1]))
         rhs[..., 0] = h
         rhs[..., 1:] = W
-        _, _, _, x, _ = lapack.dgtsv(off.copy(), d, off.copy(), rhs.reshape(N * K, 4))
-        x = x.reshape(N, K, 4)
+        _, _, _, x, _ = lapack.dgtsv(off.copy(), d, off.copy(), rhs.reshape(N * K, -1))
+        x = x.reshape(N, K, -1)
         M = np.einsum("kj,nki->nji", W, x[..., 1:])
-        M += 1e-14 * np.einsum("nii->n", M)[:, None, None] * np.eye(3)
+        M += 1e-14 * np.einsum("nii->n", M)[:, None, None] * np.eye(W.shape[1])
         dmu = np.linalg.solve(M, (-r_p - x[..., 0] @ W)[..., None])[..., 0]
         drho = x[..., 0] + np.einsum("nki,ni->nk", x[..., 1:], dmu)
         dz_l = (c_l - z_l * drho) / s_l
@@ -283,11 +294,11 @@ def _interior_point(prob, b, lower, upper, iterations=60):
     at_upper = (s_u < s_l) if has_upper else np.zeros_like(rho, dtype=bool)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(at_upper, z_u / s_u, z_l / s_l)
-    return np.nan_to_num(ratio, nan=np.inf), at_upper
+    return rho, np.nan_to_num(ratio, nan=np.inf), at_upper
 
 
 def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> Solution:
-    """Exact minimiser for each colour ``b`` (N, 3) with ``lower <= rho <= upper``.
+    """Exact minimiser for each colour ``b`` (N, m) with ``lower <= rho <= upper``.
 
     ``lower``/``upper`` are scalars (``upper`` may be ``inf``). All colours must be
     feasible (checked by the caller). Active-set iterations start from the bounds violated
@@ -304,25 +315,190 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
     up_act = rho > upper
     pending = np.flatnonzero(lo_act.any(axis=1) | up_act.any(axis=1))
     if pending.size:
-        r, m, lm, it, ok = _pdas(prob, b[pending], lower, upper,
+        r, mu_i, lm, it, ok = _pdas(prob, b[pending], lower, upper,
                                  lo_act[pending], up_act[pending], _MAX_PDAS_ITER)
-        rho[pending], mu[pending], lam[pending] = r, m, lm
+        rho[pending], mu[pending], lam[pending] = r, mu_i, lm
         iterations[pending] = it
         converged[pending] = ok
         pending = pending[~ok]
     if pending.size:
-        ratio, at_upper = _interior_point(prob, b[pending], lower, upper)
-        # at least three free indices: fewer cannot reproduce a colour in the interior
-        third = np.sort(ratio, axis=1)[:, 2:3]
+        rho_ip, ratio, at_upper = _interior_point(prob, b[pending], lower, upper)
+        # at least m free indices: fewer cannot reproduce a colour in the interior
+        n_eq = prob.W.shape[1]
+        third = np.sort(ratio, axis=1)[:, n_eq - 1:n_eq]
         for threshold in (1.0, 1e-2, 1e2, 1e-4, 1e4):
             if pending.size == 0:
                 break
             active = ratio > np.maximum(threshold, third)
             lo, up = active & ~at_upper, active & at_upper
-            r, m, lm, it, ok = _pdas(prob, b[pending], lower, upper, lo, up, _MAX_PDAS_ITER)
-            rho[pending], mu[pending], lam[pending] = r, m, lm
+            r, mu_i, lm, it, ok = _pdas(prob, b[pending], lower, upper, lo, up, _MAX_PDAS_ITER)
+            rho[pending], mu[pending], lam[pending] = r, mu_i, lm
             iterations[pending] += it
             converged[pending] = ok
-            pending, ratio, at_upper, third = (pending[~ok], ratio[~ok], at_upper[~ok],
-                                               third[~ok])
+            pending, ratio, at_upper, third, rho_ip = (
+                pending[~ok], ratio[~ok], at_upper[~ok], third[~ok], rho_ip[~ok])
+    for n, i in enumerate(pending):
+        r, mu_i, lm, it, ok = _primal_active_set(prob, b[i], lower, upper, rho_ip[n],
+                                              ratio[n], at_upper[n])
+        rho[i], mu[i], lam[i] = r, mu_i, lm
+        iterations[i] += it
+        converged[i] = ok
     return Solution(rho, mu, lam, iterations, converged)
+
+
+def _equality_qp(Q, W, b, rho, active):
+    """Minimiser of ``rho Q rho / 2`` with ``W.T rho = b`` and ``rho[active]`` held fixed.
+
+    Dense KKT solve on the free indices; returns (rho, mu) or None where the free weights
+    cannot reproduce ``b`` reliably (rank below m to within 1e-12 relative).
+    """
+    F = np.flatnonzero(~active)
+    m = W.shape[1]
+    if F.size < m:
+        return None
+    sv = np.linalg.svd(W[F], compute_uv=False)
+    if sv[m - 1] <= 1e-12 * sv[0]:
+        return None
+    n = F.size
+    kkt = np.zeros((n + m, n + m))
+    kkt[:n, :n] = Q[np.ix_(F, F)]
+    kkt[:n, n:] = -W[F]
+    kkt[n:, :n] = W[F].T
+    fixed = np.where(active, rho, 0.0)
+    rhs = np.concatenate([-Q[F] @ fixed, b - fixed @ W])
+    try:
+        sol = np.linalg.solve(kkt, rhs)
+    except np.linalg.LinAlgError:
+        return None
+    out = fixed.copy()
+    out[F] = sol[:n]
+    return out, sol[n:]
+
+
+def _feasible_start(prob, Q, b, lower, upper, rho_ip, ratio, at_upper):
+    """An exactly feasible point and working set from the interior-point iterate.
+
+    Indices are freed in order of increasing complementarity ratio (most clearly free
+    first), the others held at their nearer bound, until the minimiser with those bounds
+    fixed lies within the bounds; failing that, a vertex from the simplex method, or the
+    interior iterate moved onto ``W.T rho = b`` by a minimum-norm correction on its most
+    interior indices.
+    """
+    W = prob.W
+    K, m = W.shape
+    order = np.argsort(ratio)
+    fixed = np.where(at_upper, upper, lower)
+    for count in range(m, K + 1):
+        active = np.ones(K, dtype=bool)
+        active[order[:count]] = False
+        sol = _equality_qp(Q, W, b, fixed, active)
+        if sol is not None and np.all((sol[0] >= lower) & (sol[0] <= upper)) and _exact(
+                W, b, sol[0]):
+            return sol[0], active
+    vertex = _vertex_start(W, b, lower, upper)
+    if vertex is not None:
+        return vertex
+    rho = np.clip(rho_ip, lower, upper)
+    margin = np.minimum(rho - lower, upper - rho)
+    for count in range(m, K + 1):
+        M = np.argsort(margin)[::-1][:count]
+        sv = np.linalg.svd(W[M], compute_uv=False)
+        if sv[m - 1] <= 1e-12 * sv[0]:
+            continue
+        delta = np.linalg.lstsq(W[M].T, b - rho @ W, rcond=None)[0]
+        out = rho.copy()
+        out[M] += delta
+        if np.all(np.abs(delta) < margin[M]) and _exact(W, b, out):
+            return out, np.zeros(K, dtype=bool)
+    return None
+
+
+def _exact(W, b, rho):
+    """``W.T rho = b`` to rounding (1e-13 relative to the largest contribution)."""
+    return bool(np.abs(rho @ W - b).max() <= 1e-13 * (1.0 + np.abs(W).sum(axis=0).max()))
+
+
+def _vertex_start(W, b, lower, upper):
+    """A feasible vertex from the dual simplex method (HiGHS), made exact: the values the
+    simplex left at a bound stay there (working set), the others absorb the rounding."""
+    from scipy.optimize import linprog
+
+    K = W.shape[0]
+    res = linprog(np.zeros(K), A_eq=W.T, b_eq=b,
+                  bounds=[(lower, None if not np.isfinite(upper) else upper)] * K,
+                  method="highs-ds", options={"primal_feasibility_tolerance": 1e-10})
+    if res.status != 0:
+        return None
+    x = np.clip(res.x, lower, upper)
+    active = (x == lower) | (x == upper)
+    F = np.flatnonzero(~active)
+    if F.size < W.shape[1]:
+        return None
+    x[F] += np.linalg.lstsq(W[F].T, b - x @ W, rcond=None)[0]
+    if np.all((x >= lower) & (x <= upper)) and _exact(W, b, x):
+        return x, active
+    return None
+
+
+def _keeps_rank(W, active, index):
+    """Whether the free weights keep rank m when ``index`` joins the working set."""
+    free = ~active
+    free[index] = False
+    if np.count_nonzero(free) < W.shape[1]:
+        return False
+    sv = np.linalg.svd(W[free], compute_uv=False)
+    return bool(sv[W.shape[1] - 1] > 1e-12 * sv[0])
+
+
+def _primal_active_set(prob, b, lower, upper, rho_ip, ratio, at_upper, max_iter=None):
+    """Exact primal active-set method (Nocedal & Wright, Alg. 16.3) for one colour.
+
+    Dense and sequential, so only used for the rare colours on which the batched
+    iterations do not settle. Each iterate is feasible; each step goes to the minimiser of
+    the programme with the current working set of bounds held fixed, stopping at the first
+    bound in the way (which joins the working set); at a minimiser the bound with the most
+    wrong-signed multiplier leaves the working set. Ends when every multiplier has the
+    right sign (to rounding), which certifies the optimum.
+    """
+    K = prob.size
+    W = prob.W
+    nan = (np.full(K, np.nan), np.full(W.shape[1], np.nan), np.full(K, np.nan))
+    Q = prob.hessian_dense()
+    start = _feasible_start(prob, Q, b, lower, upper, rho_ip, ratio, at_upper)
+    if start is None:  # never seen in testing; reported as not converged, never guessed
+        return (*nan, 0, False)
+    rho, active = start
+    max_iter = 10 * K if max_iter is None else max_iter
+    for it in range(1, max_iter + 1):
+        sol = _equality_qp(Q, W, b, rho, active)
+        if sol is None:  # the working set keeps W[free] of rank m, up to rounding
+            return (*nan, it, False)
+        target, mu = sol
+        step = target - rho
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(step < 0, (lower - rho) / step,
+                            np.where(step > 0, (upper - rho) / step, np.inf))
+        room[active] = np.inf
+        block = int(np.argmin(room))
+        if room[block] < 1.0 and _keeps_rank(W, active, block):
+            rho = np.clip(rho + room[block] * step, lower, upper)
+            rho[block] = lower if step[block] < 0 else upper
+            active[block] = True
+            continue
+        if room[block] < 1.0:
+            # the free values are fixed by the equality alone: a step that is not
+            # rounding-sized means the iterate was not feasible
+            if np.max(np.maximum(lower - target, target - upper)) > 1e-12:
+                return (*nan, it, False)
+            target = np.clip(target, lower, upper)
+        rho = target
+        lam = Q @ rho - W @ mu
+        lam[~active] = 0.0
+        tol = _TOL * (1.0 + np.abs(W @ mu).max())
+        wrong = np.where(rho == lower, -lam, lam)
+        wrong[~active] = 0.0
+        worst = int(np.argmax(wrong))
+        if wrong[worst] <= tol:
+            return rho, mu, lam, it, True
+        active[worst] = False
+    return (*nan, max_iter, False)

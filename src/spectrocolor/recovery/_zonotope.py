@@ -80,12 +80,20 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
     excess = np.empty(N)
     facet = np.empty(N, dtype=np.int64)
     scaled = facets.normals if cone else facets.normals / facets.support[:, None]
+    half = len(scaled) // 2
     for start in range(0, N, _CHUNK):
         d = b[start:start + _CHUNK] - facets.centre
         rows = np.arange(len(d))
-        rel = d @ scaled.T
-        k = np.argmax(rel, axis=1)
-        top = rel[rows, k]
+        if cone:
+            rel = d @ scaled.T
+            k = np.argmax(rel, axis=1)
+            top = rel[rows, k]
+        else:  # the solid's facets come in opposite pairs (n, -n) with equal support
+            rel = d @ scaled[:half].T
+            k = np.argmax(np.abs(rel), axis=1)
+            top = rel[rows, k]
+            k = np.where(top >= 0, k, k + half)
+            top = np.abs(top)
         if cone:
             norm = np.linalg.norm(d, axis=1)
             ratio[start:start + len(d)] = np.where(norm > 0, top / np.where(norm > 0, norm, 1), 0)

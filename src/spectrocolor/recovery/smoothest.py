@@ -329,8 +329,8 @@ def _certify(prob, b, rho, mu, lam, lower, upper, converged):
             violation = np.maximum(lower - rho, rho - upper).max(axis=1).clip(min=0.0)
             at_lower = rho == lower
             at_upper = rho == upper
-            sign = np.maximum(np.where(at_lower, -lam, 0.0), np.where(at_upper, lam, 0.0))
-            sign = np.maximum(sign, np.where(at_lower | at_upper, 0.0, np.abs(lam))).max(axis=1)
+            # wrong sign: negative at a lower bound, positive at an upper one, non-zero off them
+            sign = np.where(at_lower, -lam, np.where(at_upper, lam, np.abs(lam))).max(axis=1)
             gap = np.minimum(np.abs(rho - lower), np.abs(upper - rho))
             comp = (np.abs(lam) * gap).max(axis=1)
         lam_used = np.where(np.isnan(lam), 0.0, lam)

@@ -1,0 +1,152 @@
+"""Plots for reflectance recovery (matplotlib, imported only when a plot is made).
+
+Recovered against measured reflectance curves (van Trigt 1990, Fig. 2), domains of validity
+of the unconstrained solution (Figs. 7–12), MacAdam limits, and metamer mismatch regions.
+Every function draws into ``ax`` when given and otherwise into a new
+:class:`matplotlib.figure.Figure` (no pyplot state); it returns the axes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import SpectrumError
+from ..spectrum import Spectrum
+
+
+def _axes(ax, figsize):
+    if ax is not None:
+        return ax
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize, layout="constrained").add_subplot()
+
+
+def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=None,
+                       title: str | None = None, labels=None):
+    """Reflectance curves (solid), optionally against measured ones (dashed, same colour).
+
+    Parameters
+    ----------
+    spectrum : Spectrum (..., K)
+        Reflectance factors (0–1), e.g. ``smoothest_reflectance(...).spectrum``.
+    measured : Spectrum, optional
+        The same number of curves, on any grid (e.g. the measured samples).
+    labels : sequence of str, optional
+        Legend entries (default: ``spectrum.names``).
+    """
+    values = np.atleast_2d(spectrum.values).reshape(-1, len(spectrum.wavelengths_nm))
+    ref = None
+    if measured is not None:
+        ref = np.atleast_2d(measured.values).reshape(-1, len(measured.wavelengths_nm))
+        if len(ref) != len(values):
+            raise SpectrumError(f"measured: expected {len(values)} curves to compare, got {len(ref)}")
+    names = labels if labels is not None else (spectrum.names or [None] * len(values))
+    ax = _axes(ax, (6.4, 4.0))
+    for i, curve in enumerate(values):
+        ax.plot(spectrum.wavelengths_nm, curve, color=f"C{i % 10}", lw=1.6, label=names[i])
+        if ref is not None:
+            ax.plot(measured.wavelengths_nm, ref[i], color=f"C{i % 10}", lw=1.2, ls="--")
+    ax.set_xlabel("wavelength (nm)")
+    ax.set_ylabel("reflectance factor")
+    ax.set_ylim(-0.02, 1.05)
+    ax.grid(True, lw=0.3, color="0.85")
+    if any(n is not None for n in names) and len(values) <= 12:
+        ax.legend(fontsize=7, ncol=2 if len(values) > 6 else 1)
+    if title is not None:
+        ax.set_title(title)
+    return ax
+
+
+def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=None):
+    """A domain of validity on the CIE 1931 xy diagram (van Trigt 1990, Figs. 7–12).
+
+    Filled contours: the maximum luminance factor Y/Y0 for which the unconstrained solution
+    stays ≤ 1; outline: the region where it is non-negative; dashed: the straight lines where
+    it vanishes at the first (λ_b) and the last (λ_e) sample.
+    """
+    from ..plot import chromaticity_diagram
+
+    ax = chromaticity_diagram(spaces=(), whites=(domain.illuminant,), planckian=False,
+                              fill=False, ax=_axes(ax, (6.4, 6.4)),
+                              title=title or f"Domain of validity, {domain.illuminant}, "
+                              f"{domain.wavelengths_nm[0]:g}–{domain.wavelengths_nm[-1]:g} nm")
+    x, y = np.meshgrid(np.linspace(0.0, 0.8, 321), np.linspace(0.001, 0.9, 361))
+    ymax = domain.max_luminance_factor(np.stack([x, y], axis=-1))
+    levels = levels if levels is not None else np.linspace(0.0, 1.0, 11)
+    cs = ax.contourf(x, y, ymax, levels=levels, cmap="viridis", zorder=1, alpha=0.85)
+    ax.figure.colorbar(cs, ax=ax, shrink=0.7, label="max. luminance factor Y/Y0 with ρ ≤ 1")
+    poly = np.vstack([domain.region_xy, domain.region_xy[:1]])
+    ax.plot(poly[:, 0], poly[:, 1], color="black", lw=1.4, zorder=6, label="ρ ≥ 0 region")
+    t = np.linspace(-0.1, 1.0, 2)
+    for (a, b, c), name, style in zip(domain.end_lines(), ("λ_b", "λ_e"), ("--", ":"),
+                                      strict=True):
+        nm = domain.wavelengths_nm[0 if name == "λ_b" else -1]
+        if abs(b) >= abs(a):
+            xs, ys = t, -(a * t + c) / b
+        else:
+            xs, ys = -(b * t + c) / a, t
+        ax.plot(xs, ys, color="crimson", lw=1.0, ls=style, zorder=6,
+                label=f"ρ({name} = {nm:g} nm) = 0")
+    ax.set_xlim(-0.02, 0.82)
+    ax.set_ylim(-0.02, 0.9)
+    ax.legend(loc="upper right", fontsize=7, framealpha=0.9)
+    return ax
+
+
+def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65",
+                        observer="1931", wavelengths=(380.0, 780.0, 5.0), ax=None):
+    """MacAdam limits (optimal colours) at several luminance factors Y (percent)."""
+    from ..coordinates import xy
+    from ..plot import chromaticity_diagram
+    from .optimal import macadam_limits
+
+    curves = [np.vstack([c, c[:1]]) for c in (
+        xy(macadam_limits(Y, illuminant, observer, wavelengths)) for Y in luminance_factors)]
+    return chromaticity_diagram(
+        spaces=(), whites=(illuminant,), planckian=False, fill=False,
+        curves=curves, curve_labels=[f"Y = {Y:g} %" for Y in luminance_factors],
+        ax=_axes(ax, (6.4, 6.4)), title=f"MacAdam limits, {illuminant}, observer {observer}")
+
+
+def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_second=None, ax=None):
+    """A metamer mismatch region seen in CIELAB a*b* under the second illuminant.
+
+    The outline is the convex hull of the boundary points projected on a*b* (the projection
+    of the convex region in XYZ, curved by CIELAB's non-linearity); ``sample_XYZ100_second``
+    and ``metamers_XYZ100_second`` (e.g. smooth metamers) are marked.
+    """
+    from scipy.spatial import ConvexHull
+
+    from ..coordinates import lab
+
+    W_white = _second_white(region)
+    ab = lab(region.boundary_XYZ100, W_white)[:, 1:]
+    ax = _axes(ax, (5.6, 5.2))
+    hull = ConvexHull(ab)
+    loop = np.append(hull.vertices, hull.vertices[0])
+    ax.fill(ab[loop, 0], ab[loop, 1], color="0.85", zorder=1, label="mismatch region (a*b*)")
+    ax.plot(ab[loop, 0], ab[loop, 1], color="0.3", lw=1.0, zorder=2)
+    ax.plot(ab[:, 0], ab[:, 1], ".", color="0.4", ms=3, zorder=3, label="extreme metamers")
+    if metamers_XYZ100_second is not None:
+        m = lab(np.atleast_2d(metamers_XYZ100_second), W_white)[:, 1:]
+        ax.plot(m[:, 0], m[:, 1], "o", mfc="C1", mec="black", ms=6, zorder=5,
+                label="smooth metamers")
+    if sample_XYZ100_second is not None:
+        s = lab(np.asarray(sample_XYZ100_second), W_white)[1:]
+        ax.plot(*s, "*", color="C3", mec="black", ms=13, zorder=6, label="sample")
+    ax.set_xlabel("a*")
+    ax.set_ylabel("b*")
+    ax.set_aspect("equal")
+    ax.grid(True, lw=0.3, color="0.85")
+    ax.legend(fontsize=7)
+    ax.set_title(f"Metamer mismatch: match under {region.illuminant}, seen under "
+                 f"{region.second_illuminant}")
+    return ax
+
+
+def _second_white(region):
+    from ..colorimetry import weights
+
+    grid = region.extreme_metamers.wavelengths_nm
+    return np.asarray(weights(grid, region.observer, region.second_illuminant)).sum(axis=0)
