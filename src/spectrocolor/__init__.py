@@ -63,6 +63,12 @@ _PUBLIC: dict[str, str] = {
     "cohen_projector": "recovery.metamerism",
     "metamerism_index": "recovery.metamerism",
     "colour_shift": "recovery.metamerism",
+    "domain_of_validity": "recovery.validity",
+    "DomainOfValidity": "recovery.validity",
+    "metamer_mismatch_region": "recovery.metamers",
+    "MismatchRegion": "recovery.metamers",
+    "smoothest_metamer": "recovery.metamers",
+    "most_different_metamer": "recovery.metamers",
     # display
     "RGBSpace": "display.spaces",
     "rgb_space": "display.spaces",
