@@ -227,6 +227,12 @@ def test_import_resamples_explicitly_and_export_round_trips(client):
         ("/api/model", {"observer": "1888"}, "observer"),
         ("/api/metamer", {"target": [0] * 31}, "black"),
         ("/api/import", {"filename": "x.csv", "content": "no header"}, "x.csv"),
+        ("/api/import", {"filename": "x.json",
+                         "content": '{"wavelengths_nm": [400, 700], "values": [NaN, 1]}'},
+         "NaN or infinite"),
+        ("/api/import", {"filename": "x.json",
+                         "content": '{"wavelengths_nm": [400, 700], "values": [1e400, 1]}'},
+         "NaN or infinite"),
         ("/api/export", {"names": ["../x"], "spectra": [[1] * 31]}, "names"),
     ],
 )

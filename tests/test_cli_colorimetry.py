@@ -83,3 +83,30 @@ def test_malformed_files_give_one_line_not_a_traceback(tmp_path, content, messag
 def test_missing_file():
     result = run("xyz", "/no/such/file.csv")
     assert result.returncode == 2 and "no such file" in result.stderr
+
+
+@pytest.mark.parametrize("interval", ["0", "-10", "nan"])
+def test_interval_must_be_positive(interval, capsys):
+    from spectrocolor.cli import main
+
+    assert main(["xyz", COLORCHECKER, f"--interval={interval}"]) == 2
+    assert "--interval: must be a positive number" in capsys.readouterr().err
+
+
+def test_range_errors_name_the_command_line_option(tmp_path, capsys):
+    from spectrocolor.cli import main
+
+    # the 2015 observers start at 390 nm; the ColorChecker data at 380 nm
+    assert main(["describe", COLORCHECKER, "--observer", "2015-10", "--illuminant", "D65"]) == 2
+    assert "--range START STOP" in capsys.readouterr().err
+    assert main(["describe", COLORCHECKER, "--observer", "2015-10", "--illuminant", "D65",
+                 "--range", "390", "730"]) == 0
+
+
+def test_binary_file_is_one_line(tmp_path, capsys):
+    from spectrocolor.cli import main
+
+    path = tmp_path / "photo.csv"
+    path.write_bytes(bytes(range(256)))
+    assert main(["xyz", str(path)]) == 2
+    assert "not UTF-8" in capsys.readouterr().err

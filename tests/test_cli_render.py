@@ -92,3 +92,20 @@ def test_diagram(spectra_file, tmp_path, capsys):
     assert main(["diagram", str(spectra_file), "--out", str(out), "--kind", "uv"]) == 0
     assert out.stat().st_size > 10_000
     assert "2 points" in capsys.readouterr().out
+
+
+def test_swatch_size_and_reflectance_range_are_checked(spectra_file, tmp_path, capsys):
+    out = tmp_path / "a.png"
+    assert main(["render", str(spectra_file), "--size", "100000", "--out", str(out)]) == 2
+    assert "--size must be 1-1024" in capsys.readouterr().err
+    percent = tmp_path / "pct.csv"
+    percent.write_text(CSV.replace("0.5,", "50,").replace("0.9", "90").replace("0.05", "5"))
+    assert main(["render", str(percent), "--out", str(out)]) == 2
+    assert "percentages" in capsys.readouterr().err
+    negative = tmp_path / "neg.csv"
+    negative.write_text(CSV.replace("0.5,", "-0.5,"))
+    assert main(["render", str(negative), "--out", str(out)]) == 2
+    assert "negative reflectance -0.5" in capsys.readouterr().err
+    assert not out.exists()
+    # lights may be any size and are normalised to the display
+    assert main(["render", str(percent), "--illuminant", "none", "--out", str(out)]) == 0

@@ -127,3 +127,12 @@ def test_bad_input():
         sc.render([np.nan, 1.0, 1.0])
     with pytest.raises(sc.ColorimetryError, match="gamut 'squash' is unknown"):
         sc.render([1.0, 1.0, 1.0], gamut="squash")
+
+
+def test_bad_types_are_colorimetry_errors():
+    with pytest.raises(sc.ColorimetryError, match="XYZ100 must be numbers"):
+        sc.render("abc")
+    with pytest.raises(sc.ColorimetryError, match="needs scale, a positive number"):
+        sc.render([10.0, 10.0, 10.0], normalise="fixed", scale="2")
+    fixed = sc.render([10.0, 10.0, 10.0], normalise="fixed", scale=np.float64(2.0))
+    assert fixed.scale == 2.0

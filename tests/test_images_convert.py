@@ -259,6 +259,8 @@ def test_cli_image_errors(tmp_path, capsys):
         (["--illuminant", "D65", "--quantity", "xyz", "--out", "x.png"], "write it to a .tif"),
         (["--illuminant", "D65", "--out", "x.png", "--wavelengths", "400:690:10"],
          "30 wavelengths for 31 bands"),
+        (["--illuminant", "D65", "--out", "x.png", "--wavelengths", "400:700:10",
+          "--wavelength-units", "furlong"], "unknown wavelength units 'furlong'"),
     ]
     for extra, message in cases:
         assert main(["image", str(tmp_path / "cube.npy"), *extra]) == 2

@@ -423,3 +423,20 @@ def test_writer_errors(tmp_path):
         write_image(tmp_path / "a.png", np.zeros((2, 2, 4), np.uint8))
     with pytest.raises(SpectrumError, match="unknown image format '.jpg'"):
         write_image(tmp_path / "a.jpg", np.zeros((2, 2, 3), np.uint8))
+
+
+@pytest.mark.parametrize("suffix", [".npy", ".npz", ".tif"])
+def test_garbage_files_are_spectrum_errors(tmp_path, suffix):
+    path = tmp_path / f"garbage{suffix}"
+    path.write_bytes(b"garbage, not an array")
+    with pytest.raises(SpectrumError, match="not a"):
+        read_cube(path, wavelengths_nm=np.arange(400.0, 701.0, 10.0))
+
+
+def test_text_arrays_are_not_cubes(tmp_path):
+    np.save(tmp_path / "text.npy", np.full((2, 2, 3), "a"))
+    with pytest.raises(SpectrumError, match="values must be numbers"):
+        read_cube(tmp_path / "text.npy", wavelengths_nm=[400.0, 500.0, 600.0])
+    np.savez(tmp_path / "text.npz", values=np.full((2, 2, 3), "a"), wavelengths_nm=[400, 500, 600])
+    with pytest.raises(SpectrumError, match="values must be numbers"):
+        read_cube(tmp_path / "text.npz")

@@ -162,3 +162,21 @@ def test_cli_report_percent(tmp_path, capsys):
     assert float(rows[2].split(",")[2]) == pytest.approx(expected.XYZ[0, 1], abs=1e-4)
     assert main(["report", str(tmp_path / "pct.csv"), "--illuminant", "C", "--percent",
                  "--out", str(tmp_path / "r.pdf")]) == 2
+
+
+def test_html_with_more_curves_than_are_drawn_individually(tmp_path):
+    # 21-39 samples: more than the 20 drawn one by one, fewer than the 40 picked at random
+    rng = np.random.default_rng(7)
+    values = 0.2 + 0.6 * rng.random((30, GRID.size))
+    report = measurement_report(sc.Spectrum(GRID, values), "D65", "1931")
+    text = report_html(report)  # raised ValueError: larger sample than population
+    assert "<img alt='reflectance curves'" in text and text.count("<tr><td>sample ") == 30
+
+
+def test_cli_report_rejects_negative_reflectance(tmp_path, capsys):
+    spectra = _alloys()
+    sc.write_spectra(sc.Spectrum(GRID, -spectra.values, spectra.names), tmp_path / "neg.csv")
+    assert main(["report", str(tmp_path / "neg.csv"), "--illuminant", "C",
+                 "--out", str(tmp_path / "r.csv")]) == 2
+    assert "negative reflectance" in capsys.readouterr().err
+    assert not (tmp_path / "r.csv").exists()

@@ -138,3 +138,24 @@ def test_linear_resampling_is_linear(a, b):
     lhs = Spectrum(g, 2 * a + b).resample(target, "sprague").values
     rhs = 2 * Spectrum(g, a).resample(target, "sprague").values + Spectrum(g, b).resample(target, "sprague").values
     np.testing.assert_allclose(lhs, rhs, atol=1e-9)
+
+
+def test_bad_arguments_are_spectrum_errors_naming_the_argument():
+    grid = sc.wavelength_grid(400, 700, 10)
+    s = Spectrum(grid, np.full(grid.size, 0.5))
+    cases = [
+        (lambda: Spectrum([400, 500], [1, 2], names=5), "names"),
+        (lambda: Spectrum.constant("a", grid), "value"),
+        (lambda: Spectrum.block("a", 600, grid), "start_nm"),
+        (lambda: Spectrum.gaussian(np.nan, 10, grid), "peak_nm"),
+        (lambda: s.resample(grid, "foo"), "method"),
+        (lambda: s.restrict("a", "b"), "start_nm"),
+        (lambda: s + np.ones(5), "addition"),
+        (lambda: s / 0, "division"),
+        (lambda: s / Spectrum(grid, np.zeros(grid.size)), "division"),
+        (lambda: sc.wavelength_grid(400, 700, 1e-9), "step_nm"),
+    ]
+    for call, argument in cases:
+        with pytest.raises(SpectrumError, match=argument):
+            call()
+    np.testing.assert_array_equal((s / 2).values, 0.25)

@@ -65,3 +65,34 @@ def test_bad_json(tmp_path):
     path.write_text(json.dumps({"spectra": {"a": [1, 2]}}))
     with pytest.raises(SpectrumError, match="wavelengths_nm"):
         sc.read_spectra(path)
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ('{"wavelengths_nm": [400, 500], "values": [NaN, 1]}', "NaN or infinite"),
+        ('{"wavelengths_nm": [400, 500], "values": [1e400, 1]}', "NaN or infinite"),
+        ('{"wavelengths_nm": [400, 500], "values": [[1, 2], [3]]}', "'values' must hold numbers"),
+        ('{"wavelengths_nm": [400, 500], "values": {"a": 1}}', "'values' must hold numbers"),
+        ('{"wavelengths_nm": [400, 500], "spectra": {"a": [1, "x"]}}', "'spectra' must hold numbers"),
+        ('{"wavelengths_nm": [400, 500], "values": [1, 2], "names": 5}', "names: expected a sequence"),
+    ],
+)
+def test_malformed_json_values_get_clear_errors(tmp_path, content, message):
+    path = tmp_path / "bad.json"
+    path.write_text(content)
+    with pytest.raises(SpectrumError, match=message):
+        sc.read_spectra(path)
+
+
+def test_folder_binary_file_and_wrong_types_are_spectrum_errors(tmp_path):
+    with pytest.raises(SpectrumError, match="is a folder"):
+        sc.read_spectra(tmp_path)
+    binary = tmp_path / "latin1.csv"
+    binary.write_bytes("wavelength_µm,a\n0.4,0.1\n0.5,0.2\n".encode("latin-1"))
+    with pytest.raises(SpectrumError, match="not UTF-8"):
+        sc.read_spectra(binary)
+    with pytest.raises(SpectrumError, match="path: expected a file name"):
+        sc.read_spectra(None)
+    with pytest.raises(SpectrumError, match="spectrum: expected a Spectrum"):
+        sc.write_spectra(np.ones(3), tmp_path / "x.csv")

@@ -213,3 +213,26 @@ def test_cli_strip_map_and_errors(tmp_path, monkeypatch, capsys):
     assert np.asarray(Image.open(image)).shape == (8, 64, 3)
     assert cli.main(["thinfilm", "strip", "--film", "unobtainium", "--out", str(strip)]) == 2
     assert "unknown medium" in capsys.readouterr().err
+
+
+def test_cli_rejects_bad_sizes_layers_and_plot_files(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(cli, "COMMAND_MODULES", ("thinfilm",))
+    out = tmp_path / "x.png"
+    cases = [
+        (["zawischa", "--out", str(out), "--locus", str(tmp_path / "l.txt")], "--locus must end in"),
+        (["locus", "--out", str(tmp_path / "l.txt")], "--out must end in"),
+        (["strip", "--under", "water:-5", "--out", str(out)], "must be a finite number of nm >= 0"),
+        (["strip", "--columns", "10000000", "--out", str(out)], "at most 100000 columns"),
+        (["map", "--width", "100000", "--height", "100000", "--out", str(out)], "1-16384 pixels"),
+    ]
+    for argv, message in cases:
+        assert cli.main(["thinfilm", *argv]) == 2, argv
+        err = capsys.readouterr().err
+        assert message in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()
+
+
+def test_zawischa_strip_needs_columns():
+    for columns in (0, -3, 2.5):
+        with pytest.raises(SpectrumError, match="columns"):
+            zawischa_strip(columns=columns)

@@ -330,3 +330,14 @@ def test_named_media_and_bad_input():
         stack_optics(np.array([1.0, 2.0]), WL, [1.5])
     with pytest.raises(SpectrumError, match="k >= 0"):
         thin_film(100.0, WL, 1.5 - 0.1j)
+
+
+def test_bad_thickness_and_angle_types_are_short_spectrum_errors():
+    wl = np.arange(400.0, 701.0, 10.0)
+    with pytest.raises(SpectrumError, match="thickness.*expected numbers"):
+        soap_film("thick", wl)
+    with pytest.raises(SpectrumError, match="angle_deg: expected numbers"):
+        soap_film([100.0], wl, angle_deg="steep")
+    with pytest.raises(SpectrumError) as info:
+        soap_film(np.full((100, 100), -5.0), wl)
+    assert "-5.0" in str(info.value) and "\n" not in str(info.value)

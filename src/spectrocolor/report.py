@@ -323,6 +323,7 @@ def _curves(report: MeasurementReport, max_curves: int = 20, shown: int = 40) ->
         ax.set_title("Reflectance curves")
     else:
         low, median, high = np.percentile(values, [5, 50, 95], axis=0)
+        shown = min(shown, len(report))
         picks = np.random.default_rng(0).choice(len(report), size=shown, replace=False)
         for i in picks:
             ax.plot(grid, values[i], lw=0.5, color=f"C{i % 10}", alpha=0.6, rasterized=True)

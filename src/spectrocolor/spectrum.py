@@ -14,12 +14,26 @@ from numbers import Real
 import numpy as np
 
 from .errors import SpectrumError
-from .interpolation import interpolation_matrix
+from .interpolation import METHODS, interpolation_matrix
 
 ArrayLike = np.ndarray | Sequence[float] | float
 
 #: Wavelengths below this (in nm) are taken as a sign that the data is in micrometres.
 _SMALLEST_PLAUSIBLE_NM = 100.0
+
+#: The most samples a generated grid may have (0.001 nm steps over 360-830 nm is 470 001).
+_MAX_GRID_SAMPLES = 10_000_000
+
+
+def _finite_number(name: str, value) -> float:
+    """``value`` as a float, or a SpectrumError naming ``name`` if it is not a finite number."""
+    try:
+        number = float(value) if not isinstance(value, (str, bytes, bool)) and np.ndim(value) == 0 else None
+    except (TypeError, ValueError):
+        number = None
+    if number is None or not np.isfinite(number):
+        raise SpectrumError(f"{name}: expected a finite number, got {value!r:.80}")
+    return number
 
 
 def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarray:
@@ -36,6 +50,11 @@ def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarr
     if stop_nm <= start_nm:
         raise SpectrumError(f"stop_nm: must exceed start_nm ({start_nm!r}), got {stop_nm!r}")
     count = (stop_nm - start_nm) / step_nm
+    if count + 1 > _MAX_GRID_SAMPLES:
+        raise SpectrumError(
+            f"step_nm: {step_nm!r} nm over {start_nm!r}–{stop_nm!r} nm gives {count + 1:.3g} samples; "
+            f"at most {_MAX_GRID_SAMPLES} are allowed"
+        )
     if abs(count - round(count)) > 1e-9 * max(1.0, count):
         raise SpectrumError(f"step_nm: {step_nm!r} does not divide {start_nm!r}–{stop_nm!r} nm into whole steps")
     return start_nm + step_nm * np.arange(round(count) + 1, dtype=float)
@@ -117,7 +136,9 @@ class Spectrum:
             return None
         if isinstance(names, str):
             names = (names,)
-        names = tuple(str(n) for n in names)
+        if not isinstance(names, Sequence) or not all(isinstance(n, str) for n in names):
+            raise SpectrumError(f"names: expected a sequence of strings, got {names!r:.80}")
+        names = tuple(names)
         expected = 1 if self._values.ndim == 1 else self._values.shape[0]
         if self._values.ndim > 2 or len(names) != expected:
             raise SpectrumError(
@@ -166,7 +187,7 @@ class Spectrum:
     def constant(cls, value: float, wavelengths_nm: ArrayLike) -> Spectrum:
         """The same ``value`` at every wavelength (e.g. 1 for the perfect reflector)."""
         grid = validate_wavelengths(wavelengths_nm)
-        return cls(grid, np.full(grid.size, float(value)))
+        return cls(grid, np.full(grid.size, _finite_number("value", value)))
 
     @classmethod
     def block(
@@ -183,6 +204,8 @@ class Spectrum:
         the purple optimal colours.
         """
         grid = validate_wavelengths(wavelengths_nm)
+        start_nm, stop_nm = _finite_number("start_nm", start_nm), _finite_number("stop_nm", stop_nm)
+        inside, outside = _finite_number("inside", inside), _finite_number("outside", outside)
         if start_nm <= stop_nm:
             mask = (grid >= start_nm) & (grid <= stop_nm)
         else:
@@ -192,7 +215,8 @@ class Spectrum:
     @classmethod
     def gaussian(cls, peak_nm: float, fwhm_nm: float, wavelengths_nm: ArrayLike, peak: float = 1.0) -> Spectrum:
         """Gaussian band of full width at half maximum ``fwhm_nm`` centred on ``peak_nm``."""
-        if not fwhm_nm > 0:
+        peak_nm, peak = _finite_number("peak_nm", peak_nm), _finite_number("peak", peak)
+        if not _finite_number("fwhm_nm", fwhm_nm) > 0:
             raise SpectrumError(f"fwhm_nm: must be positive, got {fwhm_nm!r}")
         grid = validate_wavelengths(wavelengths_nm)
         sigma = fwhm_nm / (2.0 * np.sqrt(2.0 * np.log(2.0)))
@@ -224,6 +248,8 @@ class Spectrum:
 
         Never extrapolates: a target outside ``wavelengths_nm``'s range raises ``SpectrumError``.
         """
+        if method not in METHODS:
+            raise SpectrumError(f"method: {method!r} is not a resampling method; choose one of {METHODS}")
         target = validate_wavelengths(wavelengths_nm)
         if target.shape == self._wavelengths_nm.shape and np.array_equal(target, self._wavelengths_nm):
             return self
@@ -233,6 +259,7 @@ class Spectrum:
     def restrict(self, start_nm: float, stop_nm: float) -> Spectrum:
         """The samples with ``start_nm ≤ λ ≤ stop_nm`` (no interpolation)."""
         grid = self._wavelengths_nm
+        start_nm, stop_nm = _finite_number("start_nm", start_nm), _finite_number("stop_nm", stop_nm)
         keep = (grid >= start_nm - 1e-9) & (grid <= stop_nm + 1e-9)
         if not np.any(keep):
             raise SpectrumError(
@@ -273,7 +300,18 @@ class Spectrum:
 
     def _apply(self, other, operation: str, func, reflected: bool = False) -> Spectrum:
         operand = self._operand(other, operation)
-        result = func(operand, self._values) if reflected else func(self._values, operand)
+        divisor = self._values if reflected else operand
+        if func is np.true_divide and np.any(np.asarray(divisor) == 0):
+            raise SpectrumError(
+                f"{operation}: the divisor is zero somewhere; spectrocolor never makes inf or NaN silently"
+            )
+        try:
+            result = func(operand, self._values) if reflected else func(self._values, operand)
+        except ValueError:
+            raise SpectrumError(
+                f"{operation}: an array of shape {np.shape(operand)} does not broadcast against values "
+                f"of shape {self._values.shape} (the last axis is wavelength, K = {self._wavelengths_nm.size})"
+            ) from None
         names = self._names if np.shape(result) == self._values.shape else None
         return Spectrum(self._wavelengths_nm, result, names)
 
@@ -333,10 +371,20 @@ class Spectrum:
             if not isinstance(spectra, dict) or not spectra:
                 raise SpectrumError("JSON: 'spectra' must be a non-empty object of name → values")
             names = list(spectra)
-            values = np.array([spectra[n] for n in names], dtype=float)
+            values = _json_numbers([spectra[n] for n in names], "spectra")
             if values.shape[0] == 1:
                 return cls(data["wavelengths_nm"], values[0], names)
             return cls(data["wavelengths_nm"], values, names)
         if "values" in data:
-            return cls(data["wavelengths_nm"], np.array(data["values"], dtype=float), data.get("names"))
+            return cls(data["wavelengths_nm"], _json_numbers(data["values"], "values"), data.get("names"))
         raise SpectrumError("JSON: expected a 'spectra' object or a 'values' array")
+
+
+def _json_numbers(data, argument: str) -> np.ndarray:
+    """A JSON list (of equal-length lists) of numbers as a float array, or a SpectrumError."""
+    try:
+        return np.array(data, dtype=float)
+    except (TypeError, ValueError):
+        raise SpectrumError(
+            f"JSON: {argument!r} must hold numbers: one list per spectrum, all of the same length"
+        ) from None

@@ -92,19 +92,31 @@ def read_spectra(path: str | Path) -> Spectrum:
     single column) with the column names as ``names``. Wavelengths must be strictly
     increasing; a wavelength header in micrometres (``wavelength_um``) is converted to nm.
     """
+    if not isinstance(path, (str, Path)):
+        raise SpectrumError(f"path: expected a file name (str or Path), got {type(path).__name__}")
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such file")
-    text = path.read_text(encoding="utf-8-sig")
+    if path.is_dir():
+        raise SpectrumError(f"{path}: is a folder, not a spectral file (.csv or .json)")
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise SpectrumError(
+            f"{path}: not UTF-8 text (byte {exc.start}); save the table as UTF-8 CSV or JSON"
+        ) from None
     if path.suffix.lower() == ".json":
         try:
             data = json.loads(text)
         except json.JSONDecodeError as exc:
             raise SpectrumError(f"{path}: not valid JSON ({exc})") from None
         try:
-            return Spectrum.from_dict(data)
+            spectrum = Spectrum.from_dict(data)
         except (SpectrumError, ValueError, TypeError) as exc:
             raise SpectrumError(f"{path}: {exc}") from None
+        if not np.all(np.isfinite(spectrum.values)):
+            raise SpectrumError(f"{path}: values: NaN or infinite numbers; every value must be finite")
+        return spectrum
     return _parse_csv(text, str(path))
 
 
@@ -124,6 +136,8 @@ def spectra_to_csv(spectrum: Spectrum) -> str:
 
 def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:
     """Write ``spectrum`` to ``path`` as CSV (``.csv``) or JSON (``.json``); returns the path."""
+    if not isinstance(spectrum, Spectrum):
+        raise SpectrumError(f"spectrum: expected a Spectrum, got {type(spectrum).__name__}")
     path = Path(path)
     if path.suffix.lower() == ".json":
         path.write_text(json.dumps(spectrum.to_dict(), indent=1), encoding="utf-8")

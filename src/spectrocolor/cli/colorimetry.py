@@ -10,7 +10,7 @@ import sys
 
 import numpy as np
 
-from ..errors import SpectrumError
+from ..errors import ColorimetryError, SpectrumError
 from ..spectrum import Spectrum
 from . import UserError
 
@@ -52,7 +52,9 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
     if args.range:
         spectra = spectra.restrict(*args.range)
-    if args.interval:
+    if args.interval is not None:
+        if not (np.isfinite(args.interval) and args.interval > 0):
+            raise UserError(f"--interval: must be a positive number of nm, got {args.interval:g}")
         grid = spectra.wavelengths_nm
         on_step = np.isclose(np.mod(grid + 1e-9, args.interval), 0, atol=1e-6)
         if on_step.sum() < 2:
@@ -90,8 +92,9 @@ def compute_XYZ(spectra: Spectrum, args: argparse.Namespace) -> np.ndarray:
     illuminant = None if args.light else args.illuminant
     try:
         return np.atleast_2d(tristimulus(spectra, args.observer, illuminant, args.method))
-    except SpectrumError as exc:
-        raise UserError(str(exc)) from None
+    except (SpectrumError, ColorimetryError) as exc:
+        hint = " (on the command line: --range START STOP)" if "Spectrum.restrict" in str(exc) else ""
+        raise UserError(f"{exc}{hint}") from None
 
 
 def emit(rows: list[dict], fmt: str, stream=None) -> None:

@@ -104,6 +104,10 @@ def _image(args: argparse.Namespace) -> int:
         raise UserError(f"--out must end in .png or .tif/.tiff; got {args.out!r}")
     if suffix == "png" and args.quantity != "rgb":
         raise UserError(f"--quantity {args.quantity} gives floats: write it to a .tif file")
+    if args.wavelength_units is not None:
+        from ..images.cube import wavelengths_to_nm
+
+        wavelengths_to_nm([1.0], args.wavelength_units, "--wavelength-units")  # known units only
     wavelengths = parse_wavelengths(args.wavelengths) if args.wavelengths else None
     cube = read_cube(args.cube, wavelengths_nm=wavelengths,
                      wavelength_units=args.wavelength_units, variable=args.variable)

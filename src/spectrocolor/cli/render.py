@@ -10,6 +10,10 @@ from ..display.adaptation import ADAPTATION_METHODS
 from . import UserError
 
 _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
+#: Largest swatch side in pixels (the image is about 8 swatches wide).
+_MAX_SWATCH_PX = 1024
+#: Reflectance samples with Y above this (white = 100) are almost surely percentages.
+_PERCENT_SUSPICION_Y = 150.0
 
 
 def register(subparsers) -> None:
@@ -90,6 +94,11 @@ def _tristimulus(args):
 
     spectra = read_spectra(args.file)
     illuminant = _illuminant(args)
+    if illuminant is not None and np.min(spectra.values) < 0:
+        raise UserError(
+            f"{args.file}: negative reflectance {np.min(spectra.values):g}; reflectance factors are "
+            "0-1 (use --illuminant none for lights)"
+        )
     XYZ = tristimulus(spectra, args.observer, illuminant).reshape(-1, 3)
     W = weights(spectra.wavelengths_nm, args.observer, illuminant)
     n = XYZ.shape[0]
@@ -104,7 +113,15 @@ def _render(args) -> int:
     space = rgb_space(args.space)
     if not args.out.lower().endswith((".png", ".ppm")):
         raise UserError(f"--out must end in .png or .ppm, got {args.out!r}")
+    if not 1 <= args.size <= _MAX_SWATCH_PX:
+        raise UserError(f"--size must be 1-{_MAX_SWATCH_PX} pixels, got {args.size}")
     XYZ, W, names, illuminant = _tristimulus(args)
+    if illuminant is not None and np.max(XYZ[:, 1]) > _PERCENT_SUSPICION_Y:
+        raise UserError(
+            f"{args.file}: Y reaches {np.max(XYZ[:, 1]):.4g} under {illuminant} (the perfect white is "
+            "100): are the reflectances percentages? Divide them by 100, or use --illuminant none "
+            "for lights"
+        )
     adapt_note = "no adaptation"
     if illuminant is not None and args.adapt != "none":
         A = adaptation_matrix(W.sum(axis=0), space.white_XYZ, args.adapt)

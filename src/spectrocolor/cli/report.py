@@ -52,6 +52,11 @@ def _report(args: argparse.Namespace) -> int:
             f"{args.file}: reflectances reach {np.nanmax(spectra.values):g}; reflectance factors "
             "are 0-1 -- if the file is in percent, pass --percent"
         )
+    if np.nanmin(spectra.values) < 0:
+        raise UserError(
+            f"{args.file}: negative reflectance {np.nanmin(spectra.values):g}; reflectance "
+            "factors are 0-1"
+        )
     if args.page_rows < 1:
         raise UserError(f"--page-rows must be at least 1; got {args.page_rows}")
     fmt = args.format or Path(args.out).suffix.lstrip(".").lower()

@@ -18,6 +18,16 @@ import numpy as np
 
 from . import UserError
 
+#: Largest strip length / locus point count and image side accepted on the command line.
+_MAX_COLUMNS = 100_000
+_MAX_SIDE_PX = 16_384
+_PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def _check_plot_path(path, option: str) -> None:
+    if Path(path).suffix.lower() not in _PLOT_SUFFIXES:
+        raise UserError(f"{option} must end in .png, .svg or .pdf, got {str(path)!r}")
+
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
@@ -110,6 +120,8 @@ def _film_function(args):
             raise UserError(f"--under: expected 'medium:nm', got {item!r}") from None
         if not sep:
             raise UserError(f"--under: expected 'medium:nm', got {item!r}")
+        if not (np.isfinite(fixed[-1][1]) and fixed[-1][1] >= 0):
+            raise UserError(f"--under: the thickness in {item!r} must be a finite number of nm >= 0")
 
     if args.model == "two-beam":
         if fixed or args.quantity != "reflectance":
@@ -147,6 +159,8 @@ def _series(args, count: int):
     film = _film_function(args)
     if count < 2 or args.max_thickness <= 0:
         raise UserError("need at least 2 columns/points and a positive --max-thickness")
+    if count > _MAX_COLUMNS:
+        raise UserError(f"at most {_MAX_COLUMNS} columns/points, got {count}")
     d = np.linspace(0.0, args.max_thickness, count)
     wl = np.arange(380.0, 781.0, 5.0)
     optics = film(d, wl, angle_deg=args.angle)
@@ -181,6 +195,8 @@ def _zawischa(args) -> int:
     from ..pictures import write_strip
     from ..thinfilm.zawischa import zawischa_strip
 
+    if args.locus:
+        _check_plot_path(args.locus, "--locus")
     strip = zawischa_strip()
     write_strip(strip.colours.rgb8, args.out, height=80, ticks=strip.tick_columns,
                 tick_height=10)
@@ -207,6 +223,7 @@ def _strip(args) -> int:
 
 
 def _locus(args) -> int:
+    _check_plot_path(args.out, "--out")
     _, colours = _series(args, args.points)
     _locus_plot(args.out, colours, f"{args.film} 0-{args.max_thickness:g} nm",
                 f"Film colours, {colours.illuminant}, {args.angle:g}°")
@@ -217,6 +234,9 @@ def _map(args) -> int:
     from ..pictures import save_image
     from ..thinfilm import maps
 
+    if not (1 <= args.width <= _MAX_SIDE_PX and 1 <= args.height <= _MAX_SIDE_PX):
+        raise UserError(f"--width and --height must be 1-{_MAX_SIDE_PX} pixels, got "
+                        f"{args.width} x {args.height}")
     film = _film_function(args)
     angle = None
     if args.kind == "wedge":

@@ -56,7 +56,8 @@ def normalise(rgb_linear, method: str, scale=None):
             f"normalise {method!r} is unknown; accepted: {', '.join(NORMALISATIONS)}"
         )
     if method == "fixed":
-        if scale is None or not np.isfinite(scale) or scale <= 0:
+        if (scale is None or isinstance(scale, (str, bytes)) or np.ndim(scale) != 0
+                or not np.isfinite(scale) or scale <= 0):
             raise ColorimetryError(
                 f'normalise="fixed" needs scale, a positive number (e.g. max_object_rgb(...).max()'
                 f" or white_scale(...)); got {scale!r}"

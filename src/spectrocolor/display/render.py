@@ -119,7 +119,12 @@ def render(
     to ``space.white_XYZ`` (:func:`~spectrocolor.display.adaptation.adapt`) or use a tolerance.
     """
     sp = rgb_space(space)
-    XYZ = np.asarray(XYZ100, dtype=float)
+    try:
+        XYZ = np.asarray(XYZ100, dtype=float)
+    except (TypeError, ValueError):
+        raise ColorimetryError(
+            f"XYZ100 must be numbers of shape (..., 3), got {type(XYZ100).__name__} {XYZ100!r:.60}"
+        ) from None
     if XYZ.ndim == 0 or XYZ.shape[-1] != 3:
         raise ColorimetryError(f"XYZ100 must have shape (..., 3), got {np.shape(XYZ100)}")
     if not np.all(np.isfinite(XYZ)):

@@ -198,6 +198,9 @@ class SpectralCube:
             raise SpectrumError(
                 f"{name}: a spectral cube must have shape (rows, columns, bands); got {shape}"
             )
+        dtype = getattr(self.values, "dtype", None)
+        if dtype is not None and np.dtype(dtype).kind not in "biuf":
+            raise SpectrumError(f"{name}: values must be numbers; the cube holds dtype {dtype}")
         wavelengths = np.asarray(self.wavelengths_nm, dtype=np.float64)
         if wavelengths.ndim != 1 or wavelengths.size != shape[2]:
             raise SpectrumError(

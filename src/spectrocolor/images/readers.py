@@ -121,17 +121,23 @@ def _read_npy(path: Path, wavelengths_nm) -> SpectralCube:
             "--wavelengths on the command line), or use .npz with a 'wavelengths_nm' array"
         )
     with open(path, "rb") as handle:
-        version = np.lib.format.read_magic(handle)
+        try:
+            version = np.lib.format.read_magic(handle)
+        except ValueError:
+            raise SpectrumError(f"{path}: not a NumPy .npy file (no .npy header)") from None
         read_header = {
             (1, 0): np.lib.format.read_array_header_1_0,
             (2, 0): np.lib.format.read_array_header_2_0,
         }.get(version)
         if read_header is None:
             raise SpectrumError(f"{path}: .npy format version {version} is not supported")
-        shape, fortran_order, dtype = read_header(handle)
+        try:
+            shape, fortran_order, dtype = read_header(handle)
+        except ValueError as exc:
+            raise SpectrumError(f"{path}: damaged .npy header ({exc})") from None
         offset = handle.tell()
-    if dtype.hasobject:
-        raise SpectrumError(f"{path}: object arrays are not spectral cubes")
+    if dtype.kind not in "biuf":
+        raise SpectrumError(f"{path}: values must be numbers; the array holds dtype {dtype}")
     if len(shape) != 3:
         raise SpectrumError(f"{path}: a cube must have shape (rows, columns, bands); got {shape}")
     if fortran_order:
@@ -142,7 +148,15 @@ def _read_npy(path: Path, wavelengths_nm) -> SpectralCube:
 
 
 def _read_npz(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
-    with np.load(path, allow_pickle=False) as archive:
+    import zipfile
+
+    try:
+        archive = np.load(path, allow_pickle=False)
+    except (ValueError, OSError, zipfile.BadZipFile) as exc:
+        raise SpectrumError(f"{path}: not a NumPy .npz archive ({exc})") from None
+    if not isinstance(archive, np.lib.npyio.NpzFile):
+        raise SpectrumError(f"{path}: a .npy array named .npz; give the file the .npy suffix")
+    with archive:
         names = set(archive.files)
         if "values" not in names:
             raise SpectrumError(
@@ -172,7 +186,11 @@ def _read_npz(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
 def _read_tiff(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
     import tifffile
 
-    with tifffile.TiffFile(path) as tif:
+    try:
+        tif = tifffile.TiffFile(path)
+    except tifffile.TiffFileError as exc:
+        raise SpectrumError(f"{path}: not a TIFF file ({exc})") from None
+    with tif:
         series = tif.series[0]
         shape, axes = tuple(series.shape), series.axes
         metadata = dict(tif.shaped_metadata[0]) if tif.shaped_metadata else {}

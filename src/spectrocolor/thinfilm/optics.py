@@ -74,15 +74,25 @@ def _check_polarisation(polarisation: str) -> str:
     return polarisation
 
 
+def _numbers(values, argument: str) -> np.ndarray:
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise SpectrumError(f"{argument}: expected numbers, got {values!r:.60}") from None
+
+
 def _nonnegative(values, argument: str) -> np.ndarray:
-    array = np.asarray(values, dtype=float)
+    array = _numbers(values, argument)
     if not np.all(np.isfinite(array)) or np.any(array < 0):
-        raise SpectrumError(f"{argument}: expected finite values >= 0 (nm), got {values!r}")
+        bad = array[~(np.isfinite(array) & (array >= 0))].flat[0]
+        raise SpectrumError(
+            f"{argument}: expected finite values >= 0 (nm), got {bad!r} (array of shape {array.shape})"
+        )
     return array
 
 
 def _angles(angle_deg) -> np.ndarray:
-    theta = np.asarray(angle_deg, dtype=float)
+    theta = _numbers(angle_deg, "angle_deg")
     if not np.all(np.isfinite(theta)) or np.any(theta < 0) or np.any(theta >= 90):
         raise SpectrumError(
             f"angle_deg: angle of incidence must be in [0, 90) degrees, got {angle_deg!r}"

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import SpectrumError
 from .colour import FilmColours, film_colours
 from .optics import two_beam_reflectance
 
@@ -72,6 +73,8 @@ def zawischa_strip(columns: int = COLUMNS, beta: float = BETA) -> ZawischaStrip:
     from ..illuminants import blackbody
     from ..spectrum import Spectrum, wavelength_grid
 
+    if isinstance(columns, bool) or not isinstance(columns, (int, np.integer)) or columns < 1:
+        raise SpectrumError(f"columns: expected a positive whole number, got {columns!r}")
     wl = wavelength_grid(360.0, 830.0, 5.0)
     opd = OPD_STEP_NM * np.arange(1, columns + 1)
     light = blackbody(TEMPERATURE_K, wl, c2_m_K=C2_M_K)
