@@ -99,8 +99,9 @@ def test_range_errors_name_the_command_line_option(tmp_path, capsys):
     # the 2015 observers start at 390 nm; the ColorChecker data at 380 nm
     assert main(["describe", COLORCHECKER, "--observer", "2015-10", "--illuminant", "D65"]) == 2
     assert "--range START STOP" in capsys.readouterr().err
-    assert main(["describe", COLORCHECKER, "--observer", "2015-10", "--illuminant", "D65",
-                 "--range", "390", "730"]) == 0
+    assert (
+        main(["describe", COLORCHECKER, "--observer", "2015-10", "--illuminant", "D65", "--range", "390", "730"]) == 0
+    )
 
 
 def test_binary_file_is_one_line(tmp_path, capsys):
@@ -110,3 +111,25 @@ def test_binary_file_is_one_line(tmp_path, capsys):
     path.write_bytes(bytes(range(256)))
     assert main(["xyz", str(path)]) == 2
     assert "not UTF-8" in capsys.readouterr().err
+
+
+def test_light_with_an_illuminant_is_refused(tmp_path):
+    result = run("xyz", COLORCHECKER, "--light", "--illuminant", "A")
+    assert result.returncode == 2 and "--illuminant" in result.stderr
+
+
+def test_report_refuses_a_format_that_contradicts_the_file_name(tmp_path):
+    result = run("report", COLORCHECKER, "--illuminant", "C", "--format", "csv", "--out", str(tmp_path / "r.html"))
+    assert result.returncode == 2 and "make them agree" in result.stderr
+    assert not (tmp_path / "r.html").exists()
+
+
+def test_report_and_describe_agree_on_what_looks_like_percent(tmp_path):
+    path = tmp_path / "p.csv"
+    path.write_text("wavelength_nm,a\n400,1.8\n500,1.9\n")  # 1.8 is no reflectance factor
+    for command in (
+        ("describe", str(path)),
+        ("report", str(path), "--illuminant", "C", "--out", str(tmp_path / "r.csv")),
+    ):
+        result = run(*command)
+        assert result.returncode == 2 and "--percent" in result.stderr, command

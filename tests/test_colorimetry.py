@@ -169,3 +169,8 @@ def test_perfect_white_property(illuminant, observer, step):
     XYZ = sc.tristimulus(Spectrum.constant(1.0, g), observer, illuminant)
     assert XYZ[1] == pytest.approx(100.0, rel=1e-12)
     np.testing.assert_allclose(XYZ, sc.weights(g, observer, illuminant).sum(axis=0))
+
+
+def test_one_sample_is_not_a_summation():
+    with pytest.raises(ColorimetryError, match="at least two samples"):
+        sc.weights([500.0])

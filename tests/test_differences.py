@@ -117,3 +117,10 @@ def test_ciede2000_symmetric_nonnegative_zero_on_identity(c1, c2):
 def test_delta_e_76_triangle_inequality(labs):
     a, b, c = labs[0], labs[1], labs[2]
     assert sc.delta_e_76(a, c) <= sc.delta_e_76(a, b) + sc.delta_e_76(b, c) + 1e-9
+
+
+def test_mismatched_batches_are_a_clear_error():
+    with pytest.raises(ColorimetryError, match="do not broadcast"):
+        sc.delta_e_2000(np.ones((4, 3)), np.ones((5, 3)))
+    with pytest.raises(ColorimetryError, match="do not broadcast"):
+        sc.delta_e_76(np.ones((4, 3)), np.ones((5, 3)))

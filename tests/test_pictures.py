@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import spectrocolor as sc
+from spectrocolor.errors import SpectrumError
 from spectrocolor.pictures import save_image, strip_image, swatch_image
 
 
@@ -81,3 +82,8 @@ def test_errors(tmp_path):
         save_image(np.zeros((1, 1, 3), np.uint8), tmp_path / "a.jpg")
     with pytest.raises(sc.ColorimetryError, match="column indices"):
         strip_image([[0, 0, 0]], ticks=[5])
+
+
+def test_wavelength_tint_rejects_text():
+    with pytest.raises(SpectrumError, match="wavelengths_nm"):
+        sc.wavelength_tint("a")

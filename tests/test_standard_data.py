@@ -107,3 +107,8 @@ def test_blackbody_is_planck():
 def test_blackbody_rejects_nonsense():
     with pytest.raises(ColorimetryError, match="temperature_K"):
         sc.blackbody(-5)
+
+
+def test_daylight_temperature_must_be_a_number():
+    with pytest.raises(ColorimetryError, match="cct_K"):
+        sc.daylight("x")

@@ -123,6 +123,10 @@ def weights(wavelengths_nm, observer: str = "1931", illuminant=None, method: str
     100.0
     """
     grid = validate_wavelengths(wavelengths_nm)
+    if grid.size < 2:
+        raise ColorimetryError(
+            f"wavelengths_nm: summation needs at least two samples (Δλ is undefined for one), got {grid.tolist()}"
+        )
     if method not in METHODS:
         raise ColorimetryError(f"method: {method!r} is not a summation method; choose one of {METHODS}")
     if isinstance(observer, str) and (illuminant is None or isinstance(illuminant, str)):

@@ -10,8 +10,22 @@ from __future__ import annotations
 import numpy as np
 
 from .coordinates import _colours
+from .errors import ColorimetryError
 
 __all__ = ["delta_e_76", "delta_e_2000"]
+
+
+def _lab_pair(lab1, lab2) -> tuple[np.ndarray, np.ndarray]:
+    """Both CIELAB arrays, checked, and broadcastable against each other."""
+    lab1 = _colours(lab1, "lab1", 3, "CIELAB L*, a*, b*")
+    lab2 = _colours(lab2, "lab2", 3, "CIELAB L*, a*, b*")
+    try:
+        np.broadcast_shapes(lab1.shape, lab2.shape)
+    except ValueError:
+        raise ColorimetryError(
+            f"lab1, lab2: shapes {lab1.shape} and {lab2.shape} do not broadcast; pass colours in matching batches"
+        ) from None
+    return lab1, lab2
 
 
 def delta_e_76(lab1, lab2) -> np.ndarray:
@@ -30,8 +44,7 @@ def delta_e_76(lab1, lab2) -> np.ndarray:
     ----------
     CIE 015:2018, section 8.2.3.
     """
-    lab1 = _colours(lab1, "lab1", 3, "CIELAB L*, a*, b*")
-    lab2 = _colours(lab2, "lab2", 3, "CIELAB L*, a*, b*")
+    lab1, lab2 = _lab_pair(lab1, lab2)
     return np.sqrt(np.sum((lab1 - lab2) ** 2, axis=-1))
 
 
@@ -68,8 +81,7 @@ def delta_e_2000(lab1, lab2, *, k_L: float = 1.0, k_C: float = 1.0, k_H: float =
     implementation notes, supplementary test data, and mathematical observations",
     Color Res. Appl. 30 (1), 21-30 (2005), eqs. 1-22.
     """
-    lab1 = _colours(lab1, "lab1", 3, "CIELAB L*, a*, b*")
-    lab2 = _colours(lab2, "lab2", 3, "CIELAB L*, a*, b*")
+    lab1, lab2 = _lab_pair(lab1, lab2)
     L1, a1, b1 = lab1[..., 0], lab1[..., 1], lab1[..., 2]
     L2, a2, b2 = lab2[..., 0], lab2[..., 1], lab2[..., 2]
 

@@ -139,6 +139,8 @@ def daylight_xy(cct_K: float) -> np.ndarray:
 
     CIE 015:2018 eqs. (4.7)–(4.9); valid for 4000 K ≤ T ≤ 25 000 K.
     """
+    if not isinstance(cct_K, int | float | np.number) or isinstance(cct_K, bool):
+        raise ColorimetryError(f"cct_K: expected a temperature in kelvin (4000–25000), got {cct_K!r}")
     T = float(cct_K)
     if not 4000.0 <= T <= 25000.0:
         raise ColorimetryError(f"cct_K: the CIE daylight series is defined for 4000–25000 K, got {cct_K!r}")

@@ -87,7 +87,10 @@ def wavelength_tint(wavelengths_nm) -> np.ndarray:
     -------
     ndarray (..., 3) uint8
     """
-    wl = np.asarray(wavelengths_nm, dtype=float)
+    try:
+        wl = np.asarray(wavelengths_nm, dtype=float)
+    except (TypeError, ValueError):
+        raise SpectrumError(f"wavelengths_nm: expected numbers in nm, got {wavelengths_nm!r:.60}") from None
     if not np.all(np.isfinite(wl)) or np.any((wl < 360) | (wl > 830)):
         raise SpectrumError(
             "wavelengths_nm must be finite and within 360-830 nm for wavelength_tint"

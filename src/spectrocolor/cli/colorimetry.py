@@ -23,9 +23,10 @@ def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: st
     parser.add_argument("file", help="CSV or JSON: a wavelength_nm column and one column per spectrum")
     parser.add_argument(
         "--illuminant",
-        default=default_illuminant,
-        help="CIE illuminant lighting the reflectance/transmittance samples (default %(default)s)",
+        default=None,
+        help=f"CIE illuminant lighting the reflectance/transmittance samples (default {default_illuminant})",
     )
+    parser.set_defaults(default_illuminant=default_illuminant)
     parser.add_argument(
         "--observer", default="1931", help="1931 (2°), 1964 (10°), 2015-2, 2015-10 (default %(default)s)"
     )
@@ -47,6 +48,10 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
     """Read ``args.file`` and apply --range, --interval and --percent, checking reflectances."""
     from ..spectrum_io import read_spectra
 
+    if args.light and args.illuminant is not None:
+        raise UserError("--illuminant: lights are not lit by an illuminant; drop --illuminant or --light")
+    if not args.light and args.illuminant is None:
+        args.illuminant = args.default_illuminant
     spectra = read_spectra(args.file)
     if spectra.names is None:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
@@ -67,22 +72,29 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
                 "(use --method 1nm to integrate at 1 nm instead)"
             )
         spectra = Spectrum(grid[on_step], spectra.values[..., on_step], spectra.names)
-    values = spectra.values
-    if args.percent:
-        values = values / 100.0
-        spectra = Spectrum(spectra.wavelengths_nm, values, spectra.names)
-    if not args.light:
-        if np.any(values < 0):
-            row, k = np.argwhere(np.atleast_2d(values) < 0)[0]
-            raise UserError(
-                f"{args.file}: negative reflectance {np.atleast_2d(values)[row, k]:g} in {spectra.names[row]!r} "
-                f"at {spectra.wavelengths_nm[k]:g} nm; reflectance factors are 0–1 (use --light for lights)"
-            )
-        if values.max() > _PERCENT_SUSPICION:
-            raise UserError(
-                f"{args.file}: reflectance values reach {values.max():g}; if they are percentages pass "
-                "--percent, if they are lights pass --light"
-            )
+    if args.light:
+        return spectra
+    return reflectance_factors(spectra, args.file, args.percent)
+
+
+def reflectance_factors(spectra: Spectrum, source: str, percent: bool) -> Spectrum:
+    """Reflectance factors on the 0–1 scale: divided by 100 with ``percent``; negative values and
+    values that look like percentages (above 1.5) are refused with a message saying what to pass."""
+    if percent:
+        spectra = Spectrum(spectra.wavelengths_nm, spectra.values / 100.0, spectra.names)
+    values = np.atleast_2d(spectra.values)
+    if np.any(values < 0):
+        row, k = np.argwhere(values < 0)[0]
+        name = spectra.names[row] if spectra.names else f"spectrum {row + 1}"
+        raise UserError(
+            f"{source}: negative reflectance {values[row, k]:g} in {name!r} at {spectra.wavelengths_nm[k]:g} nm; "
+            "reflectance factors are 0–1 (use --light for lights)"
+        )
+    if values.max() > _PERCENT_SUSPICION:
+        raise UserError(
+            f"{source}: reflectance values reach {values.max():g}; if they are percentages pass --percent, "
+            "if they are lights pass --light"
+        )
     return spectra
 
 

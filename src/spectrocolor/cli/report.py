@@ -5,9 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 from . import UserError
+from .colorimetry import reflectance_factors
 
 
 def register(subparsers) -> None:
@@ -41,27 +40,18 @@ def register(subparsers) -> None:
 
 def _report(args: argparse.Namespace) -> int:
     from ..report import measurement_report, write_report
-    from ..spectrum import Spectrum
     from ..spectrum_io import read_spectra
 
-    spectra = read_spectra(args.file)
-    if args.percent:
-        spectra = Spectrum(spectra.wavelengths_nm, spectra.values / 100.0, spectra.names)
-    elif np.nanmax(spectra.values) > 2.0:
-        raise UserError(
-            f"{args.file}: reflectances reach {np.nanmax(spectra.values):g}; reflectance factors "
-            "are 0-1 -- if the file is in percent, pass --percent"
-        )
-    if np.nanmin(spectra.values) < 0:
-        raise UserError(
-            f"{args.file}: negative reflectance {np.nanmin(spectra.values):g}; reflectance "
-            "factors are 0-1"
-        )
+    spectra = reflectance_factors(read_spectra(args.file), args.file, args.percent)
     if args.page_rows < 1:
         raise UserError(f"--page-rows must be at least 1; got {args.page_rows}")
-    fmt = args.format or Path(args.out).suffix.lstrip(".").lower()
-    if fmt not in ("html", "htm", "csv", "json"):
+    suffix = Path(args.out).suffix.lstrip(".").lower()
+    suffix = {"htm": "html"}.get(suffix, suffix)
+    fmt = args.format or suffix
+    if fmt not in ("html", "csv", "json"):
         raise UserError(f"--out {args.out!r}: give a .html, .csv or .json file, or --format")
+    if args.format and suffix in ("html", "csv", "json") and suffix != args.format:
+        raise UserError(f"--format {args.format} would write {args.format.upper()} into {args.out!r}; make them agree")
     report = measurement_report(spectra, args.illuminant, args.observer, args.method)
     write_report(report, args.out, fmt, title=args.title, page_rows=args.page_rows)
     print(f"wrote {args.out}: {len(report)} samples, illuminant {report.illuminant}, observer "

@@ -205,6 +205,7 @@ def _zawischa(args) -> int:
     if args.locus:
         _locus_plot(args.locus, strip.colours, "soap film, two-beam, s = 5-5000 nm",
                     "Seed 000 (Zawischa): film colours, 6504 K blackbody")
+    _report_written(args.out, args.csv, args.locus)
     return 0
 
 
@@ -219,6 +220,7 @@ def _strip(args) -> int:
     write_strip(colours.rgb8, args.out, height=80, ticks=ticks, tick_height=10)
     if args.csv:
         _write_csv(args.csv, "thickness_nm", d, colours)
+    _report_written(args.out, args.csv)
     return 0
 
 
@@ -227,6 +229,7 @@ def _locus(args) -> int:
     _, colours = _series(args, args.points)
     _locus_plot(args.out, colours, f"{args.film} 0-{args.max_thickness:g} nm",
                 f"Film colours, {colours.illuminant}, {args.angle:g}°")
+    _report_written(args.out)
     return 0
 
 
@@ -262,4 +265,10 @@ def _map(args) -> int:
                               angle_step_deg=2.0, quantity=args.quantity,
                               **_colour_kwargs(args))
     save_image(maps.render_thickness_map(thickness, table, angle), args.out)
+    _report_written(args.out)
     return 0
+
+
+def _report_written(*paths) -> None:
+    """Tell the user what was written (one line), as the other commands do."""
+    print("wrote " + ", ".join(str(p) for p in paths if p))
