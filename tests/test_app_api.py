@@ -263,3 +263,43 @@ def test_cli_registers_app_and_binds_loopback():
     cli_app.register(parser.add_subparsers())
     args = parser.parse_args(["app", "--no-browser", "--port", "0"])
     assert args.host == "127.0.0.1" and args.port == 0 and args.no_browser
+
+
+def test_metamer_of_a_boundary_colour_is_a_true_metamer(client):
+    """QA: a single bin at 700 nm is an optimal colour (a vertex of the solid): its only
+    metamer is itself, and the answer must reproduce its XYZ (it once missed by 0.125)."""
+    target = [0.0] * 30 + [30.0]
+    r = client.post("/api/metamer", json={"target": target})
+    assert r.status_code == 200, r.text
+    out = r.json()
+    np.testing.assert_allclose(out["XYZ_metamer"], cie_xyz(target), atol=1e-10)
+    np.testing.assert_allclose(out["levels"], target, atol=1e-9)
+
+
+def test_metamer_under_a_one_band_illuminant_is_a_clear_4xx(client):
+    r = client.post("/api/metamer", json={"target": [30.0] * 31, "illuminant": [0] * 30 + [30]})
+    assert 400 <= r.status_code < 500
+    assert "linearly dependent" in r.json()["error"]
+
+
+@pytest.mark.parametrize(
+    ("body", "needle"),
+    [
+        ({"filename": "x.json", "content": json.dumps(
+            {"wavelengths_nm": [400, 700], "values": [[[1, 2]]]})}, "(N, K)"),
+        ({"filename": "x.json", "content": json.dumps(
+            {"wavelengths_nm": [400, 700], "values": [[1, 2]] * 5})}, "at most 4"),
+        ({"filename": "x.json", "step_nm": True, "content": json.dumps(
+            {"wavelengths_nm": [400, 700], "values": [1, 2]})}, "boolean"),
+    ],
+)
+def test_import_refuses_deep_batches_too_many_spectra_and_boolean_step(client, body, needle):
+    r = client.post("/api/import", json=body)
+    assert 400 <= r.status_code < 500
+    assert needle in r.json()["error"], r.json()
+
+
+def test_import_accepts_as_many_spectra_as_the_page_shows(client):
+    doc = json.dumps({"wavelengths_nm": [400, 700], "values": [[1, 2]] * 4})
+    r = client.post("/api/import", json={"filename": "x.json", "content": doc})
+    assert r.status_code == 200 and len(r.json()["levels"]) == 4

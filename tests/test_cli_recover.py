@@ -54,3 +54,36 @@ def test_recover_bad_hex_is_one_line(tmp_path, capsys):
 def test_recover_bad_bounds(args, tmp_path):
     with pytest.raises(SystemExit):
         main(["recover", *args, "--out", str(tmp_path / "x.csv")])
+
+
+def test_cie_d65_white_outside_the_grid_white_is_one_helpful_line(tmp_path, capsys):
+    """The tabulated D65 white is not the 5 nm grid's white: one line, naming this grid's white."""
+    white = np.asarray(sc.weights(sc.wavelength_grid(380, 780, 5), "1931", "D65")).sum(axis=0)
+    assert main(["recover", "--xyz", "95.047", "100", "108.883", "--illuminant", "D65",
+                 "--out", str(tmp_path / "x.csv")]) == 2
+    got = capsys.readouterr()
+    assert got.out == ""
+    lines = got.err.strip().splitlines()
+    assert len(lines) == 1 and "perfect white is XYZ" in lines[0]
+    assert f"{white[0]:.8g}" in lines[0] and not (tmp_path / "x.csv").exists()
+
+
+def test_missing_csv_and_short_row_are_one_clear_line(tmp_path, capsys):
+    assert main(["recover", "--csv", str(tmp_path / "nope.csv"),
+                 "--out", str(tmp_path / "x.csv")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no such file" in err[0] and "Errno" not in err[0]
+    table = tmp_path / "short.csv"
+    table.write_text("X,Y,Z\n20,20,20\n# a comment\n10,10\n")
+    assert main(["recover", "--csv", str(table), "--out", str(tmp_path / "x.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "line 4" in err and "expected 3 values" in err
+
+
+def test_help_shows_defaults(capsys):
+    with pytest.raises(SystemExit):
+        main(["recover", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for needle in ("(default: D65)", "(default: 1931)", "(default: 380 780 5)",
+                   "(default: unit)", "scale of this grid"):
+        assert needle in text

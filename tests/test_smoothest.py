@@ -212,9 +212,10 @@ def test_exact_fallback_equals_the_batched_solver():
                         _near_boundary(W, 10, np.random.default_rng(9), [1e-3])])
     batched = _qp.solve_bounded(prob, b, 0.0, 1.0)
     rho_ip, ratio, at_upper = _qp._interior_point(prob, b, 0.0, 1.0)
+    Q = prob.hessian_dense()
     for i in range(len(b)):
-        rho, mu, lam, _, ok = _qp._primal_active_set(prob, b[i], 0.0, 1.0, rho_ip[i], ratio[i],
-                                                     at_upper[i])
+        start = _qp._feasible_start(prob, Q, b[i], 0.0, 1.0, rho_ip[i], ratio[i], at_upper[i])
+        rho, mu, lam, _, ok = _qp.primal_active_set(Q, W, b[i], 0.0, 1.0, *start)
         assert ok
         np.testing.assert_allclose(rho, batched.rho[i], atol=1e-9)
         assert abs(_roughness(rho, 10.0) - _roughness(batched.rho[i], 10.0)) < 1e-9
@@ -273,3 +274,132 @@ def test_property_reflectance_round_trip(values):
     assert np.abs(r.spectrum.values @ W - b).max() < 1e-10
     assert r.roughness <= _roughness(rho, 10.0) + 1e-9
     assert 0 <= r.spectrum.values.min() and r.spectrum.values.max() <= 1
+
+
+def _blocks(K):
+    """Every spectrum with at most two 0/1 transitions (blocks and their complements)."""
+    out = []
+    for i in range(K):
+        for j in range(i, K):
+            r = np.zeros(K)
+            r[i:j + 1] = 1.0
+            out += [r, 1.0 - r]
+    out = np.array(out)
+    return out[(out.sum(axis=1) > 0) & (out.sum(axis=1) < K)]
+
+
+def _kkt_holds(W, step, rho, mu, upper):
+    """Independent check of the optimality certificate: with the returned multipliers μ, the
+    bound multipliers λ = Qρ − Wμ (Q built here) vanish off the bounds and have the right signs
+    at them, within 1e-9 of the size of the roughness gradient plus rounding (1e-15) of the
+    terms of Wμ. A KKT point of this convex programme is its minimiser, whatever the size of μ
+    (large on degenerate facets, where a tiny weight must balance the gradient)."""
+    K = W.shape[0]
+    D = (np.eye(K, k=1) - np.eye(K))[:-1]
+    g = 2 * D.T @ D @ rho / step
+    lam = g - W @ mu
+    tol = 1e-9 * (1 + np.abs(g).max()) + 1e-15 * (np.abs(W) @ np.abs(mu)).max()
+    low, up = rho == 0.0, rho == upper
+    free = ~(low | up)
+    return bool(np.all(np.isfinite(mu)) and np.abs(lam[free]).max(initial=0) <= tol
+                and lam[low].min(initial=0) >= -tol and lam[up].max(initial=0) <= tol)
+
+
+def test_spike_at_the_end_of_the_range_is_reproduced_exactly():
+    """QA: ρ = 1 at 700 nm only, under E. It is a vertex of the solid (the only reflectance with
+    its colour), and 700 nm lies where the 1931 z-bar is exactly 0, so the facet is degenerate."""
+    wl = sc.wavelength_grid(400, 700, 10)
+    spike = np.zeros(31)
+    spike[-1] = 1.0
+    XYZ = sc.tristimulus(sc.Spectrum(wl, spike), "1931", "E")
+    r = smoothest_reflectance(XYZ, illuminant="E", wavelengths=(400, 700, 10))
+    assert r.feasible and r.certificate.converged
+    np.testing.assert_array_equal(r.spectrum.values, spike)
+    assert r.certificate.primal_residual <= 1e-12
+    assert np.all(np.isfinite(r.multipliers))
+
+
+@pytest.mark.parametrize("illuminant", ["E", "D65", "A"])
+def test_every_two_transition_block_is_solved_or_flagged(illuminant):
+    """Optimal-colour candidates (boundary colours, many on degenerate facets): a result that
+    claims convergence reproduces the colour, keeps the bounds and is optimal by an independent
+    LP check of the KKT conditions; on this grid every one converges."""
+    grid = (400.0, 700.0, 10.0)
+    W = _weights(grid, illuminant)
+    R = _blocks(W.shape[0])
+    r = smoothest_reflectance(R @ W, illuminant=illuminant, wavelengths=grid)
+    c = r.certificate
+    assert np.all(r.feasible) and np.all(c.converged)
+    assert c.primal_residual.max() <= 1e-10
+    rho = r.spectrum.values
+    assert rho.min() >= 0.0 and rho.max() <= 1.0
+    np.testing.assert_allclose(rho @ W, R @ W, atol=1e-10, rtol=0)
+    face = np.flatnonzero(r.method == "boundary face")
+    assert face.size > 0.8 * len(R)
+    for i in face:
+        assert _kkt_holds(W, grid[2], rho[i], r.multipliers[i], 1.0)
+
+
+@pytest.mark.parametrize("grid", [(400.0, 700.0, 5.0), (380.0, 780.0, 20.0), (400.0, 700.0, 1.0)])
+@pytest.mark.parametrize("illuminant", ["E", "D65", "A"])
+def test_single_sample_spikes_and_notches_at_the_ends(grid, illuminant):
+    """A spike (or a notch in the white) at either end of the range: exact or flagged, never a
+    converged result that misses the colour."""
+    W = _weights(grid, illuminant)
+    K = W.shape[0]
+    R = np.zeros((4, K))
+    R[0, 0] = R[1, -1] = 1.0
+    R[2], R[3] = 1.0 - R[0], 1.0 - R[1]
+    r = smoothest_reflectance(R @ W, illuminant=illuminant, wavelengths=grid)
+    c = r.certificate
+    ok = c.converged
+    assert np.all(c.primal_residual[ok] <= 1e-10)
+    assert ok.sum() >= 3
+    for i in np.flatnonzero(ok):
+        assert _kkt_holds(W, grid[2], r.spectrum.values[i], r.multipliers[i], 1.0)
+
+
+def test_certificate_fails_on_nan_and_on_residual():
+    """A certificate only passes with finite multipliers and a residual within tolerance."""
+    from spectrocolor.recovery._qp import make_problem
+    from spectrocolor.recovery.smoothest import _certify
+
+    W = _weights()
+    prob = make_problem(W, 10.0)
+    b = np.array([[20.0, 20.0, 20.0]] * 3)
+    rho = b @ prob.unconstrained
+    mu = b @ prob.multipliers
+    lam = np.zeros_like(rho)
+    ok = np.ones(3, dtype=bool)
+    mu[1] = np.nan
+    rho[2, 5] += 1e-3
+    converged = _certify(prob, b, rho, mu, lam, 0.0, 1.0, ok)[-1]
+    assert converged.tolist() == [True, False, False]
+
+
+@pytest.mark.parametrize("bounds", ["unit", "nonnegative"])
+def test_interior_colours_are_solved_by_the_fast_path(bounds):
+    """No ordinary colour needs the one-at-a-time fallback (it would hide a fast-path bug)."""
+    W = _weights()
+    b = _srgb_xyz(2000, np.random.default_rng(7), W.sum(axis=0))
+    r = smoothest_reflectance(b, wavelengths=GRID, bounds=bounds)
+    assert np.all(r.certificate.converged)
+    assert set(np.unique(r.method)) <= {"unconstrained", "active set"}
+    assert (r.method == "active set").sum() > 100
+
+
+def test_rank_deficient_illuminant_is_a_clear_error():
+    wl = sc.wavelength_grid(400, 700, 10)
+    one_band = sc.Spectrum(wl, np.r_[np.zeros(30), 1.0])
+    with pytest.raises(sc.ColorimetryError, match="linearly dependent"):
+        smoothest_reflectance([10.0, 5.0, 0.0], illuminant=one_band, wavelengths=(400, 700, 10))
+
+
+def test_outside_colour_error_gives_this_grids_white():
+    """The CIE D65 white (95.047, 100, 108.883) is not the white of a 5 nm 380-780 grid."""
+    white = _weights((380, 780, 5)).sum(axis=0)
+    with pytest.raises(sc.ColorimetryError, match="perfect white is XYZ") as err:
+        smoothest_reflectance([95.047, 100.0, 108.883], wavelengths=(380, 780, 5))
+    assert f"{white[0]:.8g}" in str(err.value)
+    r = smoothest_reflectance(white, wavelengths=(380, 780, 5))
+    assert np.all(r.spectrum.values == 1.0)

@@ -191,9 +191,14 @@ def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     reference = _reference(wl, illuminant_levels)
     target = np.asarray(target_levels, dtype=float) / FULL_LEVEL
     XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer, reference)
-    rho = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
-                                wavelengths=(START_NM, STOP_NM, float(step_nm)),
-                                bounds="unit").spectrum
+    result = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
+                                      wavelengths=(START_NM, STOP_NM, float(step_nm)),
+                                      bounds="unit")
+    if not bool(result.certificate.converged):
+        raise sc.ColorimetryError(
+            "target: the smoothest metamer of this distribution could not be found exactly "
+            f"(residual {float(result.certificate.primal_residual):.3g} XYZ); try a finer step")
+    rho = result.spectrum
     values = np.asarray(rho.values, dtype=float)
     if rho.wavelengths_nm.shape != wl.shape or not np.allclose(rho.wavelengths_nm, wl):
         values = rho.resample(wl).values
@@ -245,13 +250,23 @@ def presets(step_nm: float) -> dict:
     }
 
 
-def import_spectra(path, step_nm: float, method: str, scale: str) -> dict:
+def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: int = 4) -> dict:
     """Read a user's spectra (CSV/JSON) and resample them explicitly onto the page's grid.
 
     ``scale``: ``"peak"`` (each spectrum scaled so its peak in 400-700 nm is the full level),
-    ``"unit"`` (values are factors 0-1) or ``"levels"`` (values are already 0-30).
+    ``"unit"`` (values are factors 0-1) or ``"levels"`` (values are already 0-30). At most
+    ``max_spectra`` spectra (the page shows no more), as one spectrum (K,) or a list (N, K).
     """
     s = sc.read_spectra(path)
+    if s.values.ndim > 2:
+        raise sc.SpectrumError(
+            f"values: expected one spectrum or a list of spectra (N, K), got an array of shape "
+            f"{s.values.shape}")
+    count = 1 if s.values.ndim == 1 else s.values.shape[0]
+    if count > max_spectra:
+        raise sc.SpectrumError(
+            f"the file holds {count} spectra; the explorer shows at most {max_spectra} at a "
+            "time: import a file with fewer")
     wl = grid(step_nm)
     lo, hi = float(s.wavelengths_nm[0]), float(s.wavelengths_nm[-1])
     if lo > START_NM or hi < STOP_NM:

@@ -44,6 +44,14 @@ def _bins(step_nm: float) -> int:
 class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
+    @model_validator(mode="before")
+    @classmethod
+    def _no_bool_step(cls, data):
+        # JSON true/false would pass as 1/0 (bool is an int in Python): not a step in nm
+        if isinstance(data, dict) and isinstance(data.get("step_nm"), bool):
+            raise ValueError("step_nm: expected a number of nm (10, 5, 2 or 1), got a boolean")
+        return data
+
 
 class ModelRequest(_Strict):
     step_nm: Step = 10
@@ -207,7 +215,8 @@ def create_app() -> FastAPI:
             path = Path(folder) / f"upload{suffix}"
             path.write_text(req.content, encoding="utf-8")
             try:
-                return compute.import_spectra(path, float(req.step_nm), req.method, req.scale)
+                return compute.import_spectra(path, float(req.step_nm), req.method, req.scale,
+                                              max_spectra=MAX_SPECTRA)
             except SpectrumError as exc:
                 raise SpectrumError(str(exc).replace(str(path), req.filename)) from None
 

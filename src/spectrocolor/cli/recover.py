@@ -21,11 +21,17 @@ def register(subparsers) -> None:
     src.add_argument("--xyz", nargs=3, type=float, metavar=("X", "Y", "Z"))
     src.add_argument("--hex", nargs="+", metavar="RRGGBB", help="sRGB hex colours")
     src.add_argument("--csv", type=Path, help="CSV with columns X,Y,Z (one colour per row)")
-    p.add_argument("--illuminant", default="D65")
-    p.add_argument("--observer", default="1931")
+    p.add_argument("--illuminant", default="D65",
+                   help="CIE illuminant the XYZ are under, e.g. D65, A, E, FL2 (default: %(default)s)")
+    p.add_argument("--observer", default="1931",
+                   help="observer: 1931, 1964, 2015-2 or 2015-10 (default: %(default)s)")
     p.add_argument("--range", nargs=3, type=float, default=(380.0, 780.0, 5.0),
-                   metavar=("START_NM", "STOP_NM", "STEP_NM"))
-    p.add_argument("--bounds", choices=("unit", "nonnegative", "none"), default="unit")
+                   metavar=("START_NM", "STOP_NM", "STEP_NM"),
+                   help="wavelength grid of the recovered reflectance; XYZ must be on the scale "
+                   "of this grid, whose perfect white has Y = 100 (default: 380 780 5)")
+    p.add_argument("--bounds", choices=("unit", "nonnegative", "none"), default="unit",
+                   help="unit: 0 <= R <= 1 (object colours); nonnegative: R >= 0; none: "
+                   "unconstrained (default: %(default)s)")
     p.add_argument("--out", type=Path, required=True, help="output CSV of reflectances")
     p.add_argument("--plot", type=Path, help="also write a PNG of the recovered curves")
     p.set_defaults(handler=_run)
@@ -49,14 +55,28 @@ def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.nd
 
 
 def _read_csv(path: Path) -> np.ndarray:
-    with path.open(newline="") as handle:
-        rows = [r for r in csv.reader(line for line in handle if not line.startswith("#")) if r]
-    if not rows or [c.strip() for c in rows[0][:3]] != ["X", "Y", "Z"]:
-        raise UserError(f"--csv: {path} must start with a header X,Y,Z")
     try:
-        return np.array([[float(v) for v in r[:3]] for r in rows[1:]])
-    except ValueError as exc:
-        raise UserError(f"--csv: {path}: {exc}") from None
+        with path.open(newline="") as handle:
+            rows = [(n, r) for n, r in enumerate(csv.reader(handle), start=1)
+                    if r and not r[0].lstrip().startswith("#")]
+    except FileNotFoundError:
+        raise UserError(f"--csv: {path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UserError(f"--csv: {path}: cannot be read ({exc.__class__.__name__})") from None
+    if not rows or [c.strip() for c in rows[0][1][:3]] != ["X", "Y", "Z"]:
+        raise UserError(f"--csv: {path} must start with a header X,Y,Z")
+    values = []
+    for line, row in rows[1:]:
+        if len(row) < 3:
+            raise UserError(f"--csv: {path}, line {line}: expected 3 values X,Y,Z, "
+                            f"got {len(row)}")
+        try:
+            values.append([float(v) for v in row[:3]])
+        except ValueError:
+            raise UserError(f"--csv: {path}, line {line}: {row[:3]} are not all numbers") from None
+    if not values:
+        raise UserError(f"--csv: {path} has a header but no colours")
+    return np.array(values)
 
 
 def _run(args) -> int:
@@ -74,15 +94,20 @@ def _run(args) -> int:
         XYZ = _read_csv(args.csv)
         names = [f"colour_{i + 1}" for i in range(len(XYZ))]
     bounds = None if args.bounds == "none" else args.bounds
-    result = smoothest_reflectance(XYZ, args.illuminant, args.observer, grid, bounds)
-    for name, ok, dist in zip(names, result.feasible, result.distance_outside, strict=True):
+    # one colour alone: the library's error (one line, with the white of this grid) says it all
+    result = smoothest_reflectance(XYZ[0] if args.xyz is not None else XYZ, args.illuminant,
+                                   args.observer, grid, bounds)
+    feasible = np.atleast_1d(result.feasible)
+    values = result.spectrum.values.reshape(len(feasible), -1)
+    for name, ok, dist in zip(names, feasible, np.atleast_1d(result.distance_outside),
+                              strict=True):
         if not ok:
             print(f"{name}: outside the reachable colours (distance ≥ {dist:.4g} XYZ100); skipped")
-    keep = np.flatnonzero(result.feasible)
+    keep = np.flatnonzero(feasible)
     if keep.size == 0:
         raise UserError("no colour can be produced by a reflectance within the bounds")
     names = [names[i] for i in keep]
-    spectrum = Spectrum(result.spectrum.wavelengths_nm, result.spectrum.values[keep], names)
+    spectrum = Spectrum(result.spectrum.wavelengths_nm, values[keep], names)
     write_spectra(spectrum, args.out)
     print(f"wrote {len(names)} reflectance(s) to {args.out}")
     if args.plot is not None:
@@ -92,4 +117,4 @@ def _run(args) -> int:
                                 f"bounds={args.bounds}")
         ax.figure.savefig(args.plot, dpi=100)
         print(f"wrote {args.plot}")
-    return 0 if keep.size == len(result.feasible) else 1
+    return 0 if keep.size == len(feasible) else 1

@@ -36,7 +36,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import lapack
 
+from ..errors import ColorimetryError
+
 _MAX_PDAS_ITER = 30
+#: Values of :attr:`Solution.method`: how each colour was solved.
+METHODS = ("unconstrained", "active set", "active set restarted from interior point",
+           "dense primal active set")
 _TOL = 1e-13
 
 
@@ -94,6 +99,15 @@ def make_problem(W: np.ndarray, step_nm: float) -> Problem:
     W = np.ascontiguousarray(W, dtype=np.float64)
     K = W.shape[0]
     m = W.shape[1]
+    sv = np.linalg.svd(W, compute_uv=False)
+    rank = int(np.count_nonzero(sv > 1e-10 * sv[0])) if sv[0] > 0 else 0
+    if rank < m:
+        raise ColorimetryError(
+            f"weights: the {m} tristimulus weight functions on this grid are linearly dependent "
+            f"(rank {rank} < {m}), so the colour does not determine {m} independent "
+            "constraints; this happens when the illuminant has power in fewer than "
+            f"{m} wavelength bands (or is zero almost everywhere); use an illuminant with "
+            "power across the spectrum")
     prob = Problem(W, float(step_nm), np.empty((m, K)), np.empty((m, m)))
     kkt = np.zeros((K + m, K + m))
     kkt[:K, :K] = prob.hessian_dense()
@@ -118,6 +132,7 @@ class Solution:
     lam: np.ndarray  # (N, K) bound multipliers: > 0 at lower, < 0 at upper bound
     iterations: np.ndarray  # (N,) int
     converged: np.ndarray  # (N,) bool
+    method: np.ndarray  # (N,) int, index into METHODS
 
 
 def _reduced_solve(prob: Problem, b, lower_active, upper_active, lower, upper):
@@ -311,9 +326,11 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
     lam = np.zeros((N, K))
     iterations = np.zeros(N, dtype=np.int64)
     converged = np.ones(N, dtype=bool)
+    method = np.zeros(N, dtype=np.int8)
     lo_act = rho < lower
     up_act = rho > upper
     pending = np.flatnonzero(lo_act.any(axis=1) | up_act.any(axis=1))
+    method[pending] = 1
     if pending.size:
         r, mu_i, lm, it, ok = _pdas(prob, b[pending], lower, upper,
                                  lo_act[pending], up_act[pending], _MAX_PDAS_ITER)
@@ -321,6 +338,7 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
         iterations[pending] = it
         converged[pending] = ok
         pending = pending[~ok]
+    method[pending] = 2
     if pending.size:
         rho_ip, ratio, at_upper = _interior_point(prob, b[pending], lower, upper)
         # at least m free indices: fewer cannot reproduce a colour in the interior
@@ -337,13 +355,19 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
             converged[pending] = ok
             pending, ratio, at_upper, third, rho_ip = (
                 pending[~ok], ratio[~ok], at_upper[~ok], third[~ok], rho_ip[~ok])
+    method[pending] = 3
+    Q = prob.hessian_dense() if pending.size else None
     for n, i in enumerate(pending):
-        r, mu_i, lm, it, ok = _primal_active_set(prob, b[i], lower, upper, rho_ip[n],
-                                              ratio[n], at_upper[n])
+        start = _feasible_start(prob, Q, b[i], lower, upper, rho_ip[n], ratio[n], at_upper[n])
+        if start is None:  # never seen in testing; reported as not converged, never guessed
+            converged[i] = False
+            rho[i], mu[i], lam[i] = np.nan, np.nan, np.nan
+            continue
+        r, mu_i, lm, it, ok = primal_active_set(Q, prob.W, b[i], lower, upper, *start)
         rho[i], mu[i], lam[i] = r, mu_i, lm
         iterations[i] += it
         converged[i] = ok
-    return Solution(rho, mu, lam, iterations, converged)
+    return Solution(rho, mu, lam, iterations, converged, method)
 
 
 def _equality_qp(Q, W, b, rho, active):
@@ -450,24 +474,22 @@ def _keeps_rank(W, active, index):
     return bool(sv[W.shape[1] - 1] > 1e-12 * sv[0])
 
 
-def _primal_active_set(prob, b, lower, upper, rho_ip, ratio, at_upper, max_iter=None):
+def primal_active_set(Q, W, b, lower, upper, rho, active, pinned=None, max_iter=None):
     """Exact primal active-set method (Nocedal & Wright, Alg. 16.3) for one colour.
 
     Dense and sequential, so only used for the rare colours on which the batched
-    iterations do not settle. Each iterate is feasible; each step goes to the minimiser of
-    the programme with the current working set of bounds held fixed, stopping at the first
-    bound in the way (which joins the working set); at a minimiser the bound with the most
-    wrong-signed multiplier leaves the working set. Ends when every multiplier has the
-    right sign (to rounding), which certifies the optimum.
+    iterations do not settle, and for colours on the boundary of the solid. ``rho`` (K,)
+    must be feasible, with ``active`` its working set of bounds; ``pinned`` indices (held
+    at their values by the caller) never leave it. Each step goes to the minimiser of
+    the programme with the working set held fixed, stopping at the first bound in the way
+    (which joins the working set); at a minimiser the bound with the most wrong-signed
+    multiplier leaves the working set. Ends when every multiplier has the right sign (to
+    rounding), which certifies the optimum. Returns rho, mu, lam, iterations, converged.
     """
-    K = prob.size
-    W = prob.W
+    K = W.shape[0]
     nan = (np.full(K, np.nan), np.full(W.shape[1], np.nan), np.full(K, np.nan))
-    Q = prob.hessian_dense()
-    start = _feasible_start(prob, Q, b, lower, upper, rho_ip, ratio, at_upper)
-    if start is None:  # never seen in testing; reported as not converged, never guessed
-        return (*nan, 0, False)
-    rho, active = start
+    pinned = np.zeros(K, dtype=bool) if pinned is None else pinned
+    rho, active = rho.copy(), active | pinned
     max_iter = 10 * K if max_iter is None else max_iter
     for it in range(1, max_iter + 1):
         sol = _equality_qp(Q, W, b, rho, active)
@@ -496,7 +518,7 @@ def _primal_active_set(prob, b, lower, upper, rho_ip, ratio, at_upper, max_iter=
         lam[~active] = 0.0
         tol = _TOL * (1.0 + np.abs(W @ mu).max())
         wrong = np.where(rho == lower, -lam, lam)
-        wrong[~active] = 0.0
+        wrong[~active | pinned] = 0.0
         worst = int(np.argmax(wrong))
         if wrong[worst] <= tol:
             return rho, mu, lam, it, True

@@ -37,12 +37,17 @@ from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import canonical_illuminant_name
 from ..observers import canonical_observer_name
 from ..spectrum import Spectrum, wavelength_grid
-from . import _qp, _zonotope
+from . import _face, _qp, _zonotope
 
 BOUNDS = ("unit", "nonnegative", None)
 DEFAULT_WAVELENGTHS = (380.0, 780.0, 5.0)
 #: Colours whose gauge is within this of the boundary are solved as boundary colours.
 BOUNDARY_TOLERANCE = 1e-12
+#: Colours this close to the boundary on which the active-set methods fail are tried on a face.
+NEAR_BOUNDARY = 1e-9
+#: Certificate checks (see :class:`Certificate`): relative primal and dual tolerances.
+PRIMAL_TOLERANCE = 1e-12
+DUAL_TOLERANCE = 1e-8
 
 
 @dataclass(frozen=True)
@@ -64,7 +69,12 @@ class Certificate:
     stationarity : ndarray
         ``max |Q ρ − W μ − λ|``: the gradient condition of the Lagrangian.
     converged : ndarray of bool
-        The active-set iterations settled (always true for ``bounds=None``).
+        The solver settled **and** the result passes the checks: every entry finite,
+        ``primal_residual <= PRIMAL_TOLERANCE * max(|ρ| @ |W|)`` (rounding level, relative to
+        the colour, so that tiny colours near black are held to the same standard), bounds
+        hold exactly, and multiplier signs, complementarity
+        and stationarity are within ``DUAL_TOLERANCE`` relative to the size of the
+        gradient. A result that fails any check (NaN included) is reported not converged.
     """
 
     primal_residual: np.ndarray
@@ -97,6 +107,12 @@ class SmoothestResult:
     multipliers : ndarray (..., 3)
         Lagrange multipliers ``μ`` of ``ρ @ W = XYZ100`` (NaN where not defined).
     certificate : Certificate
+    method : ndarray of str (...)
+        How each colour was solved: ``"unconstrained"`` (closed form), ``"active set"``
+        (batched primal-dual active set), ``"active set restarted from interior point"``,
+        ``"dense primal active set"`` (the one-at-a-time fallback), ``"boundary face"``
+        (a colour on the boundary, solved on its face), ``"black or white"`` or
+        ``"infeasible"``.
     bounds : str or None
     observer, illuminant : str
     """
@@ -108,6 +124,7 @@ class SmoothestResult:
     roughness: np.ndarray
     multipliers: np.ndarray
     certificate: Certificate
+    method: np.ndarray
     bounds: str | None
     observer: str
     illuminant: str
@@ -182,24 +199,14 @@ def _colours(XYZ) -> np.ndarray:
     return b
 
 
-def _boundary_solution(setup: Setup, b: np.ndarray, facets, facet: np.ndarray, cone: bool):
-    """The unique reflectance of a colour on a facet: 0/1 (0 on the cone) except on the two
-    generators spanning the facet, whose values are fitted by least squares."""
-    n = facets.normals[facet]
-    proj = n @ setup.W.T
-    rho = np.zeros_like(proj) if cone else (proj > 0).astype(float)
-    ij = facets.pairs[facet]
-    rows = np.arange(len(b))
-    rho[rows, ij[:, 0]] = 0.0
-    rho[rows, ij[:, 1]] = 0.0
-    rest = b - rho @ setup.W
-    G = np.stack([setup.W[ij[:, 0]], setup.W[ij[:, 1]]], axis=-1)  # (N, 3, 2)
-    coef = np.linalg.pinv(G) @ rest[..., None]
-    upper = np.inf if cone else 1.0
-    coef = np.clip(coef[..., 0], 0.0, upper)
-    rho[rows, ij[:, 0]] = coef[:, 0]
-    rho[rows, ij[:, 1]] = coef[:, 1]
-    return rho
+def _boundary_solutions(setup: Setup, b: np.ndarray, lower: float, upper: float,
+                        facet_tolerance: float = _face.FACET_TOLERANCE):
+    """Exact solutions for colours on the boundary of the solid or cone (one at a time: such
+    colours are rare, and each is a small dense problem on a face; see :mod:`._face`)."""
+    Q = setup.problem.hessian_dense()
+    out = [_face.face_solution(setup.W, Q, bi, lower, upper, facet_tolerance) for bi in b]
+    return (np.array([o[0] for o in out]), np.array([o[1] for o in out]),
+            np.array([o[2] for o in out]), np.array([o[3] for o in out], dtype=bool))
 
 
 def smoothest_reflectance(
@@ -266,6 +273,7 @@ def smoothest_reflectance(
     converged = np.ones(N, dtype=bool)
     feasible = np.ones(N, dtype=bool)
     distance = np.zeros(N)
+    method = np.full(N, "unconstrained", dtype=object)
     lower, upper = (None, None) if bounds is None else (0.0, 1.0 if bounds == "unit" else np.inf)
     if bounds is not None:
         cone = bounds == "nonnegative"
@@ -275,32 +283,49 @@ def smoothest_reflectance(
         # the unconstrained solution within the bounds certifies feasibility by itself
         check = np.flatnonzero(~np.all((rho >= lower) & (rho <= upper), axis=1) & ~black & ~white)
         depth = np.ones(N)
-        facet = np.zeros(N, dtype=np.int64)
-        ratio, excess, facet[check] = _zonotope.gauge(facets, b[check], cone)
+        ratio, excess, _ = _zonotope.gauge(facets, b[check], cone)
         depth[check] = -ratio if cone else 1.0 - ratio
         distance[check] = np.maximum(excess, 0.0)
         on_boundary = np.abs(depth) <= BOUNDARY_TOLERANCE
         feasible = depth >= -BOUNDARY_TOLERANCE
+        distance[feasible] = 0.0
         todo = check[feasible[check] & ~on_boundary[check]]
         if todo.size:
             sol = _qp.solve_bounded(prob, b[todo], lower, upper)
             rho[todo], mu[todo], lam[todo] = sol.rho, sol.mu, sol.lam
             converged[todo] = sol.converged
+            method[todo] = np.asarray(_qp.METHODS, dtype=object)[sol.method]
+            # a colour that close to the boundary that the active-set methods could not
+            # settle is tried on its face; the certificate decides whether that is exact
+            near = todo[~sol.converged & (depth[todo] <= NEAR_BOUNDARY)]
+            if near.size:
+                got = _boundary_solutions(setup, b[near], lower, upper, NEAR_BOUNDARY)
+                passed = _certify(prob, b[near], *got[:3], lower, upper, got[3])[-1]
+                take = near[passed]
+                rho[take], mu[take], lam[take] = (g[passed] for g in got[:3])
+                converged[take] = True
+                method[take] = "boundary face"
         if on_boundary.any():
             idx = np.flatnonzero(on_boundary)
-            rho[idx] = _boundary_solution(setup, b[idx], facets, facet[idx], cone)
-            mu[idx] = np.nan
-            lam[idx] = np.nan
-        rho[black], mu[black], lam[black] = 0.0, np.nan, np.nan
-        rho[white], mu[white], lam[white] = 1.0, np.nan, np.nan
+            rho[idx], mu[idx], lam[idx], converged[idx] = _boundary_solutions(
+                setup, b[idx], lower, upper)
+            method[idx] = "boundary face"
+        # black and white have one reflectance each; zero multipliers certify them
+        rho[black], mu[black], lam[black] = 0.0, 0.0, 0.0
+        rho[white], mu[white], lam[white] = 1.0, 0.0, 0.0
+        method[black | white] = "black or white"
         rho[~feasible], mu[~feasible], lam[~feasible] = np.nan, np.nan, np.nan
         converged[~feasible] = False
+        method[~feasible] = "infeasible"
         if not shape and not feasible[0]:
             what = "object-colour solid" if bounds == "unit" else "cone of non-negative spectra"
+            white_text = ", ".join(f"{v:.8g}" for v in setup.white)
             raise ColorimetryError(
                 f"XYZ: {b_in.tolist()} is outside the {what} for illuminant {ill}, observer "
-                f"{obs} on {setup.grid[0]:g}–{setup.grid[-1]:g} nm (distance ≥ {distance[0]:.4g} "
-                f"XYZ100); no reflectance with bounds={bounds!r} produces it"
+                f"{obs} on {setup.grid[0]:g}–{setup.grid[-1]:g} nm at {setup.step_nm:g} nm "
+                f"(distance ≥ {distance[0]:.4g} XYZ100); no reflectance with bounds={bounds!r} "
+                f"produces it. XYZ must be on this grid's scale: here the perfect white is "
+                f"XYZ = ({white_text}), which can differ slightly from tabulated white points"
             )
     certificate = _certify(prob, b, rho, mu, lam, lower, upper, converged)
     result_rho = rho.reshape(*shape, K)
@@ -312,6 +337,7 @@ def smoothest_reflectance(
         roughness=prob.objective(rho).reshape(shape),
         multipliers=mu.reshape(*shape, 3),
         certificate=Certificate(*(np.asarray(c).reshape(shape) for c in certificate)),
+        method=method.astype(str).reshape(shape),
         bounds=bounds,
         observer=obs,
         illuminant=ill,
@@ -319,6 +345,7 @@ def smoothest_reflectance(
 
 
 def _certify(prob, b, rho, mu, lam, lower, upper, converged):
+    """The certificate's measures, and ``converged`` narrowed to results that pass them."""
     with np.errstate(invalid="ignore"):
         primal = np.abs(rho @ prob.W - b).max(axis=1)
         if lower is None:
@@ -333,6 +360,13 @@ def _certify(prob, b, rho, mu, lam, lower, upper, converged):
             sign = np.where(at_lower, -lam, np.where(at_upper, lam, np.abs(lam))).max(axis=1)
             gap = np.minimum(np.abs(rho - lower), np.abs(upper - rho))
             comp = (np.abs(lam) * gap).max(axis=1)
-        lam_used = np.where(np.isnan(lam), 0.0, lam)
-        station = np.abs(prob.hess_times(rho) - mu @ prob.W.T - lam_used).max(axis=1)
-    return primal, violation, sign, comp, station, converged
+        grad = prob.hess_times(rho)
+        pull = mu @ prob.W.T
+        station = np.abs(grad - pull - (0.0 if lower is None else lam)).max(axis=1)
+        primal_tol = PRIMAL_TOLERANCE * (np.abs(rho) @ np.abs(prob.W)).max(axis=1)
+        dual_tol = DUAL_TOLERANCE * (1.0 + np.abs(grad).max(axis=1) + np.abs(pull).max(axis=1))
+        finite = (np.all(np.isfinite(rho), axis=1) & np.all(np.isfinite(mu), axis=1)
+                  & np.all(np.isfinite(lam), axis=1))
+        passed = (finite & (primal <= primal_tol) & (violation == 0.0) & (sign <= dual_tol)
+                  & (comp <= dual_tol) & (station <= dual_tol))
+    return primal, violation, sign, comp, station, converged & passed

@@ -1,0 +1,166 @@
+"""Exact smoothest reflectance for colours on the boundary of the solid (or of the cone).
+
+A colour on the boundary of the zonotope ``{W.T rho : lower <= rho <= upper}`` lies on a
+face. With an outward normal ``n`` of a facet containing it, every feasible ``rho`` has
+``rho_k = upper`` where ``n . w_k > 0`` and ``rho_k = lower`` where ``n . w_k < 0``; only the
+generators in the facet plane (``n . w_k = 0``) remain free, and their colours form a
+zonotope of one dimension less. Repeating on that zonotope while the remaining colour is
+on its boundary ends either with nothing free (a vertex: the block spectrum itself) or
+with a colour in the relative interior of a face, where the programme restricted to the
+free generators and to the face's subspace is strictly feasible and is solved exactly by
+the dense primal active-set method. Degenerate faces — many generators in one plane, as
+where the 1931 z-bar is exactly zero beyond 650 nm — are handled like any other.
+
+Multipliers for the whole programme follow from the face's and from one multiple of each
+level's normal, chosen (innermost level first) so that every bound fixed at that level has a
+correctly signed multiplier; together they certify the optimum.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _qp
+
+#: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
+PLANE_TOLERANCE = 1e-10
+#: A colour is on a facet when its distance to the facet's plane is at most this times the
+#: colour's largest component (relative to the colour: tiny colours near black need it).
+FACET_TOLERANCE = 1e-13
+
+
+def _normals(G: np.ndarray) -> np.ndarray:
+    """Candidate facet normals (both orientations) of the zonotope of generators G (n, r)."""
+    r = G.shape[1]
+    if r == 1:
+        n = np.ones((1, 1))
+    elif r == 2:
+        n = np.stack([-G[:, 1], G[:, 0]], axis=1)
+    else:
+        i, j = np.triu_indices(len(G), 1)
+        n = np.cross(G[i], G[j])
+    norm = np.linalg.norm(n, axis=1)
+    n = n[norm > 1e-12 * max(norm.max(initial=0.0), np.finfo(float).tiny)]
+    n = n / np.linalg.norm(n, axis=1, keepdims=True)
+    return np.concatenate([n, -n])
+
+
+def _touching_facet(G, c, lower, upper, tol):
+    """The outward normal of a facet of the zonotope (or cone) of G containing c, or None."""
+    n = _normals(G)
+    p = n @ G.T  # (F, n)
+    if np.isfinite(upper):
+        support = np.where(p > 0, upper * p, lower * p).sum(axis=1)
+    else:  # the cone: only normals with no generator on their positive side bound it
+        tol = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
+        ok = np.all(p <= tol, axis=1)
+        n, p = n[ok], p[ok]
+        support = lower * p.sum(axis=1)
+    if len(n) == 0:
+        return None
+    slack = support - n @ c
+    f = int(np.argmin(slack))
+    return n[f] if slack[f] <= tol else None
+
+
+def _strictly_feasible(W, b, lower, upper, rho, free):
+    """A feasible point with the free values as far inside their bounds as possible (or, with
+    as many free values as constraints, the only one)."""
+    from scipy.optimize import linprog
+
+    F = np.flatnonzero(free)
+    target = b - np.delete(rho, F) @ np.delete(W, F, axis=0)
+    if F.size == W.shape[1]:  # as many free values as constraints: they are determined
+        x = np.linalg.solve(W[F].T, target)
+        slack = 1e-12 * np.abs(x).max()  # rounding: a value at a bound may come out as -1e-30
+        if np.any(x < lower - slack) or np.any(x > upper + slack):
+            return None
+        out = rho.copy()
+        out[F] = np.clip(x, lower, upper)
+        return out
+    cap = 0.5 * (upper - lower) if np.isfinite(upper) else 1.0
+    n = F.size
+    # variables: x (n), s; maximise s with x - s >= lower, x + s <= upper, W.T x = target
+    a_ub = np.zeros((2 * n, n + 1))
+    a_ub[:n, :n], a_ub[:n, n] = -np.eye(n), 1.0
+    a_ub[n:, :n], a_ub[n:, n] = np.eye(n), 1.0
+    b_ub = np.concatenate([np.full(n, -lower), np.full(n, upper if np.isfinite(upper) else 1e300)])
+    keep = np.r_[np.ones(n, dtype=bool), np.full(n, np.isfinite(upper))]
+    a_eq = np.concatenate([W[F].T, np.zeros((W.shape[1], 1))], axis=1)
+    cost = np.zeros(n + 1)
+    cost[-1] = -1.0
+    res = linprog(cost, A_ub=a_ub[keep], b_ub=b_ub[keep], A_eq=a_eq, b_eq=target,
+                  bounds=[(None, None)] * n + [(0.0, cap)], method="highs",
+                  options={"primal_feasibility_tolerance": 1e-10})
+    if res.status != 0:
+        return None
+    x = res.x[:n]
+    x += np.linalg.lstsq(W[F].T, target - x @ W[F], rcond=None)[0]
+    if np.any(x <= lower) or np.any(x >= upper):
+        return None
+    out = rho.copy()
+    out[F] = x
+    return out
+
+
+def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upper: float,
+                  facet_tolerance: float = FACET_TOLERANCE):
+    """The smoothest ``rho`` with ``W.T rho = b`` and bounds, for a colour b on the boundary.
+
+    ``facet_tolerance`` (relative, see :data:`FACET_TOLERANCE`) decides which facets the
+    colour is on; the caller checks the result's residual.
+
+    Returns rho (K,), mu (m,), lam (K,) and whether it was solved; NaN where not.
+    """
+    K, m = W.shape
+    on_facet = facet_tolerance * max(np.abs(b).max(), np.finfo(float).tiny)
+    rho = np.zeros(K)
+    free = np.ones(K, dtype=bool)
+    basis = np.eye(m)  # orthonormal columns: the subspace that the free generators span
+    levels = []  # (normal in colour space, indices fixed at that level)
+    failed = (np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False)
+    while free.any() and basis.shape[1] > 0:
+        F = np.flatnonzero(free)
+        G = W[F] @ basis
+        _, sv, vt = np.linalg.svd(G, full_matrices=False)
+        rank = int(np.count_nonzero(sv > 1e-10 * sv[0])) if sv[0] > 0 else 0
+        basis = basis @ vt[:rank].T
+        if rank == 0:
+            break
+        G = W[F] @ basis
+        c = (b - rho @ W) @ basis
+        n = _touching_facet(G, c, lower, upper, on_facet)
+        if n is None:
+            break
+        p = G @ n
+        tol = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
+        up, lo = p > tol, p < -tol
+        rho[F[up]] = upper
+        rho[F[lo]] = lower
+        free[F[up | lo]] = False
+        levels.append((basis @ n, F[up | lo]))
+        # the remaining generators span the facet's plane: drop the normal from the basis
+        null = np.linalg.svd(n[None, :])[2][1:].T
+        basis = basis @ null
+    if free.any():
+        if basis.shape[1] == 0:  # generators that no colour constrains: only smoothness
+            return failed
+        Wb = W @ basis
+        start = _strictly_feasible(Wb, b @ basis, lower, upper, rho, free)
+        if start is None:
+            return failed
+        rho, mu_b, _, _, ok = _qp.primal_active_set(Q, Wb, b @ basis, lower, upper, start,
+                                                    ~free, pinned=~free)
+        if not ok:
+            return failed
+        mu = basis @ mu_b
+    else:
+        mu = np.zeros(m)
+    # a multiple of each level's normal makes the bounds fixed at that level correctly signed
+    for normal, idx in reversed(levels):
+        g = Q[idx] @ rho - W[idx] @ mu
+        w_n = W[idx] @ normal
+        mu = mu + normal * max(0.0, float(np.max(g / w_n)))
+    lam = Q @ rho - W @ mu
+    lam[free & (rho > lower) & (rho < upper)] = 0.0
+    return rho, mu, lam, True
