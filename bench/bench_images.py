@@ -68,7 +68,7 @@ def throughput(size: int) -> None:
     print(f"   bare NumPy matmul, float32 @ float64 : {pixels / t_numpy64 / 1e6:8.1f} Mpixel/s")
     print(f"   spectrocolor cube_to_xyz (64 MiB rows): {pixels / t_ours / 1e6:8.1f} Mpixel/s "
           f"= {t_ours / t_numpy32:.2f} x the time of the float32 BLAS limit "
-          f"(it sums in float64)")
+          f"(float32 cubes are summed in float32, like sc.tristimulus)")
     print(f"   colour-science msds_to_XYZ (512^2)   : {rate_colour / 1e6:8.1f} Mpixel/s "
           f"-> spectrocolor is {pixels / t_ours / rate_colour:.1f} x faster")
 
