@@ -403,3 +403,32 @@ def test_outside_colour_error_gives_this_grids_white():
     assert f"{white[0]:.8g}" in str(err.value)
     r = smoothest_reflectance(white, wavelengths=(380, 780, 5))
     assert np.all(r.spectrum.values == 1.0)
+
+
+# Colours a relative depth 1e-9 inside the solid that the solvers once settled on the right
+# active set but left with a residual above rounding (the reduced system is ill-conditioned
+# there: the free weights are nearly dependent); found by bench/bench_reflectance.py's sampling
+# (vertex rays, seeds 0 and 2) and by two-transition blocks moved 1e-9 inwards.
+_REGRESSION_COLOURS = [
+    ((380.0, 780.0, 10.0), "D65", [71.76157294911792, 60.16039561457991, 0.3123865543029112]),
+    ((380.0, 780.0, 10.0), "D65", [67.49411488256075, 50.364781796081296, 0.22623991125392706]),
+    ((400.0, 700.0, 10.0), "D65", [0.07699130694061296, 0.027802999016323326, 5.4354558187696966e-08]),
+    ((380.0, 780.0, 10.0), "A", [0.024259463718557583, 0.000674273465968156, 0.11494847763366423]),
+    ((380.0, 780.0, 10.0), "A", [0.22380816197317444, 0.08040818727278776, 0.005855489812706338]),
+    ((380.0, 780.0, 10.0), "A", [0.028739407740907552, 0.009965286857919864, 0.005855489812706338]),
+]
+
+
+@pytest.mark.parametrize(("grid", "illuminant", "XYZ"), _REGRESSION_COLOURS)
+def test_ill_conditioned_colours_at_depth_1e_9_are_certified(grid, illuminant, XYZ):
+    """Certified at the strict tolerances, alone and in a batch, with the round trip at
+    rounding level relative to the colour and optimality checked independently."""
+    W = _weights(grid, illuminant)
+    b = np.array([XYZ] * 3)
+    r = smoothest_reflectance(b, illuminant, wavelengths=grid)
+    one = smoothest_reflectance(XYZ, illuminant, wavelengths=grid)
+    assert np.all(r.certificate.converged) and one.certificate.converged
+    for rho in (*r.spectrum.values, one.spectrum.values):
+        assert rho.min() >= 0.0 and rho.max() <= 1.0
+        assert np.abs(rho @ W - XYZ).max() <= 1e-12 * (rho @ W).max()
+        _check_kkt_independently(W, grid[2], np.array(XYZ), rho, 1.0)
