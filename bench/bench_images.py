@@ -19,10 +19,11 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
+
+from timing import best_of
 
 WAVELENGTHS = np.arange(400.0, 701.0, 10.0)
 
@@ -31,15 +32,6 @@ def _cube(size: int) -> np.ndarray:
     rng = np.random.default_rng(0)
     rows = [rng.random((size, WAVELENGTHS.size), dtype=np.float32) for _ in range(4)]
     return np.stack([rows[i % 4] for i in range(size)])  # cheap to make, same cost to convert
-
-
-def _best(function, repeat: int = 3) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def throughput(size: int) -> None:
@@ -52,16 +44,16 @@ def throughput(size: int) -> None:
     pixels = size * size
     W = np.asarray(sc.weights(WAVELENGTHS, "1931", "D65"))
     flat = cube.reshape(-1, WAVELENGTHS.size)
-    t_numpy64 = _best(lambda: flat @ W)  # float32 @ float64 -> float64, one call
+    t_numpy64 = best_of(lambda: flat @ W, repeats=3)  # float32 @ float64 -> float64, one call
     W32 = W.astype(np.float32)
-    t_numpy32 = _best(lambda: flat @ W32)
-    t_ours = _best(lambda: cube_to_xyz(cube, WAVELENGTHS, illuminant="D65"))
+    t_numpy32 = best_of(lambda: flat @ W32, repeats=3)
+    t_ours = best_of(lambda: cube_to_xyz(cube, WAVELENGTHS, illuminant="D65"), repeats=3)
     crop = cube[:512, :512]
     shape = colour.SpectralShape(400, 700, 10)
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"].copy().align(shape)
     illuminant = colour.SDS_ILLUMINANTS["D65"].copy().align(shape)
-    t_colour = _best(lambda: colour.msds_to_XYZ(crop, cmfs, illuminant, method="Integration",
-                                                shape=shape), repeat=2)
+    t_colour = best_of(lambda: colour.msds_to_XYZ(crop, cmfs, illuminant, method="Integration",
+                                                shape=shape), repeats=2)
     rate_colour = 512 * 512 / t_colour
     print(f"\n1. XYZ of a {size}x{size}x31 float32 cube ({cube.nbytes / 2**20:.0f} MiB)")
     print(f"   bare NumPy matmul, float32 @ float32 : {pixels / t_numpy32 / 1e6:8.1f} Mpixel/s")
@@ -154,7 +146,7 @@ def dask_scaling(folder: Path, size: int) -> None:
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                           dashboard_address=":0") as cluster, Client(cluster):
             dask.compute(lazy)  # warm the workers
-            times[workers] = _best(lambda: dask.compute(lazy), repeat=2)
+            times[workers] = best_of(lambda: dask.compute(lazy), repeats=2)
         print(f"   {workers} worker(s): {times[workers]:.2f} s "
               f"({size * size / times[workers] / 1e6:.1f} Mpixel/s)")
     print(f"   speed-up 2 vs 1 workers: {times[1] / times[2]:.2f} x "

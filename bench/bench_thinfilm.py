@@ -14,14 +14,7 @@ import time
 
 import numpy as np
 
-
-def best(fn, repeat=5):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
+from timing import best_of
 
 
 def main() -> None:
@@ -37,11 +30,11 @@ def main() -> None:
     def both(fn):
         return lambda: (fn("s"), fn("p"))
 
-    t_airy = best(both(lambda p: thin_film(d, wl, 1.33, substrate=1.5, polarisation=p)))
-    t_tmm = best(both(lambda p: stack_optics(d[:, None], wl, [1.33], substrate=1.5,
+    t_airy = best_of(both(lambda p: thin_film(d, wl, 1.33, substrate=1.5, polarisation=p)))
+    t_tmm = best_of(both(lambda p: stack_optics(d[:, None], wl, [1.33], substrate=1.5,
                                              polarisation=p)))
-    t_cs = best(lambda: thin_film_tmm([1.0, 1.33, 1.5], d, wl), repeat=3)
-    t_np = best(lambda: two_beam_reflectance(2 * 1.33 * d, wl))
+    t_cs = best_of(lambda: thin_film_tmm([1.0, 1.33, 1.5], d, wl), repeats=3)
+    t_np = best_of(lambda: two_beam_reflectance(2 * 1.33 * d, wl))
     print("81 wavelengths x 1501 thicknesses, R and T for s and p (best of runs)")
     print(f"  spectrocolor thin_film (Airy)     {t_airy * 1e3:8.1f} ms")
     print(f"  spectrocolor stack_optics (TMM)   {t_tmm * 1e3:8.1f} ms")
@@ -55,7 +48,7 @@ def main() -> None:
     t_table = time.perf_counter() - t0
     frame = maps.draining_film(3840, 2160, time_s=3000.0, film_height_m=0.02)
     frame = np.minimum(frame, 2000.0)
-    t_map = best(lambda: maps.render_thickness_map(frame, table), repeat=3)
+    t_map = best_of(lambda: maps.render_thickness_map(frame, table), repeats=3)
     print("3840 x 2160 thickness map (draining soap film), float32 thickness")
     print(f"  lookup table (4001 thicknesses, exact optics, colour): {t_table * 1e3:.0f} ms")
     print(f"  render through the table: {t_map * 1e3:.0f} ms per frame")
