@@ -140,9 +140,22 @@ def test_setting2_metameric_pairs(client):
     np.testing.assert_allclose(d65, table * 30 / table.max())
     r = evaluate(client, [d65, right["7"]["levels"]], normalise="per-colour", pairs=[[0, 1]])
     assert r["delta_e_2000"][0] > 5  # different lightness without X ...
+    assert r["delta_e_2000_shown"][0] < 0.5  # ... but as shown under B (each patch scaled) they match
     xy0, xy1 = (np.array(c["xy"]) for c in r["colours"])
     assert np.abs(xy0 - xy1).max() < 1e-3  # ... metameric chromaticity (after X)
     assert [c["codes"] for c in r["colours"]][0] == r["colours"][1]["codes"]
+
+
+def test_delta_e_as_shown_is_the_displayed_lights(client):
+    # Independently: the shown light is the normalised linear RGB taken back to XYZ, and
+    # CIELAB is relative to the display's white at full drive.
+    p = client.get("/api/presets").json()["setting1"]
+    a, b = p[0]["levels"], p[2]["levels"]
+    r = evaluate(client, [a, b], normalise="per-colour", pairs=[[0, 1]])
+    space = sc.rgb_space("sRGB")
+    shown = [np.asarray(c["rgb_unmapped"]) @ np.asarray(space.matrix_to_XYZ).T for c in r["colours"]]
+    lab = [sc.lab(x, space.white_XYZ) for x in shown]
+    assert r["delta_e_2000_shown"][0] == pytest.approx(float(sc.delta_e_2000(lab[0], lab[1])), abs=1e-9)
 
 
 def test_setting3_pairs_conserve_the_total(client):

@@ -27,7 +27,6 @@ DISPLAYS = ("sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy")
 GAMUTS = ("flag", "clip", "preserve-luminance", "desaturate")
 NORMALISATIONS = ("fixed", "per-colour")
 CHANNELS = ("R", "G", "B")
-NEUTRAL_PURITY = 1e-9  # excitation purity below which a colour is the white itself
 
 
 def grid(step_nm: float) -> np.ndarray:
@@ -125,8 +124,6 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         dom_nm[lit] = d.wavelength_nm
         dom_comp[lit] = d.complementary
         purity[lit] = d.excitation_purity
-    # At the white itself (to round-off) there is no dominant wavelength.
-    dom_nm[~(purity > NEUTRAL_PURITY)] = np.nan
     W = sc.weights(wl, observer, reference)
     scale = fixed_scale(display, W) if normalise == "fixed" else None
     r = sc.render(XYZ, display, normalise=normalise, gamut=gamut, scale=scale)
@@ -169,9 +166,15 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
             "status": status,
         })
     delta = [float(sc.delta_e_2000(lab[a], lab[b])) for a, b in pairs]
+    # The lights as the display is asked to show them (after normalisation A or B, before any
+    # gamut strategy), relative to the display's own white: what the split patch compares.
+    space = sc.rgb_space(display)
+    shown_lab = sc.lab(r.rgb_unmapped @ np.asarray(space.matrix_to_XYZ).T, space.white_XYZ)
+    delta_shown = [float(sc.delta_e_2000(shown_lab[a], shown_lab[b])) for a, b in pairs]
     return {
         "colours": colours,
         "delta_e_2000": delta,
+        "delta_e_2000_shown": delta_shown,
         "white_XYZ": white_XYZ.tolist(),
         "white_xy": white_xy.tolist(),
         "normalise": r.normalise,

@@ -177,9 +177,13 @@ function paint(colours, server) {
   });
   let extra = "";
   if (server && server.delta_e_2000.length) {
-    const de = server.delta_e_2000[0];
+    // Under B each patch is scaled on its own, so the split patch compares the lights as shown;
+    // the unscaled lights' difference is given beside it.
+    const scaled = S.normalise === "per-colour";
+    const de = scaled ? server.delta_e_2000_shown[0] : server.delta_e_2000[0];
+    const note = scaled ? `as shown (B); unscaled lights ${fmt(server.delta_e_2000[0], 2)}` : "";
     extra = `<div class="card"><h3>ΔE00 between ${S.setting === 4 ? "the samples" : "the two"}: <span class="de">${fmt(de, 2)}</span></h3>
-      <div class="status ${de < 0.5 ? "opt" : ""}">${de < 0.5 ? "metameric" : S.normalise === "per-colour" ? "ΔE00 of the unscaled lights (B scales each patch)" : ""}</div></div>`;
+      <div class="status ${de < 0.5 ? "opt" : ""}">${[de < 0.5 ? "metameric" : "", note].filter(Boolean).join(" · ")}</div></div>`;
   }
   $("numbers").innerHTML = extra + cards.join("");
   drawPoints(colours, server);
