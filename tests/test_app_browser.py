@@ -281,3 +281,35 @@ def test_readable_on_a_tablet(page, artifacts_dir):
     width = page.evaluate("document.documentElement.scrollWidth")
     page.set_viewport_size({"width": 1280, "height": 800})
     assert width <= 820
+
+
+def test_touch_drag_edits_bars_on_a_tablet(base_url, artifacts_dir):
+    """A finger drag (real touch events through Chromium's input pipeline) edits the bars, and the
+    numbers shown are the library's for the edited distribution."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
+        context = browser.new_context(viewport={"width": 820, "height": 1180}, has_touch=True, is_mobile=True)
+        pg = context.new_page()
+        pg.goto(base_url)
+        settle(pg)
+        key(pg, "3")  # grey: every bar at the same level
+        before = state(pg)["dists"][0][:]
+        box = pg.locator("#editors .editor[data-e='0'] canvas").bounding_box()
+        cdp = context.new_cdp_session(pg)
+        y = box["y"] + 20  # near the top of the plot: a high level
+        xs = [box["x"] + box["width"] * f for f in np.linspace(0.05, 0.45, 10)]
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": xs[0], "y": y}]})
+        for x in xs[1:]:
+            cdp.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x, "y": y}]})
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+        settle(pg)
+        st = state(pg)
+        after = st["dists"][0]
+        changed = [k for k in range(len(after)) if after[k] != before[k]]
+        assert len(changed) >= 8, changed  # the finger swept across about 40 % of the bars
+        assert all(after[k] > before[k] for k in changed)
+        check_card(pg, 0, library(st)["colours"][0])
+        pg.screenshot(path=str(artifacts_dir / "app_touch.png"))
+        browser.close()
