@@ -48,19 +48,25 @@ def base_url():
 
 
 @pytest.fixture(scope="module")
-def page(base_url):
+def browser():
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
-        pg = browser.new_page(viewport={"width": 1280, "height": 800})
-        errors = []
-        pg.on("pageerror", lambda e: errors.append(str(e)))
-        pg.goto(base_url)
-        settle(pg)
-        yield pg
-        assert not errors, errors
-        browser.close()
+        chromium = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
+        yield chromium
+        chromium.close()
+
+
+@pytest.fixture(scope="module")
+def page(browser, base_url):
+    pg = browser.new_page(viewport={"width": 1280, "height": 800})
+    errors = []
+    pg.on("pageerror", lambda e: errors.append(str(e)))
+    pg.goto(base_url)
+    settle(pg)
+    yield pg
+    assert not errors, errors
+    pg.close()
 
 
 def settle(pg):
@@ -283,14 +289,11 @@ def test_readable_on_a_tablet(page, artifacts_dir):
     assert width <= 820
 
 
-def test_touch_drag_edits_bars_on_a_tablet(base_url, artifacts_dir):
+def test_touch_drag_edits_bars_on_a_tablet(browser, base_url, artifacts_dir):
     """A finger drag (real touch events through Chromium's input pipeline) edits the bars, and the
     numbers shown are the library's for the edited distribution."""
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
-        context = browser.new_context(viewport={"width": 820, "height": 1180}, has_touch=True, is_mobile=True)
+    context = browser.new_context(viewport={"width": 820, "height": 1180}, has_touch=True, is_mobile=True)
+    try:
         pg = context.new_page()
         pg.goto(base_url)
         settle(pg)
@@ -312,4 +315,5 @@ def test_touch_drag_edits_bars_on_a_tablet(base_url, artifacts_dir):
         assert all(after[k] > before[k] for k in changed)
         check_card(pg, 0, library(st)["colours"][0])
         pg.screenshot(path=str(artifacts_dir / "app_touch.png"))
-        browser.close()
+    finally:
+        context.close()
