@@ -99,3 +99,53 @@ def test_errors():
     batch = sc.Spectrum(np.arange(400.0, 701.0, 10.0), np.ones((2, 31)))
     with pytest.raises(sc.ColorimetryError, match="index="):
         sc.spectrum_plot(batch)
+
+
+def _text_boxes(ax):
+    """Drawn text boxes of the axes' texts (text only, not leader lines), display units."""
+    from matplotlib.text import Text
+
+    ax.figure.draw_without_rendering()
+    texts = [t for t in ax.texts if t.get_visible() and t.get_text()]
+    return texts, [Text.get_window_extent(t) for t in texts]
+
+
+def _overlapping_pairs(texts, boxes):
+    return [(texts[i].get_text(), texts[j].get_text())
+            for i in range(len(boxes)) for j in range(i + 1, len(boxes))
+            if boxes[i].overlaps(boxes[j])]
+
+
+def test_uv_temperature_labels_keep_off_the_white_point():
+    ax = sc.chromaticity_diagram(kind="uv", spaces=("sRGB", "SPECTRA 7000K"))
+    texts, boxes = _text_boxes(ax)
+    by_text = dict(zip([t.get_text() for t in texts], boxes, strict=True))
+    d65 = ax.transData.transform(sc.uv_1976(XYZ=sc.white_point("D65")))
+    for name, box in by_text.items():
+        if name.endswith(" K"):
+            assert not box.overlaps(by_text["D65"]), name
+            assert not box.contains(*d65), name
+    assert "6500 K" in by_text  # there is room for it on the other side of the locus
+    assert _overlapping_pairs(texts, boxes) == []
+
+
+@pytest.mark.parametrize("kind", ["xy", "uv"])
+def test_colorchecker_labels_do_not_overlap(kind):
+    from importlib.resources import files
+
+    spectra = sc.read_spectra(files("spectrocolor") / "data/reflectances_colorchecker_babel.csv")
+    XYZ = sc.tristimulus(spectra, "1931", "D65")
+    ax = sc.chromaticity_diagram(kind=kind, points=XYZ, labels=list(spectra.names),
+                                 whites={"D65": sc.white_point("D65")})
+    texts, boxes = _text_boxes(ax)
+    assert _overlapping_pairs(texts, boxes) == []
+    drawn = [t.get_text() for t in texts]
+    # the six neutrals sit at one spot: one label for them, the merge stated in the legend
+    neutral = [t for t in drawn if t.startswith("white_9.5")]
+    assert neutral == ["white_9.5_(.05_D) +5"]
+    legend = "\n".join(t.get_text() for t in ax.get_legend().get_texts())
+    assert "24 points" in legend and "'+n': n more at the same spot" in legend
+    named = [n for n in spectra.names if n in drawn or f"{n} +5" in drawn]
+    omitted = 24 - 5 - len(named)
+    assert omitted == 0 or f"{omitted} labels left out" in legend
+    assert "D65" in drawn

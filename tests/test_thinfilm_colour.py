@@ -166,6 +166,50 @@ def test_angle_table_and_bubble():
     assert img.shape == (64, 64, 3) and np.all(img[0, 0] == 0)
 
 
+def _srgb_codes(rgb_linear):
+    """IEC 61966-2-1 encoding and rounding to 8-bit codes, written out here."""
+    x = np.asarray(rgb_linear, dtype=float)
+    encoded = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.maximum(x, 0) ** (1 / 2.4) - 0.055)
+    return np.rint(encoded * 255).astype(np.uint8)
+
+
+def test_angle_lookup_interpolates_in_linear_light_between_grid_angles():
+    options = dict(exposure="perfect-reflector", gain=2.0)
+    tab = maps.colour_table(soap_film, 600.0, thickness_step_nm=2.0, max_angle_deg=89.9,
+                            angle_step_deg=10.0, **options)
+    wl = np.arange(380.0, 781.0, 5.0)
+    # (thickness, angle, lower grid angle, upper grid angle); the last grid angle is 89.9°
+    cases = [(300.0, 45.0, 40.0, 50.0), (120.0, 72.5, 70.0, 80.0), (550.0, 85.0, 80.0, 89.9),
+             (430.0, 89.9, 80.0, 89.9)]
+    for d, a, a0, a1 in cases:
+        lin0, lin1 = (film_colours(soap_film(np.array([d]), wl, angle_deg=g), **options)
+                      .rendering.rgb_linear[0] for g in (a0, a1))
+        w = (a - a0) / (a1 - a0)
+        expected = _srgb_codes((1 - w) * lin0 + w * lin1)
+        got = tab.lookup(np.array([d]), np.array([a]))[0]
+        np.testing.assert_array_equal(got, expected, err_msg=f"{d} nm at {a}°")
+    # the mixture is not just one of the rows (the test can tell interpolation from nearest)
+    row40, row50 = tab.rgb8[4, 150], tab.rgb8[5, 150]
+    mid = tab.lookup(np.array([300.0]), np.array([45.0]))[0]
+    assert not np.array_equal(mid, row40) and not np.array_equal(mid, row50)
+    with pytest.raises(SpectrumError, match="0-89.9°"):
+        tab.lookup(np.array([300.0]), np.array([89.95]))
+    with pytest.raises(SpectrumError, match="angle_deg"):
+        tab.lookup(np.array([300.0]), np.array([-1.0]))
+
+
+def test_single_angle_lookup_is_the_nearest_entry_bit_for_bit(table):
+    rng = np.random.default_rng(7)
+    d = rng.uniform(0, 1200.0, (40, 30)).astype(np.float32)
+    d[::7, ::5] = np.nan
+    img = table.lookup(d, background=(1, 2, 3))
+    film = ~np.isnan(d)
+    nearest = np.rint(d[film].astype(np.float64) / 0.5).astype(int)
+    np.testing.assert_array_equal(img[film], table.rgb8[0, nearest])
+    assert np.all(img[~film] == [1, 2, 3])
+    assert table.rgb_linear is None  # one-angle tables keep only their codes
+
+
 def test_draining_film_profile():
     d = maps.draining_film(4, 100, time_s=100.0, film_height_m=0.01)
     x = (np.arange(100) + 0.5) / 100 * 0.01

@@ -197,10 +197,14 @@ def chromaticity_diagram(
         named_whites = {k: np.asarray(v, float) for k, v in whites.items()}
     else:
         named_whites = {name: white_point(name, observer) for name in (whites or ())}
+    markers = []  # (anchor, diameter in points): labels keep off every marker
+    white_labels = []
     for label, XYZ in named_whites.items():
         c = _to_kind(_as_xy(XYZ, "whites"), kind)[0]
         ax.plot(*c, marker="o", mfc="white", mec="black", ms=6, zorder=6, ls="none")
-        ax.annotate(label, c, xytext=(5, 5), textcoords="offset points", fontsize=8, zorder=6)
+        markers.append((c, 6.0))
+        white_labels.append(_Label(str(label), c, _ring_offsets(6.0), {"fontsize": 8}, 6))
+    planck_labels = []
     if planckian:
         temps = np.geomspace(1000, 20000, 60)
         pl = _to_kind(planckian_locus_xy(temps, observer), kind)
@@ -208,20 +212,20 @@ def chromaticity_diagram(
         marks = _to_kind(planckian_locus_xy(_PLANCK_LABELS_K, observer), kind)
         ax.plot(marks[:, 0], marks[:, 1], "|", color="0.25", ms=6, zorder=5)
         for t, c in zip(_PLANCK_LABELS_K, marks, strict=True):
-            ax.annotate(f"{t} K", c, xytext=(0, -11), textcoords="offset points",
-                        fontsize=6, ha="center", color="0.2", zorder=5)
+            markers.append((c, 6.0))
+            planck_labels.append(_Label(f"{t} K", c, (), {"fontsize": 6, "color": "0.2"}, 5,
+                                        across=pl))
     for i, curve in enumerate(curves or ()):
         c = _to_kind(_as_xy(curve, "curves"), kind)
         name = None if curve_labels is None else curve_labels[i]
         ax.plot(c[:, 0], c[:, 1], lw=1.2, zorder=7, color=f"C{i + 3}", label=name)
+    pts = None
     if points is not None:
         pts = _to_kind(_as_xy(points, "points"), kind)
         if labels is not None and len(labels) != len(pts):
             raise ColorimetryError(f"labels must name each of the {len(pts)} points")
         ax.plot(pts[:, 0], pts[:, 1], "o", mfc="none", mec="black", ms=5, zorder=8)
-        for text, c in zip(labels or (), pts, strict=False):
-            ax.annotate(str(text), c, xytext=(4, -9), textcoords="offset points", fontsize=7,
-                        zorder=8)
+        markers.extend((c, 5.0) for c in pts)
     names = ("x", "y") if kind == "xy" else ("u′", "v′")
     ax.set_xlabel(names[0])
     ax.set_ylabel(names[1])
@@ -230,10 +234,172 @@ def chromaticity_diagram(
     ax.set_xlim(lim[0], lim[1])
     ax.set_ylim(lim[2], lim[3])
     ax.grid(True, lw=0.3, color="0.85", zorder=-1)
-    ax.legend(loc="upper right" if kind == "xy" else "lower left", fontsize=7, framealpha=0.9)
     diagram = "CIE 1931 xy" if kind == "xy" else "CIE 1976 u′v′"
     ax.set_title(title if title is not None else f"{diagram} chromaticity diagram, observer {observer}")
+    legend_loc = "upper right" if kind == "xy" else "lower right"
+    point_handle = None
+    if pts is not None and labels is not None:
+        from matplotlib.lines import Line2D
+
+        point_handle = Line2D([], [], ls="none", marker="o", mfc="none", mec="black", ms=5)
+    # Lay the figure out once with the longest legend the labels can lead to; the labels are
+    # placed in display coordinates around it, the markers and the wavelength labels.
+    count = 0 if pts is None else len(pts)
+    _legend(ax, legend_loc, point_handle, _points_legend_text(count, count, count))
+    ax.figure.draw_without_rendering()
+    placer = _LabelPlacer(ax, markers)
+    for item in white_labels + planck_labels:
+        placer.place(item)
+    merged = omitted = 0
+    if pts is not None and labels is not None:
+        for members in _clusters(ax, pts, radius_pt=5.0):
+            text = str(labels[members[0]])
+            if len(members) > 1:
+                text += f" +{len(members) - 1}"
+                merged += len(members) - 1
+            offsets = _ring_offsets(5.0) + _ring_offsets(16.0) + _ring_offsets(28.0)
+            omitted += not placer.place(_Label(text, pts[members[0]], offsets,
+                                               {"fontsize": 7}, 8))
+    if point_handle is not None:
+        _legend(ax, legend_loc, point_handle, _points_legend_text(len(pts), merged, omitted))
     return ax
+
+
+def _legend(ax, loc, point_handle, point_text):
+    handles, texts = ax.get_legend_handles_labels()
+    if point_handle is not None:
+        handles, texts = [*handles, point_handle], [*texts, point_text]
+    return ax.legend(handles, texts, loc=loc, fontsize=7, framealpha=0.9)
+
+
+def _points_legend_text(count: int, merged: int, omitted: int) -> str:
+    notes = []
+    if merged:
+        notes.append("'+n': n more at the same spot")
+    if omitted:
+        notes.append(f"{omitted} labels left out: no room")
+    return "\n".join([f"{count} points", *notes])
+
+
+class _Label:
+    """A label to place: text, anchor (data coordinates), candidate offsets, text style.
+
+    ``offsets`` are ``(dx, dy, ha, va)`` in points, tried in order. ``across`` (a curve, data
+    coordinates) replaces them by positions on either side of the curve, perpendicular to it.
+    """
+
+    def __init__(self, text, anchor, offsets, style, zorder, across=None):
+        self.text, self.anchor, self.offsets = text, np.asarray(anchor, float), tuple(offsets)
+        self.style, self.zorder, self.across = style, zorder, across
+
+
+def _ring_offsets(radius_pt: float):
+    """Eight positions around a point at ``radius_pt``: right, left, below, above, diagonals."""
+    r, d = radius_pt, radius_pt * 0.75
+    return [(r, 0, "left", "center"), (-r, 0, "right", "center"), (0, -r, "center", "top"),
+            (0, r, "center", "bottom"), (d, -d, "left", "top"), (d, d, "left", "bottom"),
+            (-d, -d, "right", "top"), (-d, d, "right", "bottom")]
+
+
+def _clusters(ax, pts: np.ndarray, radius_pt: float) -> list[list[int]]:
+    """Groups of points whose markers overlap on the page (closer than ``radius_pt``).
+
+    Single linkage in display coordinates, in the order the points were given, so that the
+    result is deterministic; each group lists its members in input order.
+    """
+    scale = ax.figure.dpi / 72.0
+    screen = ax.transData.transform(pts)
+    near = np.hypot(*(screen[:, None, :] - screen[None, :, :]).transpose(2, 0, 1))
+    near = near < radius_pt * scale
+    group = np.arange(len(pts))
+    for _ in range(len(pts)):  # propagate the smallest index through chains of neighbours
+        updated = np.where(near, group[None, :], len(pts)).min(axis=1)
+        if np.array_equal(updated, group):
+            break
+        group = updated
+    return [np.flatnonzero(group == g).tolist() for g in np.unique(group)]
+
+
+class _LabelPlacer:
+    """Greedy, deterministic label placement in display coordinates.
+
+    Each label takes the first candidate position whose text box lies inside the axes and
+    overlaps neither an earlier label, a marker, the legend nor a text already on the axes
+    (the wavelength labels); a label with no free position is not drawn.
+    """
+
+    _PAD_PT = 1.0
+    #: Labels placed farther than this from their point get a leader line.
+    _LEADER_PT = 14.0
+
+    def __init__(self, ax, markers):
+        self.ax = ax
+        self.scale = ax.figure.dpi / 72.0
+        pad = self._PAD_PT * self.scale
+        boxes = []
+        for anchor, size_pt in markers:
+            x, y = ax.transData.transform(anchor)
+            half = size_pt / 2 * self.scale + pad
+            boxes.append((x - half, y - half, x + half, y + half))
+        for artist in [*ax.texts, *([ax.get_legend()] if ax.get_legend() else [])]:
+            b = artist.get_window_extent()
+            boxes.append((b.x0 - pad, b.y0 - pad, b.x1 + pad, b.y1 + pad))
+        self.boxes = np.array(boxes, dtype=float).reshape(-1, 4)
+        self.frame = ax.get_window_extent()
+
+    def _offsets(self, label):
+        if label.across is None:
+            return label.offsets
+        curve = self.ax.transData.transform(label.across)
+        anchor = self.ax.transData.transform(label.anchor)
+        i = int(np.argmin(np.hypot(*(curve - anchor).T)))
+        tangent = curve[min(i + 1, len(curve) - 1)] - curve[max(i - 1, 0)]
+        normal = np.array([tangent[1], -tangent[0]]) / np.hypot(*tangent)
+        if normal[1] > 0:  # first choice: below the curve
+            normal = -normal
+        offsets = []
+        for distance in (5.5, 11.0):
+            for side in (1, -1):
+                dx, dy = side * distance * normal
+                ha = "left" if dx > 0.3 * distance else "right" if dx < -0.3 * distance else "center"
+                va = "bottom" if dy > 0.3 * distance else "top" if dy < -0.3 * distance else "center"
+                offsets.append((dx, dy, ha, va))
+        return offsets
+
+    def place(self, label) -> bool:
+        """Draw ``label`` at its first free position; return whether it was drawn."""
+        ax = self.ax
+        annotation = ax.annotate(label.text, label.anchor, xytext=(0, 0),
+                                 textcoords="offset points", zorder=label.zorder, **label.style)
+        annotation.set_in_layout(False)
+        for dx, dy, ha, va in self._offsets(label):
+            annotation.xyann = (dx, dy)
+            annotation.set_horizontalalignment(ha)
+            annotation.set_verticalalignment(va)
+            b = annotation.get_window_extent()  # no arrow yet: the text's box
+            box = np.array([b.x0, b.y0, b.x1, b.y1])
+            inside = (box[0] >= self.frame.x0 and box[1] >= self.frame.y0
+                      and box[2] <= self.frame.x1 and box[3] <= self.frame.y1)
+            if inside and not np.any(_overlaps(self.boxes, box)):
+                if np.hypot(dx, dy) > self._LEADER_PT:  # far away: a line shows whose it is
+                    annotation.remove()
+                    annotation = ax.annotate(
+                        label.text, label.anchor, xytext=(dx, dy), textcoords="offset points",
+                        ha=ha, va=va, zorder=label.zorder,
+                        arrowprops={"arrowstyle": "-", "lw": 0.5, "color": "0.3",
+                                    "shrinkA": 0, "shrinkB": 2},
+                        **label.style)
+                    annotation.set_in_layout(False)
+                self.boxes = np.vstack([self.boxes, box])
+                return True
+        annotation.remove()
+        return False
+
+
+def _overlaps(boxes: np.ndarray, box: np.ndarray) -> np.ndarray:
+    """Whether each of ``boxes`` (N, 4: x0, y0, x1, y1) overlaps ``box``."""
+    return ((boxes[:, 0] < box[2]) & (box[0] < boxes[:, 2])
+            & (boxes[:, 1] < box[3]) & (box[1] < boxes[:, 3]))
 
 
 def spectrum_plot(spectrum, index=None, style: str = "bars", ax=None, title=None,

@@ -3,8 +3,11 @@
 Computing a spectrum per pixel of a 3840 × 2160 frame would take minutes; the colour of a film
 depends only on its thickness (and the angle of incidence), so the colours are computed once
 on a fine thickness grid (default 0.5 nm; a few thousand spectra) and every pixel takes the
-nearest entry. Exposure is set once for the whole table (``"global-max"``: the brightest colour
-the table holds becomes full drive), so every frame rendered through one table is consistent.
+nearest thickness entry. Tables with an angle grid interpolate linearly between the two
+neighbouring angles (colours change fast with angle near grazing incidence, and a coarse grid
+would show as bands); see :meth:`ColourTable.lookup`. Exposure is set once for the whole
+table (``"global-max"``: the brightest colour the table holds becomes full drive), so every
+frame rendered through one table is consistent.
 
 Thickness maps: :func:`wedge`, :func:`draining_film`, :func:`bubble`, or a user's array from
 :func:`read_thickness_map` (``.npy`` in nm, or a 16-bit PNG with a stated nm per count).
@@ -22,6 +25,9 @@ from ..errors import SpectrumError
 from .colour import film_colours
 from .optics import FilmOptics
 
+#: The last angle of an angle grid is capped here (grazing incidence reflects everything).
+_MAX_ANGLE_DEG = 89.9
+
 
 @dataclass(frozen=True)
 class ColourTable:
@@ -38,12 +44,27 @@ class ColourTable:
         ``uint8`` codes, shape ``(angles, thicknesses, 3)``.
     description
         What the table was built from (film, light, observer, exposure).
+    rgb_linear
+        Linear drive values (after exposure and gamut strategy) of the same entries, float64;
+        needed to interpolate between angles (tables with an angle grid).
+    transfer
+        The display's transfer function (``encode``), to turn interpolated linear values into
+        codes as :func:`spectrocolor.render` does.
     """
 
     thickness_step_nm: float
     angle_step_deg: float | None
     rgb8: np.ndarray
     description: str
+    rgb_linear: np.ndarray | None = None
+    transfer: object | None = None
+
+    @property
+    def angles_deg(self) -> np.ndarray | None:
+        """The table's angle grid (degrees), or ``None`` for a one-angle table."""
+        if self.angle_step_deg is None:
+            return None
+        return np.minimum(np.arange(self.rgb8.shape[0]) * self.angle_step_deg, _MAX_ANGLE_DEG)
 
     @property
     def max_thickness_nm(self) -> float:
@@ -52,13 +73,23 @@ class ColourTable:
     def lookup(self, thickness_nm, angle_deg=None, background=(0, 0, 0)) -> np.ndarray:
         """Colour codes of a thickness map, shape ``(..., 3)`` ``uint8``.
 
+        Each pixel takes the nearest thickness entry. With an angle grid, the colour is
+        interpolated linearly in angle between the two neighbouring grid angles, in *linear
+        light*: the linear drive values of the two entries are mixed and then encoded, as
+        :func:`spectrocolor.render` encodes. Linear drive is linear in XYZ and XYZ is linear in
+        the reflectance spectrum, so (for colours inside the gamut, with the table's single
+        exposure) this equals the colour of the linearly interpolated spectrum; mixing the
+        encoded codes instead would darken the midpoints of fast transitions, which is where
+        the interpolation matters.
+
         Parameters
         ----------
         thickness_nm
             Film thickness per pixel in nm, any shape; NaN = no film (``background``).
         angle_deg
-            Angle of incidence per pixel (same shape, NaN allowed where thickness is NaN);
-            required if and only if the table has an angle grid.
+            Angle of incidence per pixel in degrees (same shape, NaN allowed where thickness
+            is NaN), within the table's angle grid ``0 .. angles_deg[-1]``; required if and
+            only if the table has an angle grid.
         """
         d = np.asarray(thickness_nm)
         if d.dtype.kind != "f":
@@ -70,23 +101,47 @@ class ColourTable:
                 f"thickness_nm: values must lie in 0-{self.max_thickness_nm:g} nm (the table's "
                 "range; build a larger table) or be NaN for no film"
             )
-        index = np.rint(np.where(film, d, 0) / self.thickness_step_nm).astype(np.intp)
         if self.angle_step_deg is None:
             if angle_deg is not None:
                 raise SpectrumError("angle_deg: this table was built for one angle only")
-        else:
-            if angle_deg is None:
-                raise SpectrumError("angle_deg: this table has an angle grid; give an angle map")
-            a = np.asarray(angle_deg, dtype=d.dtype)
-            if a.shape != d.shape:
-                raise SpectrumError(f"angle_deg: expected shape {d.shape}, got {a.shape}")
-            angle_index = np.rint(np.where(film, a, 0) / self.angle_step_deg).astype(np.intp)
-            if np.any(angle_index < 0) or np.any(angle_index >= self.rgb8.shape[0]):
-                raise SpectrumError("angle_deg: values outside the table's angle range")
-            index += angle_index * self.rgb8.shape[1]
-        out = self.rgb8.reshape(-1, 3)[index]
+            index = np.rint(np.where(film, d, 0) / self.thickness_step_nm).astype(np.intp)
+            out = self.rgb8.reshape(-1, 3)[index]
+            out[~film] = np.asarray(background, dtype=np.uint8)
+            return out
+        if angle_deg is None:
+            raise SpectrumError("angle_deg: this table has an angle grid; give an angle map")
+        a = np.asarray(angle_deg, dtype=d.dtype)
+        if a.shape != d.shape:
+            raise SpectrumError(f"angle_deg: expected shape {d.shape}, got {a.shape}")
+        out = np.empty((*d.shape, 3), dtype=np.uint8)
         out[~film] = np.asarray(background, dtype=np.uint8)
+        out[film] = self._interpolate_angle(d[film], a[film])
         return out
+
+    def _interpolate_angle(self, d: np.ndarray, a: np.ndarray) -> np.ndarray:
+        """Codes (N, 3) for film pixels: nearest thickness, linear in angle (linear light)."""
+        if self.rgb_linear is None or self.transfer is None:
+            raise SpectrumError("this table holds no linear values; build it with colour_table")
+        grid = self.angles_deg
+        if not np.all((a >= 0) & (a <= grid[-1])):
+            raise SpectrumError(
+                f"angle_deg: values must lie in 0-{grid[-1]:g}° (the table's angle grid; build "
+                "it with a larger max_angle_deg)"
+            )
+        count = self.rgb8.shape[1]
+        lower = np.minimum((a / self.angle_step_deg).astype(np.intp), grid.size - 2)
+        weight = ((a - grid[lower]) / np.diff(grid)[lower])[:, None]
+        row = lower * count + np.rint(d / self.thickness_step_nm).astype(np.intp)
+        linear = self.rgb_linear.reshape(-1, 3)
+        row0 = np.take(linear, row, axis=0)
+        mixed = np.take(linear, row + count, axis=0)
+        mixed -= row0
+        mixed *= weight
+        mixed += row0
+        # 8-bit code k + 1 starts where the encoded value reaches (k + 0.5) / 255: the same
+        # rounding to the nearest code as encode-then-round, without a power per pixel.
+        steps = self.transfer.decode((np.arange(255) + 0.5) / 255)
+        return np.searchsorted(steps, mixed, side="right").astype(np.uint8)
 
 
 def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.5,
@@ -125,7 +180,7 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
         if not (0 < max_angle_deg < 90 and angle_step_deg > 0):
             raise SpectrumError("max_angle_deg must be in (0, 90) and angle_step_deg > 0")
         angles = np.arange(int(np.ceil(max_angle_deg / angle_step_deg - 1e-9)) + 1) * angle_step_deg
-        angles = np.minimum(angles, 89.9)
+        angles = np.minimum(angles, _MAX_ANGLE_DEG)
         angle_step = float(angle_step_deg)
     optics = film(d, wl, angle_deg=angles[:, None])
     if not isinstance(optics, FilmOptics):
@@ -133,7 +188,13 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
     colours = film_colours(optics, **colour_options)
     description = (f"{getattr(film, '__name__', 'film')}, {colours.illuminant}, observer "
                    f"{colours.observer}, exposure {colours.exposure}")
-    return ColourTable(float(thickness_step_nm), angle_step, colours.rgb8, description)
+    if angle_step is None:
+        return ColourTable(float(thickness_step_nm), None, colours.rgb8, description)
+    from ..display.spaces import rgb_space
+
+    transfer = rgb_space(colour_options.get("space", "sRGB")).transfer
+    return ColourTable(float(thickness_step_nm), angle_step, colours.rgb8, description,
+                       colours.rendering.rgb_linear, transfer)
 
 
 def render_thickness_map(thickness_nm, table: ColourTable, angle_deg=None,
