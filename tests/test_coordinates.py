@@ -90,6 +90,15 @@ def test_xy_from_uv_1976_inverts_and_matches_colour():
     np.testing.assert_allclose(sc.xy_from_uv_1976(uv), colour.Luv_uv_to_xy(uv), atol=1e-12)
 
 
+def test_xy_from_uv_1960_inverts_and_matches_colour():
+    from spectrocolor.coordinates import xy_from_uv_1960
+
+    xy = colour.XYZ_to_xy(XYZ_RANDOM)
+    uv = sc.uv_1960(xy=xy)
+    np.testing.assert_allclose(xy_from_uv_1960(uv), xy, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(xy_from_uv_1960(uv), colour.UCS_uv_to_xy(uv), atol=1e-12)
+
+
 def test_lab_of_the_white_is_100_0_0():
     np.testing.assert_allclose(sc.lab(D65_XYZ, D65_XYZ), [100.0, 0.0, 0.0], atol=1e-12)
     np.testing.assert_allclose(sc.lab([0.0, 0.0, 0.0], D65_XYZ), [0.0, 0.0, 0.0], atol=1e-12)

@@ -47,7 +47,7 @@ import numpy as np
 from .errors import ColorimetryError
 from .illuminants import canonical_illuminant_name
 from .illuminants import illuminant as named_illuminant
-from .sampling import cmfs_on, illuminant_on, resolve_observer
+from .sampling import cmfs_on, illuminant_on, reflectance_weights, resolve_observer
 from .spectrum import Spectrum, validate_wavelengths
 
 #: Measurement intervals for which ASTM E308 gives (and E2022 computes) weights, nm.
@@ -203,11 +203,7 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
             f"{exc}. ASTM E2022 weights need the illuminant at every 1 nm from {lo:g} to {hi:g} nm"
         ) from None
     products = cmfs_on(fine, observer) * spd[:, None]  # S x̄, S ȳ, S z̄ at 1 nm (Δλ = 1 nm)
-    reference_weights = _lagrange_matrix(reference, fine).T @ products
-    white_Y = reference_weights[:, 1].sum()
-    if not white_Y > 0:
-        raise ColorimetryError("illuminant: Σ S(λ) ȳ(λ) is not positive over the range; no luminance to normalise by")
-    reference_weights *= 100.0 / white_Y
+    reference_weights = reflectance_weights(_lagrange_matrix(reference, fine).T @ products)
     # E308 range adjustment: unmeasured wavelengths' weights go to the end measured wavelengths.
     result = reference_weights[below : below + grid.size].copy()
     result[0] += reference_weights[:below].sum(axis=0)

@@ -61,7 +61,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .coordinates import _colours
+from .coordinates import colour_array
+from .coordinates import xy as xy_from_XYZ
 from .errors import ColorimetryError
 from .observers import canonical_observer_name
 from .observers import observer as named_observer
@@ -122,8 +123,7 @@ def _readonly(array: np.ndarray) -> np.ndarray:
 def _locus(canonical: str, full: bool) -> SpectralLocus:
     cmfs = named_observer(canonical)
     wavelengths = np.array(cmfs.wavelengths_nm, dtype=np.float64)
-    xyz = cmfs.values
-    xy = (xyz[:2] / xyz.sum(axis=0)).T
+    xy = xy_from_XYZ(cmfs.values.T)
     if full:
         return SpectralLocus(_readonly(wavelengths), _readonly(np.ascontiguousarray(xy)))
     angle = np.unwrap(np.arctan2(xy[:, 1] - _EQUAL_ENERGY_XY[1], xy[:, 0] - _EQUAL_ENERGY_XY[0]))
@@ -182,9 +182,8 @@ def _white_xy(white, observer: str) -> np.ndarray:
     if isinstance(white, str):
         from .colorimetry import white_point  # same layer; imported when a name is given
 
-        XYZ = white_point(white, observer)
-        return np.asarray(XYZ[:2], dtype=np.float64) / float(np.sum(XYZ))
-    white_xy = _colours(white, "white", 2, "the white's chromaticity x, y, or an illuminant name")
+        return xy_from_XYZ(white_point(white, observer))
+    white_xy = colour_array(white, "white", 2, "the white's chromaticity x, y, or an illuminant name")
     if white_xy.shape != (2,) or not np.all(np.isfinite(white_xy)):
         raise ColorimetryError(
             f"white must be one finite chromaticity (x, y) or an illuminant name such as "
@@ -237,7 +236,7 @@ WHITE_TOLERANCE = 1e-12
 
 def _boundary(xy, white, observer: str) -> _Boundary:
     canonical = canonical_observer_name(observer)
-    points = _colours(xy, "xy", 2, "chromaticity coordinates x, y")
+    points = colour_array(xy, "xy", 2, "chromaticity coordinates x, y")
     white_xy = _white_xy(white, observer)
     locus, white_xy, angles = _polygon(canonical, float(white_xy[0]), float(white_xy[1]))
     lam, vertices = locus.wavelengths_nm, locus.xy
@@ -348,7 +347,7 @@ def colorimetric_purity(xy, white, observer: str = "1931") -> np.ndarray:
     CIE 015:2018 *Colorimetry*, §9.2 (colorimetric purity).
     """
     hit = _boundary(xy, white, observer)
-    points = _colours(xy, "xy", 2, "chromaticity coordinates x, y")
+    points = colour_array(xy, "xy", 2, "chromaticity coordinates x, y")
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = hit.boundary_xy[..., 1] / points[..., 1]
     return np.where(hit.excitation_purity == 0, 0.0, hit.excitation_purity * ratio)

@@ -27,6 +27,7 @@ __all__ = [
     "xyY",
     "XYZ_from_xyY",
     "uv_1960",
+    "xy_from_uv_1960",
     "uv_1976",
     "xy_from_uv_1976",
     "lab",
@@ -37,8 +38,12 @@ __all__ = [
 _DELTA = 6.0 / 29.0  # CIELAB break point of f(t), CIE 015:2018 eq. 8.4
 
 
-def _colours(values, name: str, size: int, what: str) -> np.ndarray:
-    """``values`` as a float64 array whose last axis has length ``size``."""
+def colour_array(values, name: str, size: int, what: str) -> np.ndarray:
+    """``values`` as a float64 array whose last axis has length ``size``, or a ColorimetryError.
+
+    The shared validation of colour arguments: ``name`` is the argument named in the error,
+    ``what`` says what the ``size`` components are (e.g. "tristimulus values X, Y, Z").
+    """
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -77,7 +82,7 @@ def xy(XYZ) -> np.ndarray:
     >>> xy([95.047, 100.0, 108.883]).round(4)
     array([0.3127, 0.329 ])
     """
-    XYZ = _colours(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
+    XYZ = colour_array(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
     total = XYZ.sum(axis=-1, keepdims=True)
     return _safe_divide(XYZ[..., :2], total)
 
@@ -94,7 +99,7 @@ def xyY(XYZ) -> np.ndarray:
     ndarray, shape (..., 3)
         (x, y, Y); x and y are NaN for black (Y is then 0).
     """
-    XYZ = _colours(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
+    XYZ = colour_array(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
     return np.concatenate([xy(XYZ), XYZ[..., 1:2]], axis=-1)
 
 
@@ -117,7 +122,7 @@ def XYZ_from_xyY(xyY) -> np.ndarray:
     ColorimetryError
         Where y = 0 but Y != 0 (an infinite X and Z).
     """
-    xyY = _colours(xyY, "xyY", 3, "chromaticity x, y and luminance Y")
+    xyY = colour_array(xyY, "xyY", 3, "chromaticity x, y and luminance Y")
     x, y, Y = xyY[..., 0], xyY[..., 1], xyY[..., 2]
     impossible = (y == 0) & (Y != 0)
     if np.any(impossible):
@@ -140,10 +145,10 @@ def _uv_from(XYZ, xy_, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             f"{name} takes exactly one of XYZ (shape (..., 3)) or xy= (shape (..., 2))"
         )
     if XYZ is not None:
-        XYZ = _colours(XYZ, "XYZ", 3, f"tristimulus values; for chromaticities call {name}(xy=...)")
+        XYZ = colour_array(XYZ, "XYZ", 3, f"tristimulus values; for chromaticities call {name}(xy=...)")
         X, Y, Z = XYZ[..., 0], XYZ[..., 1], XYZ[..., 2]
         return 4.0 * X, 6.0 * Y, X + 15.0 * Y + 3.0 * Z
-    chroma = _colours(xy_, "xy", 2, "chromaticity coordinates x, y")
+    chroma = colour_array(xy_, "xy", 2, "chromaticity coordinates x, y")
     x, y = chroma[..., 0], chroma[..., 1]
     return 4.0 * x, 6.0 * y, -2.0 * x + 12.0 * y + 3.0
 
@@ -168,6 +173,23 @@ def uv_1960(XYZ=None, *, xy=None) -> np.ndarray:
     """
     four_x, six_y, denominator = _uv_from(XYZ, xy, "uv_1960")
     return np.stack([_safe_divide(four_x, denominator), _safe_divide(six_y, denominator)], -1)
+
+
+def xy_from_uv_1960(uv) -> np.ndarray:
+    """Chromaticity (x, y) from CIE 1960 UCS (u, v): x = 3u / d, y = 2v / d, d = 2u - 8v + 4.
+
+    Parameters
+    ----------
+    uv : array_like, shape (..., 2)
+
+    Returns
+    -------
+    ndarray, shape (..., 2)
+    """
+    uv = colour_array(uv, "uv", 2, "CIE 1960 chromaticity u, v")
+    u, v = uv[..., 0], uv[..., 1]
+    denominator = 2.0 * u - 8.0 * v + 4.0
+    return np.stack([_safe_divide(3.0 * u, denominator), _safe_divide(2.0 * v, denominator)], -1)
 
 
 def uv_1976(XYZ=None, *, xy=None) -> np.ndarray:
@@ -206,14 +228,14 @@ def xy_from_uv_1976(uv) -> np.ndarray:
     -------
     ndarray, shape (..., 2)
     """
-    uv = _colours(uv, "uv", 2, "CIE 1976 chromaticity u', v'")
+    uv = colour_array(uv, "uv", 2, "CIE 1976 chromaticity u', v'")
     u, v = uv[..., 0], uv[..., 1]
     denominator = 6.0 * u - 16.0 * v + 12.0
     return np.stack([_safe_divide(9.0 * u, denominator), _safe_divide(4.0 * v, denominator)], -1)
 
 
 def _white(white_XYZ, name: str) -> np.ndarray:
-    white = _colours(white_XYZ, name, 3, "the white's tristimulus values Xn, Yn, Zn")
+    white = colour_array(white_XYZ, name, 3, "the white's tristimulus values Xn, Yn, Zn")
     if not np.all(white > 0):
         raise ColorimetryError(
             f"{name} must be positive tristimulus values of the reference white (e.g. "
@@ -242,7 +264,7 @@ def lab(XYZ, white_XYZ) -> np.ndarray:
     ----------
     CIE 015:2018, section 8.2.1.
     """
-    XYZ = _colours(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
+    XYZ = colour_array(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
     ratio = XYZ / _white(white_XYZ, "white_XYZ")
     with np.errstate(invalid="ignore"):
         f = np.where(
@@ -268,7 +290,7 @@ def XYZ_from_lab(lab, white_XYZ) -> np.ndarray:
     -------
     ndarray, shape (..., 3)
     """
-    lab = _colours(lab, "lab", 3, "CIELAB L*, a*, b*")
+    lab = colour_array(lab, "lab", 3, "CIELAB L*, a*, b*")
     white = _white(white_XYZ, "white_XYZ")
     fy = (lab[..., 0] + 16.0) / 116.0
     f = np.stack([fy + lab[..., 1] / 500.0, fy, fy - lab[..., 2] / 200.0], axis=-1)
@@ -292,7 +314,7 @@ def lch(lab) -> np.ndarray:
     ----------
     CIE 015:2018, section 8.2.2.
     """
-    lab = _colours(lab, "lab", 3, "CIELAB L*, a*, b*")
+    lab = colour_array(lab, "lab", 3, "CIELAB L*, a*, b*")
     a, b = lab[..., 1], lab[..., 2]
     hue = np.degrees(np.arctan2(b, a)) % 360.0
     hue = np.where(hue >= 360.0, 0.0, hue)  # a tiny negative angle rounds up to 360.0

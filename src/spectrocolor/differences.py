@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .coordinates import _colours
+from .coordinates import colour_array
 from .errors import ColorimetryError
 
 __all__ = ["delta_e_76", "delta_e_2000"]
@@ -17,8 +17,8 @@ __all__ = ["delta_e_76", "delta_e_2000"]
 
 def _lab_pair(lab1, lab2) -> tuple[np.ndarray, np.ndarray]:
     """Both CIELAB arrays, checked, and broadcastable against each other."""
-    lab1 = _colours(lab1, "lab1", 3, "CIELAB L*, a*, b*")
-    lab2 = _colours(lab2, "lab2", 3, "CIELAB L*, a*, b*")
+    lab1 = colour_array(lab1, "lab1", 3, "CIELAB L*, a*, b*")
+    lab2 = colour_array(lab2, "lab2", 3, "CIELAB L*, a*, b*")
     try:
         np.broadcast_shapes(lab1.shape, lab2.shape)
     except ValueError:

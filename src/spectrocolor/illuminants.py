@@ -21,6 +21,9 @@ from .spectrum import Spectrum, validate_wavelengths, wavelength_grid
 
 #: Second radiation constant, CODATA 2018, m·K.
 C2_CODATA_M_K = 1.438776877e-2
+#: Second radiation constant with which CIE 015:2018 defines the Planckian locus (correlated
+#: colour temperature), m·K.
+C2_CIE_LOCUS_M_K = 1.4388e-2
 #: Second radiation constant used in the definition of CIE illuminant A, m·K.
 C2_ILLUMINANT_A_M_K = 1.435e-2
 #: Temperature in the defining formula of illuminant A (with c₂ = 1.435e-2 m·K; this is the
@@ -62,8 +65,11 @@ def _grid_or_default(wavelengths_nm, default: tuple[float, float, float]) -> np.
     return validate_wavelengths(wavelengths_nm)
 
 
-def planck(wavelengths_nm: np.ndarray, temperature_K: float, c2_m_K: float) -> np.ndarray:
-    """Relative Planck spectral radiance ``1 / (λ⁵ (exp(c₂/λT) − 1))``, arbitrary scale."""
+def planck(wavelengths_nm, temperature_K, c2_m_K: float) -> np.ndarray:
+    """Relative Planck spectral radiance ``1 / (λ⁵ (exp(c₂/λT) − 1))`` with λ in m, arbitrary scale.
+
+    ``wavelengths_nm`` and ``temperature_K`` broadcast against each other (e.g. (K,) and (N, 1)).
+    """
     wavelength_m = np.asarray(wavelengths_nm, dtype=float) * 1e-9
     return 1.0 / (wavelength_m**5 * np.expm1(c2_m_K / (wavelength_m * temperature_K)))
 
@@ -78,7 +84,7 @@ def blackbody(
 
     Defaults: 360–830 nm at 1 nm and the CODATA 2018 second radiation constant. CIE 015 defines
     the Planckian locus for correlated colour temperature with c₂ = 1.4388e-2 m·K (pass
-    ``c2_m_K=1.4388e-2`` to match it; the two differ by 1.6e-5 in temperature). Seed 000
+    ``c2_m_K=C2_CIE_LOCUS_M_K`` to match it; the two differ by 1.6e-5 in temperature). Seed 000
     (Zawischa) lights its soap films with ``blackbody(6504)``.
     """
     if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
@@ -90,9 +96,7 @@ def blackbody(
 
 def _illuminant_A(grid: np.ndarray) -> np.ndarray:
     """CIE 015:2018 eq. (4.1): S_A(λ) = 100 (560/λ)⁵ (e^{c₂/(560·2848)} − 1)/(e^{c₂/(λ·2848)} − 1)."""
-    c2_nm_K = C2_ILLUMINANT_A_M_K * 1e9
-    T = ILLUMINANT_A_TEMPERATURE_K
-    return 100.0 * (560.0 / grid) ** 5 * np.expm1(c2_nm_K / (560.0 * T)) / np.expm1(c2_nm_K / (grid * T))
+    return blackbody(ILLUMINANT_A_TEMPERATURE_K, grid, c2_m_K=C2_ILLUMINANT_A_M_K).values
 
 
 @cache

@@ -97,7 +97,10 @@ class MeasurementReport:
 
     @property
     def white_xy(self) -> np.ndarray:
-        return self.white_XYZ[:2] / self.white_XYZ.sum()
+        """Chromaticity (x, y) of the perfect white under the illuminant, shape (2,)."""
+        from .coordinates import xy
+
+        return xy(self.white_XYZ)
 
     @property
     def hex(self) -> tuple[str, ...]:
@@ -131,7 +134,7 @@ class MeasurementReport:
             "L*": numbers(self.lab[:, 0], 3),
             "a*": numbers(self.lab[:, 1], 3),
             "b*": numbers(self.lab[:, 2], 3),
-            "sRGB": self.hex,
+            "sRGB": self.srgb_hex,
             "in_sRGB_gamut": [bool(v) for v in self.in_gamut],
         }
 
@@ -157,7 +160,7 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
     MeasurementReport
     """
     from .chromaticity import dominant_wavelength
-    from .colorimetry import tristimulus, weights
+    from .colorimetry import tristimulus, white_point
     from .coordinates import lab, xy
     from .display.adaptation import adapt
     from .display.render import render
@@ -173,10 +176,9 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
     samples = Spectrum(spectra.wavelengths_nm, values, spectra.names)
     names = samples.names or tuple(f"sample {i + 1}" for i in range(values.shape[0]))
     XYZ = np.atleast_2d(tristimulus(samples, observer, illuminant, method))
-    white = np.asarray(weights(samples.wavelengths_nm, observer, illuminant, method)).sum(axis=0)
+    white = white_point(illuminant, observer, samples.wavelengths_nm, method)
     chromaticity = xy(XYZ)
-    white_xy = white[:2] / white.sum()
-    dominant = dominant_wavelength(chromaticity, white_xy, observer)
+    dominant = dominant_wavelength(chromaticity, xy(white), observer)
     purity = np.asarray(dominant.excitation_purity, dtype=float)
     wavelength = np.asarray(dominant.wavelength_nm, dtype=float)  # NaN at the white (no hue)
     complementary = np.asarray(dominant.complementary, dtype=bool)
@@ -199,7 +201,7 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
         lab=lab(XYZ, white),
         srgb8=codes,
         in_gamut=np.asarray(rendering.in_gamut, dtype=bool),
-        srgb_hex=tuple(f"#{r:02x}{g:02x}{b:02x}" for r, g, b in codes.tolist()),
+        srgb_hex=tuple(str(h) for h in rendering.hex),
         white_XYZ=white,
     )
 
@@ -346,7 +348,7 @@ def _cell(value, digits: int) -> str:
 
 def _table_rows(report: MeasurementReport, count: int) -> str:
     rows = []
-    hexes = report.hex
+    hexes = report.srgb_hex
     for i in range(count):
         dominant = report.dominant_wavelength_nm[i]
         if np.isfinite(dominant):

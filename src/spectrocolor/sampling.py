@@ -42,6 +42,7 @@ def resolve_observer(observer) -> tuple[str, Spectrum]:
 
 
 def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
+    """The observer's x̄, ȳ, z̄ interpolated linearly at ``grid`` (nm), shape (K, 3); never extrapolated."""
     observer_name, cmfs = resolve_observer(observer)
     try:
         matrix = interpolation_matrix(cmfs.wavelengths_nm, grid, "linear")
@@ -55,6 +56,7 @@ def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
 
 
 def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
+    """Relative SPD (K,) at ``grid`` (nm): a CIE name evaluated there, or a Spectrum's own samples."""
     if isinstance(illuminant, str):
         return named_illuminant(illuminant, grid).values
     if isinstance(illuminant, Spectrum):
@@ -73,3 +75,18 @@ def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
             )
         return illuminant.values[position]
     raise ColorimetryError(f"illuminant: expected a name such as 'D65' or a Spectrum, got {type(illuminant).__name__}")
+
+
+def reflectance_weights(products: np.ndarray) -> np.ndarray:
+    """Weights ``k S x̄ Δλ`` (K, 3) from the products ``S x̄ Δλ``, with k = 100 / Σ S ȳ Δλ.
+
+    The CIE 015 normalisation for reflectance and transmittance factors: the perfect white
+    (factor 1 everywhere) gets Y = 100.
+    """
+    white_Y = products[:, 1].sum()
+    if not white_Y > 0:
+        raise ColorimetryError(
+            "illuminant: Σ S(λ) ȳ(λ) Δλ is not positive over the summation range; no luminance "
+            "to normalise by"
+        )
+    return products * (100.0 / white_Y)

@@ -39,14 +39,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .coordinates import _colours, uv_1960
+from .coordinates import uv_1960, xy_from_uv_1960
 from .errors import ColorimetryError
+from .illuminants import C2_CIE_LOCUS_M_K, planck
 from .observers import canonical_observer_name
 from .observers import observer as named_observer
 
 __all__ = ["CCT", "cct", "xy_from_cct"]
 
-C2_M_K = 1.4388e-2  # second radiation constant, CIE 015:2018
 _T_MIN_K, _T_MAX_K = 1_000.0, 100_000.0
 _FINE_RATIO = 1.0001
 _COARSE_EVERY = 100
@@ -64,11 +64,10 @@ class CCT(NamedTuple):
 def _planck_uv(temperatures_K: np.ndarray, canonical: str) -> np.ndarray:
     """CIE 1960 (u, v) of blackbodies at the given temperatures, shape (N, 2)."""
     cmfs = named_observer(canonical)
-    wavelengths_m = cmfs.wavelengths_nm * 1e-9
     out = np.empty((len(temperatures_K), 2))
     for start in range(0, len(temperatures_K), _CHUNK):
         T = temperatures_K[start:start + _CHUNK, None]
-        radiance = wavelengths_m**-5 / np.expm1(C2_M_K / (wavelengths_m * T))
+        radiance = planck(cmfs.wavelengths_nm, T, C2_CIE_LOCUS_M_K)
         out[start:start + _CHUNK] = uv_1960(radiance @ cmfs.values.T)
     return out
 
@@ -147,7 +146,7 @@ def cct(xy=None, *, XYZ=None, observer: str = "1931") -> CCT:
         raise ColorimetryError(
             "cct takes exactly one of xy (shape (..., 2)) or XYZ= (shape (..., 3))"
         )
-    uv = uv_1960(XYZ) if XYZ is not None else uv_1960(xy=_colours(xy, "xy", 2, "chromaticity"))
+    uv = uv_1960(XYZ) if XYZ is not None else uv_1960(xy=xy)
     shape = uv.shape[:-1]
     points = uv.reshape(-1, 2)
     valid = np.all(np.isfinite(points), axis=1)
@@ -224,7 +223,4 @@ def xy_from_cct(cct_K, duv=0.0, observer: str = "1931") -> np.ndarray:
     normal = np.stack([tangent[:, 1], -tangent[:, 0]], axis=-1)
     normal *= np.sign(normal[:, 1:2])
     uv = uv + duv.reshape(-1, 1) * normal
-    u, v = uv[:, 0], uv[:, 1]
-    denominator = 2.0 * u - 8.0 * v + 4.0
-    xy = np.stack([3.0 * u / denominator, 2.0 * v / denominator], axis=-1)
-    return xy.reshape(*T.shape, 2)
+    return xy_from_uv_1960(uv).reshape(*T.shape, 2)

@@ -169,7 +169,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     # The lights as the display is asked to show them (after normalisation A or B, before any
     # gamut strategy), relative to the display's own white: what the split patch compares.
     space = sc.rgb_space(display)
-    shown_lab = sc.lab(r.rgb_unmapped @ np.asarray(space.matrix_to_XYZ).T, space.white_XYZ)
+    shown_lab = sc.lab(space.XYZ_from_rgb_linear(r.rgb_unmapped), space.white_XYZ)
     delta_shown = [float(sc.delta_e_2000(shown_lab[a], shown_lab[b])) for a, b in pairs]
     return {
         "colours": colours,
@@ -210,7 +210,7 @@ def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     return {"levels": levels.tolist(), "XYZ_target": XYZ.tolist(), "XYZ_metamer": got.tolist()}
 
 
-def resolve(values, wavelengths_nm: np.ndarray, level: int | None = None) -> list:
+def resolve(values, wavelengths_nm: np.ndarray) -> list:
     """A preset's levels on the grid: listed data (resampled if the grid is finer), or a
     named generated distribution (CIE D65/A scaled to a peak of 30, E, a constant level)."""
     if isinstance(values, str):
@@ -219,7 +219,9 @@ def resolve(values, wavelengths_nm: np.ndarray, level: int | None = None) -> lis
             return (s * FULL_LEVEL / s.max()).tolist()
         if values == "E":
             return [float(FULL_LEVEL)] * len(wavelengths_nm)
-        raise ValueError(f"unknown generated preset {values!r}")
+        raise sc.ColorimetryError(
+            f"values: unknown generated preset {values!r}; expected 'D65', 'A', 'E' or a list of "
+            "31 levels at 10 nm")
     coarse = sc.Spectrum(grid(10.0), np.asarray(values, dtype=float))
     return coarse.resample(wavelengths_nm, "linear").values.tolist()
 
@@ -291,9 +293,9 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
             f"{values.max():.4g}; "
             f"they must lie in 0-{FULL_LEVEL} (choose scale 'peak' or 'unit')")
     names = list(s.names) if s.names else [f"spectrum {i + 1}" for i in range(len(values))]
-    step = np.diff(s.wavelengths_nm)
+    step = s.interval_nm
     grid_text = (f"{lo:g}-{hi:g} nm, {len(s.wavelengths_nm)} samples"
-                 + (f" at {step[0]:g} nm" if step.size and np.allclose(step, step[0]) else ""))
+                 + (f" at {step:g} nm" if step is not None else ""))
     return {
         "names": names,
         "levels": np.clip(values, 0, FULL_LEVEL).tolist(),
@@ -303,8 +305,8 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
     }
 
 
-def export_spectra(step_nm: float, names, spectra, fmt: str, path) -> None:
-    """Write the page's distributions (levels 0..30) to ``path`` as CSV or JSON."""
+def export_spectra(step_nm: float, names, spectra, path) -> None:
+    """Write the page's distributions (levels 0..30) to ``path``: CSV or JSON by its suffix."""
     wl = grid(step_nm)
     s = sc.Spectrum(wl, np.asarray(spectra, dtype=float), names=list(names))
     sc.write_spectra(s, path)

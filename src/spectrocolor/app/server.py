@@ -224,7 +224,7 @@ def create_app() -> FastAPI:
     def export(req: ExportRequest):
         with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
             path = Path(folder) / f"spectra.{req.format}"
-            compute.export_spectra(float(req.step_nm), req.names, req.spectra, req.format, path)
+            compute.export_spectra(float(req.step_nm), req.names, req.spectra, path)
             body = path.read_bytes()
         media = "text/csv" if req.format == "csv" else "application/json"
         return Response(body, media_type=media, headers={

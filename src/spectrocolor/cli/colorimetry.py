@@ -163,21 +163,28 @@ def _xyz_command(args: argparse.Namespace) -> int:
     return 0
 
 
-def describe_rows(spectra: Spectrum, XYZ100: np.ndarray, illuminant: str, observer: str) -> list[dict]:
-    """One dict per sample: XYZ, xy, dominant/complementary wavelength, purity, Y %, sRGB hex."""
+def describe_rows(
+    spectra: Spectrum, XYZ100: np.ndarray, illuminant: str, observer: str, method: str = "sum"
+) -> list[dict]:
+    """One dict per sample: XYZ, xy, dominant/complementary wavelength, purity, Y %, sRGB hex.
+
+    ``XYZ100`` must have been computed with the same ``illuminant``, ``observer`` and summation
+    ``method``: the white for dominant wavelength and purity is the perfect reflector computed
+    the same way on the spectra's grid.
+    """
     from ..chromaticity import dominant_wavelength
     from ..colorimetry import white_point
     from ..coordinates import xy
     from ..display import adapt, render
 
     chromaticity = xy(XYZ100)
-    white_XYZ = _white_on_grid(spectra, illuminant, observer)
+    white_XYZ = white_point(illuminant, observer, spectra.wavelengths_nm, method)
     dominant = dominant_wavelength(chromaticity, xy(white_XYZ), observer)
     display_XYZ = adapt(XYZ100, white_XYZ, white_point("D65", "1931"), method="bradford")
     shown = render(display_XYZ, "sRGB", normalise="none", gamut="desaturate")
+    swatches = shown.hex
     rows = []
     for i, name in enumerate(spectra.names):
-        code = shown.codes[i]
         rows.append(
             {
                 "name": name,
@@ -192,17 +199,11 @@ def describe_rows(spectra: Spectrum, XYZ100: np.ndarray, illuminant: str, observ
                 else ("complementary" if dominant.complementary[i] else "dominant"),
                 "purity": float(dominant.excitation_purity[i]),
                 "luminance_factor_percent": float(XYZ100[i, 1]),
-                "srgb": "#{:02x}{:02x}{:02x}".format(*(int(v) for v in code)),
+                "srgb": str(swatches[i]),
                 "in_srgb_gamut": bool(shown.in_gamut[i]),
             }
         )
     return rows
-
-
-def _white_on_grid(spectra: Spectrum, illuminant: str, observer: str) -> np.ndarray:
-    from ..colorimetry import weights
-
-    return np.asarray(weights(spectra.wavelengths_nm, observer, illuminant).sum(axis=0))
 
 
 def _describe_command(args: argparse.Namespace) -> int:
@@ -212,7 +213,7 @@ def _describe_command(args: argparse.Namespace) -> int:
         )
     spectra = load_samples(args)
     XYZ = compute_XYZ(spectra, args)
-    emit(describe_rows(spectra, XYZ, args.illuminant, args.observer), args.format)
+    emit(describe_rows(spectra, XYZ, args.illuminant, args.observer, args.method), args.format)
     return 0
 
 

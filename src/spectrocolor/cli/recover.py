@@ -38,7 +38,7 @@ def register(subparsers) -> None:
 
 
 def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.ndarray:
-    from .. import rgb_space, wavelength_grid, weights
+    from .. import rgb_space, wavelength_grid, white_point
 
     rgb8 = []
     for code in codes:
@@ -48,9 +48,9 @@ def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.nd
         rgb8.append([int(text[i:i + 2], 16) for i in (0, 2, 4)])
     space = rgb_space("sRGB")
     rgb_linear = space.transfer.decode(np.array(rgb8) / 255.0)
-    XYZ = rgb_linear @ np.asarray(space.matrix_to_XYZ).T * 100.0
+    XYZ = space.XYZ_from_rgb_linear(rgb_linear) * 100.0
     # the display's white is mapped to the perfect reflector under the chosen illuminant
-    white = np.asarray(weights(wavelength_grid(*grid), observer, illuminant)).sum(axis=0)
+    white = white_point(illuminant, observer, wavelength_grid(*grid))
     return XYZ * (white / (np.asarray(space.matrix_to_XYZ).sum(axis=1) * 100.0))
 
 
