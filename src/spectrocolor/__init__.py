@@ -38,6 +38,7 @@ _PUBLIC: dict[str, str] = {
     "uv_1960": "coordinates",
     "uv_1976": "coordinates",
     "xy_from_uv_1976": "coordinates",
+    "xy_from_uv_1960": "coordinates",
     "lab": "coordinates",
     "XYZ_from_lab": "coordinates",
     "lch": "coordinates",

@@ -65,10 +65,10 @@ class MeasurementReport:
     lab : ndarray (N, 3)
         CIELAB relative to the perfect white under the illuminant.
     srgb8 : ndarray (N, 3) int
-        sRGB codes of the colour adapted (Bradford) from the illuminant's white to D65,
-        clipped where out of gamut.
+        sRGB codes of the colour adapted (Bradford) from the illuminant's white to sRGB's white,
+        desaturated toward the white at constant Y (hue kept) where out of gamut.
     in_gamut : ndarray bool (N,)
-        Whether the adapted colour fits sRGB without clipping.
+        Whether the adapted colour fits sRGB as it is.
     srgb_hex : tuple of str (N,)
         ``srgb8`` as "#rrggbb".
     white_XYZ : ndarray (3,)
@@ -184,7 +184,7 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
     complementary = np.asarray(dominant.complementary, dtype=bool)
     srgb = rgb_space("sRGB")
     rendering = render(adapt(XYZ, white, srgb.white_XYZ, method="bradford"), space=srgb,
-                       gamut="clip", bit_depth=8)
+                       gamut="desaturate", bit_depth=8)
     codes = np.asarray(rendering.codes, dtype=int)
     return MeasurementReport(
         names=tuple(names),

@@ -7,6 +7,7 @@ import csv
 import io
 import json
 import sys
+from contextlib import contextmanager
 
 import numpy as np
 
@@ -98,15 +99,22 @@ def reflectance_factors(spectra: Spectrum, source: str, percent: bool) -> Spectr
     return spectra
 
 
+@contextmanager
+def command_line_hints():
+    """Re-raise library errors as user errors, translating API advice into command-line options."""
+    try:
+        yield
+    except (SpectrumError, ColorimetryError) as exc:
+        hint = " (on the command line: --range START STOP)" if "Spectrum.restrict" in str(exc) else ""
+        raise UserError(f"{exc}{hint}") from None
+
+
 def compute_XYZ(spectra: Spectrum, args: argparse.Namespace) -> np.ndarray:
     from ..colorimetry import tristimulus
 
     illuminant = None if args.light else args.illuminant
-    try:
+    with command_line_hints():
         return np.atleast_2d(tristimulus(spectra, args.observer, illuminant, args.method))
-    except (SpectrumError, ColorimetryError) as exc:
-        hint = " (on the command line: --range START STOP)" if "Spectrum.restrict" in str(exc) else ""
-        raise UserError(f"{exc}{hint}") from None
 
 
 def emit(rows: list[dict], fmt: str, stream=None) -> None:
@@ -163,44 +171,35 @@ def _xyz_command(args: argparse.Namespace) -> int:
     return 0
 
 
-def describe_rows(
-    spectra: Spectrum, XYZ100: np.ndarray, illuminant: str, observer: str, method: str = "sum"
-) -> list[dict]:
+def describe_rows(spectra: Spectrum, illuminant: str, observer: str, method: str = "sum") -> list[dict]:
     """One dict per sample: XYZ, xy, dominant/complementary wavelength, purity, Y %, sRGB hex.
 
-    ``XYZ100`` must have been computed with the same ``illuminant``, ``observer`` and summation
-    ``method``: the white for dominant wavelength and purity is the perfect reflector computed
-    the same way on the spectra's grid.
+    The same computation as ``spectrocolor report`` (:func:`spectrocolor.report.measurement_report`):
+    the white for dominant wavelength and purity is the perfect reflector summed the same way on the
+    spectra's grid; swatches are Bradford-adapted to sRGB's white and desaturated if out of gamut.
     """
-    from ..chromaticity import dominant_wavelength
-    from ..colorimetry import white_point
-    from ..coordinates import xy
-    from ..display import adapt, render
+    from ..report import measurement_report
 
-    chromaticity = xy(XYZ100)
-    white_XYZ = white_point(illuminant, observer, spectra.wavelengths_nm, method)
-    dominant = dominant_wavelength(chromaticity, xy(white_XYZ), observer)
-    display_XYZ = adapt(XYZ100, white_XYZ, white_point("D65", "1931"), method="bradford")
-    shown = render(display_XYZ, "sRGB", normalise="none", gamut="desaturate")
-    swatches = shown.hex
+    report = measurement_report(spectra, illuminant, observer, method)
     rows = []
-    for i, name in enumerate(spectra.names):
+    for i, name in enumerate(report.names):
+        wavelength = float(report.dominant_wavelength_nm[i])
         rows.append(
             {
                 "name": name,
-                "X": float(XYZ100[i, 0]),
-                "Y": float(XYZ100[i, 1]),
-                "Z": float(XYZ100[i, 2]),
-                "x": float(chromaticity[i, 0]),
-                "y": float(chromaticity[i, 1]),
-                "wavelength_nm": float(dominant.wavelength_nm[i]),
+                "X": float(report.XYZ[i, 0]),
+                "Y": float(report.XYZ[i, 1]),
+                "Z": float(report.XYZ[i, 2]),
+                "x": float(report.xy[i, 0]),
+                "y": float(report.xy[i, 1]),
+                "wavelength_nm": wavelength,
                 "kind": "neutral"
-                if np.isnan(dominant.wavelength_nm[i])
-                else ("complementary" if dominant.complementary[i] else "dominant"),
-                "purity": float(dominant.excitation_purity[i]),
-                "luminance_factor_percent": float(XYZ100[i, 1]),
-                "srgb": str(swatches[i]),
-                "in_srgb_gamut": bool(shown.in_gamut[i]),
+                if np.isnan(wavelength)
+                else ("complementary" if report.complementary[i] else "dominant"),
+                "purity": float(report.excitation_purity[i]),
+                "luminance_factor_percent": float(report.luminance_factor[i]),
+                "srgb": str(report.srgb_hex[i]),
+                "in_srgb_gamut": bool(report.in_gamut[i]),
             }
         )
     return rows
@@ -212,8 +211,9 @@ def _describe_command(args: argparse.Namespace) -> int:
             "describe: reports surface colours under an illuminant; use `spectrocolor xyz --light` for lights"
         )
     spectra = load_samples(args)
-    XYZ = compute_XYZ(spectra, args)
-    emit(describe_rows(spectra, XYZ, args.illuminant, args.observer, args.method), args.format)
+    with command_line_hints():
+        rows = describe_rows(spectra, args.illuminant, args.observer, args.method)
+    emit(rows, args.format)
     return 0
 
 
