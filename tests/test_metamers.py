@@ -5,6 +5,7 @@ import pytest
 from scipy.optimize import linprog
 
 import spectrocolor as sc
+from kkt_check import assert_kkt
 from spectrocolor.recovery.metamerism import metamerism_index
 from spectrocolor.recovery.metamers import (
     metamer_mismatch_region,
@@ -73,21 +74,6 @@ def test_region_degenerates_on_the_boundary_of_the_solid():
                                 wavelengths=GRID)
 
 
-def _check_kkt(W, step, rho):
-    """Optimality from ρ alone (free set → multipliers → signs), written independently."""
-    K = W.shape[0]
-    D = (np.eye(K, k=1) - np.eye(K))[:-1]
-    g = 2 * D.T @ D @ rho / step
-    at_low, at_up = rho == 0.0, rho == 1.0
-    free = ~(at_low | at_up)
-    mu = np.linalg.lstsq(W[free], g[free], rcond=None)[0]
-    lam = g - W @ mu
-    scale = 1 + np.abs(g).max()
-    assert np.abs(lam[free]).max(initial=0) < 1e-8 * scale
-    assert lam[at_low].min(initial=0) > -1e-8 * scale
-    assert lam[at_up].max(initial=0) < 1e-8 * scale
-
-
 def test_smoothest_metamer_matches_both_colours_exactly_and_is_optimal():
     s = _sample(3)
     region = metamer_mismatch_region(s.values @ W1, wavelengths=GRID, directions=30)
@@ -101,7 +87,7 @@ def test_smoothest_metamer_matches_both_colours_exactly_and_is_optimal():
     assert rho.min() >= 0 and rho.max() <= 1
     W6 = np.concatenate([W1, W2], axis=1)
     for i in range(6):
-        _check_kkt(W6, 10.0, rho[i])
+        assert_kkt(W6, 10.0, rho[i])
     # smoother than the sample itself where the sample is one of the candidates (t = 0)
     assert r.roughness[0] <= np.sum(np.diff(s.values) ** 2) / 10.0 + 1e-12
     # roughness grows as the metamer is pushed towards the boundary of the region

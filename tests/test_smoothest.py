@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 from scipy.optimize import minimize
 
 import spectrocolor as sc
+from kkt_check import assert_kkt
 from spectrocolor.recovery.smoothest import smoothest_reflectance
 
 GRID = (400.0, 700.0, 10.0)
@@ -92,21 +93,6 @@ def test_discretisation_converges_to_the_continuous_problem():
     assert d[1] < 0.6 * d[0] and d[2] < 0.6 * d[1]
 
 
-def _check_kkt_independently(W, step, b, rho, upper):
-    """Optimality shown from ρ alone: fit μ on the free set, then check multiplier signs."""
-    K = W.shape[0]
-    D = (np.eye(K, k=1) - np.eye(K))[:-1]
-    g = 2 * D.T @ D @ rho / step
-    at_low, at_up = rho == 0.0, rho == upper
-    free = ~(at_low | at_up)
-    mu = np.linalg.lstsq(W[free], g[free], rcond=None)[0]
-    lam = g - W @ mu
-    scale = 1 + np.abs(g).max()
-    assert np.abs(lam[free]).max(initial=0) < 1e-8 * scale
-    assert lam[at_low].min(initial=0) > -1e-8 * scale
-    assert lam[at_up].max(initial=0) < 1e-8 * scale
-
-
 @pytest.mark.slow
 @pytest.mark.parametrize("bounds", ["unit", "nonnegative"])
 def test_bounded_equals_independent_qp_solver(bounds):
@@ -133,7 +119,7 @@ def test_bounded_equals_independent_qp_solver(bounds):
         assert np.abs(res.x @ W - b[i]).max() < 1e-6
         assert ours[i] <= res.fun + 1e-9
         assert abs(ours[i] - res.fun) < 1e-9 * max(1.0, res.fun) or ours[i] < res.fun
-        _check_kkt_independently(W, 10.0, b[i], r.spectrum.values[i], upper)
+        assert_kkt(W, 10.0, r.spectrum.values[i], upper)
 
 
 def test_never_worse_than_ilss():
@@ -196,7 +182,7 @@ def test_every_colour_solved_at_relative_depth_1e_9(step, illuminant):
     assert np.abs(sc.tristimulus(r.spectrum, "1931", illuminant) - b).max() <= 1e-10
     assert rho.min() >= 0.0 and rho.max() <= 1.0
     for i in range(len(b)):
-        _check_kkt_independently(W, step, b[i], rho[i], 1.0)
+        assert_kkt(W, step, rho[i], 1.0)
 
 
 def test_exact_fallback_equals_the_batched_solver():
@@ -219,7 +205,7 @@ def test_exact_fallback_equals_the_batched_solver():
         assert ok
         np.testing.assert_allclose(rho, batched.rho[i], atol=1e-9)
         assert abs(_roughness(rho, 10.0) - _roughness(batched.rho[i], 10.0)) < 1e-9
-        _check_kkt_independently(W, 10.0, b[i], rho, 1.0)
+        assert_kkt(W, 10.0, rho, 1.0)
 
 
 def test_black_white_and_boundary_colours_exact():
@@ -431,4 +417,4 @@ def test_ill_conditioned_colours_at_depth_1e_9_are_certified(grid, illuminant, X
     for rho in (*r.spectrum.values, one.spectrum.values):
         assert rho.min() >= 0.0 and rho.max() <= 1.0
         assert np.abs(rho @ W - XYZ).max() <= 1e-12 * (rho @ W).max()
-        _check_kkt_independently(W, grid[2], np.array(XYZ), rho, 1.0)
+        assert_kkt(W, grid[2], rho, 1.0)
