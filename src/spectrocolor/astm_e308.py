@@ -14,6 +14,14 @@ measured wavelengths with the interpolation coefficients:
 * ``k = 100 / Σ Wⱼ,ȳ``: the perfect white has Y = 100 (identical to ``100 / Σ S ȳ`` at 1 nm,
   as the Lagrange coefficients of each 1 nm wavelength sum to one).
 
+**Illuminants at 1 nm.** E2022 needs ``S(λ)`` at every nanometre; the CIE tabulates most
+illuminants at 5 nm. E308's printed white points are reproduced (within one unit of the third
+decimal, tests/test_astm_e308.py) when A comes from its formula, D65 from CIE S 014-2's 1 nm table
+(the linear interpolation of the 5 nm one) and C, D50, D55, D75 from the 5 nm tables by E2022's own
+Lagrange scheme (cubic inside, quadratic at the ends) — the same interpolator E2022 applies to the
+measured data. Linear interpolation of those 5 nm tables misses the printed white points by up to
+0.06 (C, Z). See :func:`illuminant_at_1nm`.
+
 **Which table.** The weights reproduce E308 **Table 6**: weights for spectral data that have
 already been corrected for the instrument's spectral bandpass (or were measured with a bandpass
 narrow enough to need none). No bandpass correction is folded into the weights (E308 Table 5
@@ -101,7 +109,8 @@ def _reference_range(grid: np.ndarray, observer, illuminant) -> tuple[float, flo
         raise ColorimetryError(
             f"wavelengths_nm: {grid[0]:g}–{grid[-1]:g} nm reaches outside {defined_lo:g}–{defined_hi:g} nm, "
             f"where the {observer_name} observer and the illuminant are both defined; restrict the "
-            f"spectrum (Spectrum.restrict({defined_lo:g}, {defined_hi:g}))"
+            f"spectrum (Spectrum.restrict({defined_lo:g}, {defined_hi:g})), or pass the illuminant as a 1 nm "
+            "Spectrum that covers the data (e.g. a lamp measured from 360 nm)"
         )
     lo = min(grid[0], max(REFERENCE_RANGE_NM[0], defined_lo))
     hi = max(grid[-1], min(REFERENCE_RANGE_NM[1], defined_hi))
@@ -119,7 +128,7 @@ def _lagrange_basis(t: np.ndarray, count: int) -> np.ndarray:
     return basis
 
 
-def _lagrange_matrix(reference_nm: np.ndarray, fine_nm: np.ndarray) -> np.ndarray:
+def lagrange_matrix(reference_nm: np.ndarray, fine_nm: np.ndarray) -> np.ndarray:
     """(M, N) matrix taking values at the uniform ``reference_nm`` to ASTM E2022's 1 nm estimates.
 
     Cubic Lagrange through the two neighbours on each side inside, quadratic through the three
@@ -144,6 +153,34 @@ def _lagrange_matrix(reference_nm: np.ndarray, fine_nm: np.ndarray) -> np.ndarra
     return matrix
 
 
+def illuminant_at_1nm(fine_nm: np.ndarray, illuminant) -> np.ndarray:
+    """Relative SPD at the whole nanometres ``fine_nm``, as ASTM E308 builds its 1 nm illuminants.
+
+    * ``"A"``: CIE 015's defining formula (exact at any wavelength).
+    * ``"D65"``: linear interpolation of the 5 nm table: this reproduces CIE S 014-2's official
+      1 nm D65 table, which E308 uses.
+    * every other named table (C, D50, D55, D75, FL…, LED…; 5 nm): ASTM E2022's Lagrange
+      interpolation (:func:`lagrange_matrix`: cubic through the four nearest 5 nm values, quadratic
+      in the end intervals). Linear interpolation misses E308's printed white points by up to
+      0.06 (C, Z); this scheme meets them within one unit of the printed third decimal for
+      C, D50, D55 and D75.
+    * a :class:`Spectrum`: its own samples, which must include every wavelength of ``fine_nm``.
+
+    References
+    ----------
+    ASTM E2022-11 §7 (Lagrange interpolation to 1 nm); CIE S 014-2/E:2006 (1 nm D65).
+    """
+    if isinstance(illuminant, str) and canonical_illuminant_name(illuminant) not in ("A", "D65", "E"):
+        table = named_illuminant(illuminant)
+        lo, hi = table.wavelengths_nm[[0, -1]]
+        if fine_nm[0] < lo or fine_nm[-1] > hi:
+            raise ColorimetryError(
+                f"illuminant: {canonical_illuminant_name(illuminant)} is tabulated at {lo:g}–{hi:g} nm only"
+            )
+        return lagrange_matrix(table.wavelengths_nm, fine_nm) @ table.values
+    return illuminant_on(fine_nm, illuminant)
+
+
 def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
     """ASTM E308 Table 6 weights (K, 3) for reflectance data on ``wavelengths_nm``, by ASTM E2022.
 
@@ -161,8 +198,8 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
         Observer name or alias (see :func:`spectrocolor.observer`) or a (3, K) :class:`Spectrum`
         of colour-matching functions (used at 1 nm, interpolated linearly if needed).
     illuminant
-        CIE illuminant name (evaluated at 1 nm by :func:`spectrocolor.illuminant`: A from its
-        formula, tabulated ones linearly interpolated from 5 nm) or a :class:`Spectrum` that
+        CIE illuminant name (evaluated at 1 nm by :func:`illuminant_at_1nm`: A from its formula,
+        D65 linearly as CIE's 1 nm table, the other 5 nm tables by E2022's Lagrange scheme) or a :class:`Spectrum` that
         includes every whole nanometre of the reference range (normally 360–780 nm; a Spectrum
         defined on a shorter range shortens the reference range to it, as for the CIE FL
         illuminants, which start at 380 nm).
@@ -197,13 +234,13 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
     reference = np.arange(grid[0] - below * step, grid[-1] + above * step + step / 2, step)
     fine = np.arange(lo, hi + 0.5)
     try:
-        spd = illuminant_on(fine, illuminant)
+        spd = illuminant_at_1nm(fine, illuminant)
     except ColorimetryError as exc:
         raise ColorimetryError(
             f"{exc}. ASTM E2022 weights need the illuminant at every 1 nm from {lo:g} to {hi:g} nm"
         ) from None
     products = cmfs_on(fine, observer) * spd[:, None]  # S x̄, S ȳ, S z̄ at 1 nm (Δλ = 1 nm)
-    reference_weights = reflectance_weights(_lagrange_matrix(reference, fine).T @ products)
+    reference_weights = reflectance_weights(lagrange_matrix(reference, fine).T @ products)
     # E308 range adjustment: unmeasured wavelengths' weights go to the end measured wavelengths.
     result = reference_weights[below : below + grid.size].copy()
     result[0] += reference_weights[:below].sum(axis=0)
