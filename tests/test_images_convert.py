@@ -37,7 +37,7 @@ def _cube(shape=(9, 13), seed=0) -> np.ndarray:
 @pytest.mark.parametrize("rows", [1, 4, None])
 def test_chunked_xyz_equals_tristimulus(illuminant, observer, rows):
     values = _cube()
-    expected = sc.tristimulus(sc.Spectrum(WAVELENGTHS, values), observer, illuminant)
+    expected = sc.tristimulus(sc.Spectrum(WAVELENGTHS, values), observer=observer, illuminant=illuminant)
     result = cube_to_xyz(values, WAVELENGTHS, illuminant=illuminant, observer=observer,
                          rows_per_block=rows)
     assert result.shape == (9, 13, 3) and result.dtype == np.float64
@@ -46,7 +46,7 @@ def test_chunked_xyz_equals_tristimulus(illuminant, observer, rows):
 
 def test_lights_without_illuminant():
     radiance = _cube() * 3.7
-    expected = sc.tristimulus(sc.Spectrum(WAVELENGTHS, radiance), "1931")
+    expected = sc.tristimulus(sc.Spectrum(WAVELENGTHS, radiance), observer="1931")
     np.testing.assert_allclose(cube_to_xyz(radiance, WAVELENGTHS, rows_per_block=2), expected,
                                rtol=1e-12)
 
@@ -91,8 +91,8 @@ def test_lab_of_perfect_white_and_against_library():
     values[0, 0] = 1.0
     lab = cube_to_lab(values, WAVELENGTHS, illuminant="D65", rows_per_block=5)
     np.testing.assert_allclose(lab[0, 0], [100.0, 0.0, 0.0], atol=1e-12)
-    W = sc.weights(WAVELENGTHS, "1931", "D65")
-    expected = sc.lab(sc.tristimulus(sc.Spectrum(WAVELENGTHS, values), "1931", "D65"),
+    W = sc.weights(WAVELENGTHS, observer="1931", illuminant="D65")
+    expected = sc.lab(sc.tristimulus(sc.Spectrum(WAVELENGTHS, values), observer="1931", illuminant="D65"),
                       W.sum(axis=0))
     np.testing.assert_allclose(lab, expected, rtol=1e-12, atol=1e-12)
 
@@ -101,7 +101,7 @@ def test_lab_cross_checked_with_colour_science():
     colour = pytest.importorskip("colour")
     values = _cube((3, 4))
     XYZ = cube_to_xyz(values, WAVELENGTHS, illuminant="D65")
-    white = sc.weights(WAVELENGTHS, "1931", "D65").sum(axis=0)
+    white = sc.weights(WAVELENGTHS, observer="1931", illuminant="D65").sum(axis=0)
     expected = colour.XYZ_to_Lab(XYZ / 100, colour.XYZ_to_xy(white / 100))
     np.testing.assert_allclose(cube_to_lab(values, WAVELENGTHS, illuminant="D65"), expected,
                                rtol=1e-9, atol=1e-9)
@@ -126,7 +126,7 @@ def test_adapted_perfect_white_is_display_white(illuminant):
 
 def test_rgb_steps_are_the_library_functions():
     values = _cube()
-    W = sc.weights(WAVELENGTHS, "1931", "A")
+    W = sc.weights(WAVELENGTHS, observer="1931", illuminant="A")
     XYZ = values @ W
     adapted = sc.adapt(XYZ, W.sum(axis=0), sc.rgb_space("Display P3").white_XYZ)
     expected = sc.render(adapted * 0.8, space="Display P3", gamut="preserve-luminance")
@@ -236,7 +236,8 @@ def test_cli_image_png_and_tiff(tmp_path, capsys):
                                atol=1e-4)  # written as float32
     np.save(tmp_path / "cube.npy", values)
     assert main(["image", str(tmp_path / "cube.npy"), "--illuminant", "D65",
-                 "--out", str(png), "--bit-depth", "16", "--wavelengths", "400:700:10"]) == 0
+                 "--out", str(png), "--bit-depth", "16", "--wavelengths", "400:700:10",
+                 "--force"]) == 0
     np.testing.assert_array_equal(
         _png16(png),
         cube_to_rgb(values, WAVELENGTHS, illuminant="D65", bit_depth=16))

@@ -255,7 +255,8 @@ def test_cli_strip_map_and_errors(tmp_path, monkeypatch, capsys):
     assert cli.main(["thinfilm", "map", "--kind", "wedge", "--width", "64", "--height", "8",
                      "--max-thickness", "800", "--out", str(image)]) == 0
     assert np.asarray(Image.open(image)).shape == (8, 64, 3)
-    assert cli.main(["thinfilm", "strip", "--film", "unobtainium", "--out", str(strip)]) == 2
+    assert cli.main(["thinfilm", "strip", "--film", "unobtainium", "--out", str(strip),
+                     "--force"]) == 2
     assert "unknown medium" in capsys.readouterr().err
 
 

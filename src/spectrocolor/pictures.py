@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ColorimetryError, SpectrumError
+from .safe_write import atomic_path, verify_png, verify_size, write_bytes
 
 __all__ = [
     "TINT_HUE_ANCHORS",
@@ -206,7 +207,12 @@ def strip_image(
 
 
 def save_image(image, path) -> Path:
-    """Write an ``(H, W, 3)`` uint8 image as PNG (Pillow) or binary PPM P6, by file extension."""
+    """Write an ``(H, W, 3)`` uint8 image as PNG (Pillow) or binary PPM P6, by file extension.
+
+    The file is written beside ``path``, read back and renamed over it
+    (:func:`spectrocolor.safe_write.atomic_path`): a failed write leaves any previous file
+    unchanged and raises :class:`spectrocolor.safe_write.OutputError`.
+    """
     img = np.asarray(image)
     if img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8:
         raise ColorimetryError(
@@ -214,13 +220,15 @@ def save_image(image, path) -> Path:
         )
     path = Path(path)
     suffix = path.suffix.lower()
+    height, width = img.shape[:2]
     if suffix == ".ppm":
-        header = f"P6\n{img.shape[1]} {img.shape[0]}\n255\n".encode("ascii")
-        path.write_bytes(header + np.ascontiguousarray(img).tobytes())
+        data = f"P6\n{width} {height}\n255\n".encode("ascii") + np.ascontiguousarray(img).tobytes()
+        write_bytes(path, data, verify=lambda p: verify_size(p, len(data)))
     elif suffix == ".png":
         from PIL import Image
 
-        Image.fromarray(img, mode="RGB").save(path)
+        with atomic_path(path, verify=lambda p: verify_png(p, width, height)) as temporary:
+            Image.fromarray(img, mode="RGB").save(temporary, format="PNG")
     else:
         raise ColorimetryError(f"path must end in .png or .ppm, got {path.name!r}")
     return path

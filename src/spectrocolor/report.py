@@ -31,7 +31,9 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ColorimetryError, SpectrumError
+from .safe_write import write_text
 from .spectrum import Spectrum
+from .spreadsheet import neutralise_cell
 
 __all__ = ["MeasurementReport", "measurement_report", "write_report", "report_html"]
 
@@ -175,8 +177,8 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
         raise SpectrumError("spectra contain NaN or infinite reflectances")
     samples = Spectrum(spectra.wavelengths_nm, values, spectra.names)
     names = samples.names or tuple(f"sample {i + 1}" for i in range(values.shape[0]))
-    XYZ = np.atleast_2d(tristimulus(samples, observer, illuminant, method))
-    white = white_point(illuminant, observer, samples.wavelengths_nm, method)
+    XYZ = np.atleast_2d(tristimulus(samples, observer=observer, illuminant=illuminant, method=method))
+    white = white_point(illuminant, observer=observer, wavelengths_nm=samples.wavelengths_nm, method=method)
     chromaticity = xy(XYZ)
     dominant = dominant_wavelength(chromaticity, xy(white), observer)
     purity = np.asarray(dominant.excitation_purity, dtype=float)
@@ -223,15 +225,20 @@ def write_report(report: MeasurementReport, path, format: str | None = None, *,
         HTML title (default: "Colour measurement report").
     page_rows : int
         HTML only: list every sample up to this many; beyond, list this many and summarise.
+
+    The file is written beside ``path`` and renamed over it once complete
+    (:func:`spectrocolor.safe_write.write_text`): a failed write leaves any previous file
+    unchanged. CSV names that a spreadsheet would execute (``=``, ``+``, ``-``, ``@``) get a
+    leading apostrophe (:func:`spectrocolor.spreadsheet.neutralise_cell`).
     """
     path = Path(path)
     fmt = (format or path.suffix.lstrip(".")).lower()
     if fmt in ("htm", "html"):
-        path.write_text(report_html(report, title=title, page_rows=page_rows), encoding="utf-8")
+        write_text(path, report_html(report, title=title, page_rows=page_rows))
     elif fmt == "csv":
-        path.write_text(_csv(report), encoding="utf-8")
+        write_text(path, _csv(report))
     elif fmt == "json":
-        path.write_text(json.dumps(_json(report), allow_nan=False), encoding="utf-8")
+        write_text(path, json.dumps(_json(report), allow_nan=False))
     else:
         raise ColorimetryError(
             f"report format {fmt!r} is unknown; accepted: html, csv, json (or a file ending in "
@@ -263,7 +270,8 @@ def _csv(report: MeasurementReport) -> str:
     writer.writerow(_COLUMNS)
     columns = report._columns()
     for row in zip(*(columns[key] for key in _COLUMNS), strict=True):
-        writer.writerow(["" if v is None else v for v in row])
+        name, *values = row  # a name a spreadsheet would execute is written as text
+        writer.writerow([neutralise_cell(name), *("" if v is None else v for v in values)])
     return buffer.getvalue()
 
 

@@ -38,7 +38,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.handler(args) or 0)
-    except (UserError, SpectrumError, ColorimetryError, FileNotFoundError, IsADirectoryError) as exc:
+    except (UserError, SpectrumError, ColorimetryError, OSError) as exc:  # OSError: full disk, ...
         print(f"spectrocolor {args.command}: error: {exc}", file=sys.stderr)
         return 2
 

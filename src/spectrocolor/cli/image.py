@@ -9,6 +9,7 @@ import numpy as np
 
 from ..display.adaptation import ADAPTATION_METHODS
 from . import UserError
+from .files import add_force, check_files
 
 _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 
@@ -27,6 +28,7 @@ def register(subparsers) -> None:
     p.add_argument("cube", metavar="CUBE",
                    help="cube file (.hdr/raw, .tif, .npy, .npz, .nc, .h5) or folder of band images")
     p.add_argument("--out", required=True, help="output: .png (display codes) or .tif (floats)")
+    add_force(p)
     p.add_argument("--illuminant", required=True,
                    help="illuminant for reflectance cubes (e.g. D65, A, C), or 'none' for "
                    "radiance cubes (lights)")
@@ -62,20 +64,30 @@ def register(subparsers) -> None:
     p.set_defaults(handler=_image)
 
 
+#: Most bands ``--wavelengths`` may describe (a 0.01 nm grid over 360-830 nm has 47 001).
+MAX_BANDS = 100_000
+
+
 def parse_wavelengths(text: str) -> np.ndarray:
-    """'400:700:10' (inclusive) or '400,410,420' -> wavelengths in nm."""
+    """'400:700:10' (inclusive) or '400,410,420' -> wavelengths in nm (at most MAX_BANDS)."""
     try:
         if ":" in text:
             start, stop, step = (float(part) for part in text.split(":"))
-            if step <= 0:
+            if not (step > 0 and np.isfinite([start, stop, step]).all() and stop >= start):
                 raise ValueError
             count = int(round((stop - start) / step)) + 1
+            if count > MAX_BANDS:
+                raise UserError(f"--wavelengths {text!r} gives {count:.3g} bands; at most "
+                                f"{MAX_BANDS} are accepted")
             return start + step * np.arange(count)
-        return np.array([float(part) for part in text.split(",") if part.strip()])
+        values = np.array([float(part) for part in text.split(",")[:MAX_BANDS + 1] if part.strip()])
+        if values.size > MAX_BANDS or not np.isfinite(values).all():
+            raise ValueError
+        return values
     except ValueError as exc:
         raise UserError(
-            f"--wavelengths: expected 'START:STOP:STEP' (nm, STEP > 0) or a comma list of nm; "
-            f"got {text!r}"
+            f"--wavelengths: expected 'START:STOP:STEP' (finite nm, STOP >= START, STEP > 0) or a "
+            f"comma list of at most {MAX_BANDS} finite nm; got {text[:60]!r}"
         ) from exc
 
 
@@ -104,6 +116,7 @@ def _image(args: argparse.Namespace) -> int:
         raise UserError(f"--out must end in .png or .tif/.tiff; got {args.out!r}")
     if suffix == "png" and args.quantity != "rgb":
         raise UserError(f"--quantity {args.quantity} gives floats: write it to a .tif file")
+    check_files(args, ("out",), ("cube",))
     if args.wavelength_units is not None:
         from ..images.cube import wavelengths_to_nm
 

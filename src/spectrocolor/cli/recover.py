@@ -7,7 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..safe_write import atomic_path
 from . import UserError
+from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files, save_figure
 
 
 def register(subparsers) -> None:
@@ -34,6 +36,7 @@ def register(subparsers) -> None:
                    "unconstrained (default: %(default)s)")
     p.add_argument("--out", type=Path, required=True, help="output CSV of reflectances")
     p.add_argument("--plot", type=Path, help="also write a PNG of the recovered curves")
+    add_force(p)
     p.set_defaults(handler=_run)
 
 
@@ -50,7 +53,7 @@ def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.nd
     rgb_linear = space.transfer.decode(np.array(rgb8) / 255.0)
     XYZ = space.XYZ_from_rgb_linear(rgb_linear) * 100.0
     # the display's white is mapped to the perfect reflector under the chosen illuminant
-    white = white_point(illuminant, observer, wavelength_grid(*grid))
+    white = white_point(illuminant, observer=observer, wavelengths_nm=wavelength_grid(*grid))
     return XYZ * (white / (np.asarray(space.matrix_to_XYZ).sum(axis=1) * 100.0))
 
 
@@ -84,6 +87,7 @@ def _run(args) -> int:
     from ..spectrum import Spectrum
     from ..spectrum_io import write_spectra
 
+    check_files(args, ("out", "plot"), ("csv",), MAX_SPECTRAL_FILE_BYTES)
     grid = tuple(args.range)
     if args.xyz is not None:
         XYZ, names = np.array([args.xyz]), ["colour_1"]
@@ -108,13 +112,14 @@ def _run(args) -> int:
         raise UserError("no colour can be produced by a reflectance within the bounds")
     names = [names[i] for i in keep]
     spectrum = Spectrum(result.spectrum.wavelengths_nm, values[keep], names)
-    write_spectra(spectrum, args.out)
+    with atomic_path(args.out) as temporary:
+        write_spectra(spectrum, temporary)
     print(f"wrote {len(names)} reflectance(s) to {args.out}")
     if args.plot is not None:
         from ..recovery.plots import reflectance_curves
 
         ax = reflectance_curves(spectrum, title=f"smoothest reflectance, {result.illuminant}, "
                                 f"bounds={args.bounds}")
-        ax.figure.savefig(args.plot, dpi=100)
+        save_figure(ax.figure, args.plot, "--plot", dpi=100)
         print(f"wrote {args.plot}")
     return 0 if keep.size == len(feasible) else 1

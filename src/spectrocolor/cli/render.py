@@ -8,6 +8,7 @@ import numpy as np
 
 from ..display.adaptation import ADAPTATION_METHODS
 from . import UserError
+from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files, save_figure
 
 _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 #: Largest swatch side in pixels (the image is about 8 swatches wide).
@@ -57,6 +58,7 @@ def register(subparsers) -> None:
     )
     r.add_argument("--size", type=int, default=64, help="swatch size in pixels (default 64)")
     r.add_argument("--out", required=True, help="output image, .png or .ppm")
+    add_force(r)
     r.set_defaults(handler=_render)
 
     d = subparsers.add_parser(
@@ -71,6 +73,7 @@ def register(subparsers) -> None:
         help="gamut triangle to draw (repeatable; default sRGB)",
     )
     d.add_argument("--out", required=True, help="output image (.png, .svg, .pdf)")
+    add_force(d)
     d.set_defaults(handler=_diagram)
 
 
@@ -99,8 +102,8 @@ def _tristimulus(args):
             f"{args.file}: negative reflectance {np.min(spectra.values):g}; reflectance factors are "
             "0-1 (use --illuminant none for lights)"
         )
-    XYZ = tristimulus(spectra, args.observer, illuminant).reshape(-1, 3)
-    W = weights(spectra.wavelengths_nm, args.observer, illuminant)
+    XYZ = tristimulus(spectra, observer=args.observer, illuminant=illuminant).reshape(-1, 3)
+    W = weights(spectra.wavelengths_nm, observer=args.observer, illuminant=illuminant)
     n = XYZ.shape[0]
     names = list(spectra.names) if spectra.names else [f"spectrum {i + 1}" for i in range(n)]
     return XYZ, W, names, illuminant
@@ -113,6 +116,7 @@ def _render(args) -> int:
     space = rgb_space(args.space)
     if not args.out.lower().endswith((".png", ".ppm")):
         raise UserError(f"--out must end in .png or .ppm, got {args.out!r}")
+    check_files(args, ("out",), ("file",), MAX_SPECTRAL_FILE_BYTES)
     if not 1 <= args.size <= _MAX_SWATCH_PX:
         raise UserError(f"--size must be 1-{_MAX_SWATCH_PX} pixels, got {args.size}")
     XYZ, W, names, illuminant = _tristimulus(args)
@@ -173,6 +177,7 @@ def _render(args) -> int:
 def _diagram(args) -> int:
     from ..plot import chromaticity_diagram
 
+    check_files(args, ("out",), ("file",), MAX_SPECTRAL_FILE_BYTES)
     XYZ, W, names, illuminant = _tristimulus(args)
     if not np.all(XYZ.sum(axis=1) > 0):
         raise UserError("every spectrum must have X + Y + Z > 0 to have a chromaticity")
@@ -185,6 +190,6 @@ def _diagram(args) -> int:
         points=XYZ,
         labels=names,
     )
-    ax.figure.savefig(args.out, dpi=150)
+    save_figure(ax.figure, args.out, dpi=150)
     print(f"wrote {args.out} ({len(names)} points, {args.kind} diagram)")
     return 0

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from . import UserError
 from .colorimetry import reflectance_factors
+from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files
 
 
 def register(subparsers) -> None:
@@ -29,6 +30,7 @@ def register(subparsers) -> None:
     p.add_argument("--percent", action="store_true",
                    help="FILE holds reflectance in percent (0-100): divide by 100")
     p.add_argument("--out", required=True, help="output file (.html, .csv or .json)")
+    add_force(p)
     p.add_argument("--format", choices=("html", "csv", "json"), default=None,
                    help="output format (default: from the --out suffix)")
     p.add_argument("--title", default=None, help="HTML title")
@@ -42,6 +44,7 @@ def _report(args: argparse.Namespace) -> int:
     from ..report import measurement_report, write_report
     from ..spectrum_io import read_spectra
 
+    check_files(args, ("out",), ("file",), MAX_SPECTRAL_FILE_BYTES)
     spectra = reflectance_factors(read_spectra(args.file), args.file, args.percent)
     if args.page_rows < 1:
         raise UserError(f"--page-rows must be at least 1; got {args.page_rows}")

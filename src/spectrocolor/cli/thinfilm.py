@@ -16,7 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..safe_write import atomic_path
 from . import UserError
+from .files import add_force, check_files, save_figure
 
 #: Largest strip length / locus point count and image side accepted on the command line.
 _MAX_COLUMNS = 100_000
@@ -41,6 +43,7 @@ def register(subparsers) -> None:
     z.add_argument("--out", required=True, help="strip image, .png or .ppm")
     z.add_argument("--csv", help="write opd_nm,X,Y,Z,x,y,r8,g8,b8 (one row per column)")
     z.add_argument("--locus", help="also write the xy locus plot (.png/.svg/.pdf, matplotlib)")
+    add_force(z)
     z.set_defaults(handler=_zawischa)
 
     s = commands.add_parser("strip", help="colour against film thickness")
@@ -51,6 +54,7 @@ def register(subparsers) -> None:
     s.add_argument("--tick-every", type=float, default=100.0, help="nm between ticks")
     s.add_argument("--out", required=True, help=".png or .ppm")
     s.add_argument("--csv", help="write thickness_nm,X,Y,Z,x,y,r8,g8,b8")
+    add_force(s)
     s.set_defaults(handler=_strip)
 
     loc = commands.add_parser("locus", help="xy locus of the film colours (matplotlib)")
@@ -59,6 +63,7 @@ def register(subparsers) -> None:
     loc.add_argument("--max-thickness", type=float, default=1500.0, help="nm")
     loc.add_argument("--points", type=int, default=1000)
     loc.add_argument("--out", required=True, help=".png, .svg or .pdf")
+    add_force(loc)
     loc.set_defaults(handler=_locus)
 
     m = commands.add_parser("map", help="image of a thickness map through a lookup table")
@@ -74,6 +79,7 @@ def register(subparsers) -> None:
     m.add_argument("--film-height", type=float, default=0.02, help="draining: metres")
     m.add_argument("--step", type=float, default=0.5, help="table thickness step, nm")
     m.add_argument("--out", required=True, help=".png or .ppm")
+    add_force(m)
     m.set_defaults(handler=_map)
 
 
@@ -157,8 +163,8 @@ def _series(args, count: int):
     from ..thinfilm.colour import film_colours
 
     film = _film_function(args)
-    if count < 2 or args.max_thickness <= 0:
-        raise UserError("need at least 2 columns/points and a positive --max-thickness")
+    if count < 2 or not 0 < args.max_thickness < np.inf:
+        raise UserError("need at least 2 columns/points and a positive, finite --max-thickness")
     if count > _MAX_COLUMNS:
         raise UserError(f"at most {_MAX_COLUMNS} columns/points, got {count}")
     d = np.linspace(0.0, args.max_thickness, count)
@@ -168,7 +174,7 @@ def _series(args, count: int):
 
 
 def _write_csv(path, first_name, first, colours) -> None:
-    with Path(path).open("w", newline="") as fh:
+    with atomic_path(path) as temporary, temporary.open("w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow([first_name, "X", "Y", "Z", "x", "y", "r8", "g8", "b8"])
         for value, XYZ, xy, rgb in zip(first, colours.XYZ100, colours.xy, colours.rgb8,
@@ -181,14 +187,12 @@ def _locus_plot(path, colours, label: str, title: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
     from ..plot import chromaticity_diagram
 
     ax = chromaticity_diagram(curves=[colours.XYZ100], curve_labels=[label], title=title)
     ax.plot(*colours.xy[0], "o", color="k", ms=4)
-    ax.figure.savefig(path, dpi=150, bbox_inches="tight")
-    plt.close(ax.figure)
+    save_figure(ax.figure, path, dpi=150, bbox_inches="tight")
 
 
 def _zawischa(args) -> int:
@@ -197,6 +201,7 @@ def _zawischa(args) -> int:
 
     if args.locus:
         _check_plot_path(args.locus, "--locus")
+    check_files(args, ("out", "csv", "locus"))
     strip = zawischa_strip()
     write_strip(strip.colours.rgb8, args.out, height=80, ticks=strip.tick_columns,
                 tick_height=10)
@@ -212,9 +217,11 @@ def _zawischa(args) -> int:
 def _strip(args) -> int:
     from ..pictures import write_strip
 
+    check_files(args, ("out", "csv"))
+    if not args.tick_every > 0 or args.max_thickness / args.tick_every > _MAX_COLUMNS:
+        raise UserError(f"--tick-every must be positive and give at most {_MAX_COLUMNS} ticks "
+                        f"over --max-thickness {args.max_thickness:g} nm; got {args.tick_every:g}")
     d, colours = _series(args, args.columns)
-    if not args.tick_every > 0:
-        raise UserError("--tick-every must be positive")
     marks = np.arange(args.tick_every, args.max_thickness + 1e-9, args.tick_every)
     ticks = np.unique(np.rint(marks / args.max_thickness * (args.columns - 1)).astype(int))
     write_strip(colours.rgb8, args.out, height=80, ticks=ticks, tick_height=10)
@@ -226,6 +233,7 @@ def _strip(args) -> int:
 
 def _locus(args) -> int:
     _check_plot_path(args.out, "--out")
+    check_files(args, ("out",))
     _, colours = _series(args, args.points)
     _locus_plot(args.out, colours, f"{args.film} 0-{args.max_thickness:g} nm",
                 f"Film colours, {colours.illuminant}, {args.angle:g}°")
@@ -240,6 +248,7 @@ def _map(args) -> int:
     if not (1 <= args.width <= _MAX_SIDE_PX and 1 <= args.height <= _MAX_SIDE_PX):
         raise UserError(f"--width and --height must be 1-{_MAX_SIDE_PX} pixels, got "
                         f"{args.width} x {args.height}")
+    check_files(args, ("out",), ("input",))
     film = _film_function(args)
     angle = None
     if args.kind == "wedge":

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpectrumError
+from ..safe_write import atomic_path, verify_png, verify_tiff, write_bytes
 
 __all__ = ["write_image"]
 
@@ -52,6 +53,9 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
     ------
     SpectrumError
         An unsupported suffix, shape or dtype (e.g. floats for PNG: quantise them first).
+    spectrocolor.safe_write.OutputError
+        The file could not be written completely (full disk, no permission ...); it is written
+        beside ``path``, read back and only then renamed over it, so a previous file survives.
     """
     path = Path(path)
     array = np.asarray(image)
@@ -61,12 +65,14 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
     if suffix == ".png":
         if metadata:
             raise SpectrumError("metadata is stored in TIFF files only; PNG gets none")
+        height, width = array.shape[:2]
         if array.dtype == np.uint8 or (array.dtype == np.uint16 and array.ndim == 2):
             from PIL import Image
 
-            Image.fromarray(array).save(path)
+            with atomic_path(path, verify=lambda p: verify_png(p, width, height)) as temporary:
+                Image.fromarray(array).save(temporary, format="PNG")
         elif array.dtype == np.uint16:
-            path.write_bytes(_png16_rgb(array))
+            write_bytes(path, _png16_rgb(array), verify=lambda p: verify_png(p, width, height))
         else:
             raise SpectrumError(
                 f"PNG needs uint8 or uint16 codes; got {array.dtype} (render with bit_depth=8 or"
@@ -81,7 +87,8 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
         import tifffile
 
         photometric = "rgb" if array.ndim == 3 else "minisblack"
-        tifffile.imwrite(path, array, photometric=photometric, metadata=metadata or {})
+        with atomic_path(path, verify=lambda p: verify_tiff(p, array.shape, array.nbytes)) as temporary:
+            tifffile.imwrite(temporary, array, photometric=photometric, metadata=metadata or {})
     else:
         raise SpectrumError(
             f"{path}: unknown image format {suffix!r}; accepted: .png (8/16-bit codes), "

@@ -1,0 +1,268 @@
+"""Files are never lost: atomic writes, and the overwrite policy of the command line.
+
+Every writer of the package (images, strips, reports, spectra written by the CLI, plots) goes
+through :func:`atomic_path`: the data are written to a temporary file *beside* the target (same
+folder, hence the same file system), flushed to the disk (``fsync``), checked where a checker is
+given, and only then renamed over the target (``os.replace``, atomic on POSIX and Windows). If
+anything fails -- a full disk, a killed process, an encoder error, a check that does not match --
+the previous file is untouched and the temporary file is removed (a ``kill -9`` cannot run any
+clean-up; it leaves at most a hidden ``.NAME.*.partial`` file beside the target, never a damaged
+target).
+
+Overwrite policy (the command line; library functions replace their target atomically, as
+``open(path, "w")`` would, but never leave it half written):
+
+1. An existing output file is replaced only with ``--force``; without it the command stops with
+   one line naming the option and the file, before computing anything.
+2. A command never writes over one of its own inputs, not even with ``--force`` (paths are
+   compared after resolving links, and with :func:`os.path.samefile` for hard links).
+3. Two outputs of one command must be different files; an output's folder must exist.
+
+References
+----------
+POSIX.1-2017, ``rename()``: "If the link named by the *new* argument exists, it shall be removed
+and *old* renamed to *new* ... a link named *new* shall remain visible to other threads
+throughout the renaming operation and refer either to the file referred to by *new* or *old*."
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import tempfile
+from collections.abc import Callable, Iterable, Iterator
+from pathlib import Path
+
+__all__ = ["OutputError", "atomic_path", "write_bytes", "write_text", "verify_size", "verify_png",
+           "verify_tiff", "check_outputs"]
+
+
+class OutputError(OSError):
+    """An output cannot be written, or may not be (it exists, or it is an input).
+
+    A subclass of :class:`OSError` so that callers handling file errors handle it; its message
+    is one line that names the file and says what to do.
+    """
+
+    def __str__(self) -> str:
+        return self.strerror or super().__str__()
+
+
+def _describe(exc: OSError) -> str:
+    reason = exc.strerror or exc.__class__.__name__
+    return f"{reason} (errno {exc.errno})" if exc.errno else reason
+
+
+@contextlib.contextmanager
+def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[Path]:
+    """Give a temporary path beside ``path``; on success move it over ``path`` atomically.
+
+    The temporary file keeps ``path``'s suffix, so writers that choose the format from the
+    suffix (Pillow, tifffile, matplotlib) write the right one.
+
+    Parameters
+    ----------
+    path : str or Path
+        The final file.
+    verify : callable, optional
+        Called with the temporary path after it is written and synced; raises if the file is
+        not what was meant to be written (the target is then left unchanged).
+
+    Yields
+    ------
+    Path
+        Where to write.
+
+    Raises
+    ------
+    OutputError
+        The folder does not exist or is not writable, the disk is full, the name is too long,
+        the file is too large ...: the previous file at ``path`` is unchanged.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> with atomic_path(folder / "a.txt") as tmp:
+    ...     _ = tmp.write_text("new")
+    >>> (folder / "a.txt").read_text()
+    'new'
+    >>> sorted(p.name for p in folder.iterdir())  # no temporary file is left behind
+    ['a.txt']
+    """
+    target = Path(path)
+    folder = target.parent
+    if not folder.is_dir():
+        what = "does not exist" if not folder.exists() else "is not a folder"
+        raise OutputError(errno.ENOENT, f"{target}: cannot write: {folder} {what}")
+    try:
+        fd, name = tempfile.mkstemp(prefix=f".{target.name[:80]}.", suffix=f".partial{target.suffix}",
+                                    dir=folder)
+    except OSError as exc:
+        raise OutputError(exc.errno, f"{target}: cannot write here: {_describe(exc)}") from None
+    os.close(fd)
+    temporary = Path(name)
+    try:
+        yield temporary
+        with open(temporary, "rb+") as handle:  # data of writers that closed without syncing
+            os.fsync(handle.fileno())
+        if verify is not None:
+            verify(temporary)
+        os.replace(temporary, target)
+    except OSError as exc:
+        temporary.unlink(missing_ok=True)
+        if isinstance(exc, OutputError):
+            raise
+        raise OutputError(exc.errno, f"{target}: not written ({_describe(exc)}); any previous "
+                          "file there is unchanged") from None
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    _sync_folder(folder)
+
+
+def _sync_folder(folder: Path) -> None:
+    """Make the rename itself durable (POSIX: fsync the folder); a no-op where unsupported."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass  # some file systems (and Windows) cannot sync a folder; the rename is still atomic
+    finally:
+        os.close(fd)
+
+
+def write_bytes(path, data: bytes, verify: Callable[[Path], None] | None = None) -> Path:
+    """Write ``data`` to ``path`` atomically (see :func:`atomic_path`); returns the path.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "b.bin"
+    >>> write_bytes(target, b"abc").read_bytes()
+    b'abc'
+    """
+    with atomic_path(path, verify) as temporary:
+        with open(temporary, "wb") as handle:
+            handle.write(data)
+    return Path(path)
+
+
+def write_text(path, text: str) -> Path:
+    """Write ``text`` to ``path`` as UTF-8, atomically, with a size check; returns the path.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "c.csv"
+    >>> write_text(target, "x,y\\n1,2\\n").read_text()
+    'x,y\\n1,2\\n'
+    """
+    data = text.encode("utf-8")
+    return write_bytes(path, data, verify=lambda p: verify_size(p, len(data)))
+
+
+def verify_size(path: Path, expected: int) -> None:
+    """Raise :class:`OutputError` unless the file at ``path`` holds ``expected`` bytes."""
+    found = os.stat(path).st_size
+    if found != expected:
+        raise OutputError(errno.EIO, f"{path}: {found} bytes on disk, {expected} written")
+
+
+def verify_png(path: Path, width: int, height: int) -> None:
+    """Raise :class:`OutputError` unless ``path`` is a complete PNG of ``width`` x ``height``.
+
+    Pillow's ``verify`` checks every chunk's CRC, so a truncated or damaged file is caught.
+    """
+    from PIL import Image
+
+    try:
+        with Image.open(path) as image:
+            size = image.size
+            image.verify()
+    except (OSError, SyntaxError, ValueError) as exc:
+        raise OutputError(errno.EIO, f"{path}: the PNG written does not read back ({exc})") from None
+    if size != (width, height):
+        raise OutputError(errno.EIO, f"{path}: PNG of {size[0]} x {size[1]} read back, "
+                          f"{width} x {height} written")
+
+
+def verify_tiff(path: Path, shape: tuple[int, ...], nbytes: int) -> None:
+    """Raise :class:`OutputError` unless ``path`` is a TIFF of ``shape`` holding ``nbytes``."""
+    import tifffile
+
+    try:
+        with tifffile.TiffFile(path) as tif:
+            found = tuple(tif.series[0].shape)
+    except (OSError, ValueError, IndexError, tifffile.TiffFileError) as exc:
+        raise OutputError(errno.EIO, f"{path}: the TIFF written does not read back ({exc})") from None
+    if found != tuple(shape) or os.stat(path).st_size < nbytes:
+        raise OutputError(errno.EIO, f"{path}: TIFF of shape {found} and "
+                          f"{os.stat(path).st_size} bytes read back; {shape}, {nbytes} bytes "
+                          "written")
+
+
+def _same(a: Path, b: Path) -> bool:
+    if a.resolve() == b.resolve():
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def check_outputs(outputs: dict[str, object], inputs: Iterable[object] = (), *,
+                  force: bool = False) -> None:
+    """Apply the overwrite policy (module docstring) before a command writes anything.
+
+    Parameters
+    ----------
+    outputs : dict
+        Option name (e.g. ``"--out"``) -> output path; ``None`` entries are skipped.
+    inputs : iterable of paths
+        The command's input files (``None`` skipped); never written over.
+    force : bool
+        Allow replacing existing outputs (never inputs).
+
+    Raises
+    ------
+    OutputError
+        An output is an input, exists without ``force``, is a folder, repeats another output,
+        or lies in a folder that does not exist.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> mine = pathlib.Path(tempfile.mkdtemp()) / "mine.csv"
+    >>> _ = mine.write_text("wavelength_nm,a\\n400,1\\n")
+    >>> check_outputs({"--out": mine}, [mine], force=True)
+    Traceback (most recent call last):
+    ...
+    spectrocolor.safe_write.OutputError: --out ...mine.csv is the command's input; choose another output file
+    """
+    sources = [Path(str(p)) for p in inputs if p is not None]
+    seen: list[tuple[str, Path]] = []
+    for option, value in outputs.items():
+        if value is None:
+            continue
+        path = Path(str(value))
+        for source in sources:
+            if path.exists() and source.exists() and _same(path, source):
+                raise OutputError(errno.EEXIST, f"{option} {path} is the command's input; choose "
+                                  "another output file")
+        for other_option, other in seen:
+            if path.resolve() == other.resolve():
+                raise OutputError(errno.EEXIST, f"{option} and {other_option} name the same file "
+                                  f"{path}; give each output its own file")
+        seen.append((option, path))
+        if path.is_dir():
+            raise OutputError(errno.EISDIR, f"{option} {path} is a folder; give a file name")
+        if not path.parent.is_dir():
+            what = "does not exist" if not path.parent.exists() else "is not a folder"
+            raise OutputError(errno.ENOENT, f"{option} {path}: the folder {path.parent} {what}")
+        if path.exists() and not force:
+            raise OutputError(errno.EEXIST, f"{option} {path} exists; add --force to replace it")
