@@ -21,9 +21,9 @@ def main() -> None:
     grid = sc.wavelength_grid(400, 700, 10)
     cube = np.random.default_rng(0).random((512, 512, grid.size))
     spectrum = sc.Spectrum(grid, cube)
-    W = np.array(sc.weights(grid, "1931", "D65"))  # precomputed: the limit does nothing else
+    W = np.array(sc.weights(grid, observer="1931", illuminant="D65"))  # precomputed: the limit does nothing else
 
-    ours = best_of(lambda: sc.tristimulus(sc.Spectrum(grid, cube), "1931", "D65"))
+    ours = best_of(lambda: sc.tristimulus(sc.Spectrum(grid, cube), observer="1931", illuminant="D65"))
     limit = best_of(lambda: cube @ W)
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
     illuminant = colour.SDS_ILLUMINANTS["D65"]
@@ -33,7 +33,7 @@ def main() -> None:
         theirs = best_of(lambda: colour.msds_to_XYZ(cube, cmfs, illuminant, method="Integration", shape=shape), 3)
         agreement = np.abs(
             colour.msds_to_XYZ(cube, cmfs, illuminant, method="Integration", shape=shape)
-            - sc.tristimulus(spectrum, "1931", "D65")
+            - sc.tristimulus(spectrum, observer="1931", illuminant="D65")
         ).max()
     pixels = cube.shape[0] * cube.shape[1]
     print(f"cube 512x512x31 float64, {pixels} spectra")

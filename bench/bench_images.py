@@ -42,7 +42,7 @@ def throughput(size: int) -> None:
 
     cube = _cube(size)
     pixels = size * size
-    W = np.asarray(sc.weights(WAVELENGTHS, "1931", "D65"))
+    W = np.asarray(sc.weights(WAVELENGTHS, observer="1931", illuminant="D65"))
     flat = cube.reshape(-1, WAVELENGTHS.size)
     t_numpy64 = best_of(lambda: flat @ W, repeats=3)  # float32 @ float64 -> float64, one call
     W32 = W.astype(np.float32)

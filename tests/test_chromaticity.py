@@ -81,7 +81,7 @@ def test_mixtures_with_the_locus_recover_wavelength_and_purity(observer, white):
     locus = sc.spectral_locus(observer)
     wavelengths = RNG.uniform(locus.wavelengths_nm[0] + 0.01, locus.wavelengths_nm[-1], 500)
     purity = RNG.uniform(0.01, 1.2, 500)
-    white_xy = white if not isinstance(white, str) else sc.xy(sc.white_point(white, observer))
+    white_xy = white if not isinstance(white, str) else sc.xy(sc.white_point(white, observer=observer))
     points = white_xy + purity[:, None] * (locus_point(observer, wavelengths) - white_xy)
     result = sc.dominant_wavelength(points, white, observer)
     assert not result.complementary.any()
@@ -131,7 +131,7 @@ def test_outside_the_locus_is_flagged_with_purity_above_one():
 def test_illuminant_name_equals_its_white_point():
     points = RNG.uniform([0.1, 0.1], [0.6, 0.6], (200, 2))
     by_name = sc.dominant_wavelength(points, "C", "1964")
-    white = sc.xy(sc.white_point("C", "1964"))
+    white = sc.xy(sc.white_point("C", observer="1964"))
     by_xy = sc.dominant_wavelength(points, white, "1964")
     for a, b in zip(by_name, by_xy, strict=True):
         np.testing.assert_array_equal(a, b)
@@ -262,8 +262,8 @@ def test_grey_reflectances_are_neutral_not_a_rounding_artefact():
     # hue is undefined, so no wavelength may be invented for it (NaN, purity 0).
     grid = sc.wavelength_grid(380, 780, 5)
     greys = sc.Spectrum(grid, np.linspace(0.05, 0.95, 19)[:, None] * np.ones(grid.size))
-    XYZ = sc.tristimulus(greys, "1931", "D65")
-    result = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(sc.weights(grid, "1931", "D65").sum(0)))
+    XYZ = sc.tristimulus(greys, observer="1931", illuminant="D65")
+    result = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(sc.weights(grid, observer="1931", illuminant="D65").sum(0)))
     assert np.all(np.isnan(result.wavelength_nm))
     np.testing.assert_array_equal(result.excitation_purity, 0.0)
     assert not result.complementary.any()

@@ -44,14 +44,14 @@ def test_wyszecki_stiles_example_on_the_seeds_own_tables(columns, raw_sums, XYZ1
 )
 def test_wyszecki_stiles_example_on_full_precision_cie_tables(observer, XYZ1):
     t = _seed003_tables()
-    XYZ100 = sc.tristimulus(Spectrum(t["wavelength_nm"], t["beta"]), observer, "D65")
+    XYZ100 = sc.tristimulus(Spectrum(t["wavelength_nm"], t["beta"]), observer=observer, illuminant="D65")
     np.testing.assert_allclose(XYZ100 / 100, XYZ1, rtol=1e-3)  # the 0.1 %
 
 
 def test_perfect_white_is_Y100_and_the_white_point():
     g = sc.wavelength_grid(380, 780, 5)
-    white = sc.tristimulus(Spectrum.constant(1.0, g), "1931", "D65")
-    np.testing.assert_allclose(white, sc.white_point("D65", "1931"), rtol=1e-14)
+    white = sc.tristimulus(Spectrum.constant(1.0, g), observer="1931", illuminant="D65")
+    np.testing.assert_allclose(white, sc.white_point("D65", observer="1931"), rtol=1e-14)
     assert white[1] == pytest.approx(100.0, rel=1e-14)
 
 
@@ -68,14 +68,14 @@ def test_perfect_white_is_Y100_and_the_white_point():
     ],
 )
 def test_cie_white_points(illuminant, observer, xy):
-    XYZ = sc.white_point(illuminant, observer)
+    XYZ = sc.white_point(illuminant, observer=observer)
     np.testing.assert_allclose(XYZ[:2] / XYZ.sum(), xy, atol=5e-6)
 
 
 def test_weights_are_cached_and_read_only():
     g = sc.wavelength_grid(400, 700, 10)
-    W = sc.weights(g, "1931", "D65")
-    assert W is sc.weights(g.copy(), "2deg", "d65")
+    W = sc.weights(g, observer="1931", illuminant="D65")
+    assert W is sc.weights(g.copy(), observer="2deg", illuminant="d65")
     assert W.shape == (31, 3) and not W.flags.writeable
 
 
@@ -85,28 +85,28 @@ def test_1nm_method_equals_explicit_interpolation():
     refl = Spectrum(g, rng.random((5, g.size)))
     fine = refl.resample(sc.wavelength_grid(400, 700, 1))
     np.testing.assert_allclose(
-        sc.tristimulus(refl, "1931", "D65", method="1nm"), sc.tristimulus(fine, "1931", "D65"), rtol=1e-13
+        sc.tristimulus(refl, observer="1931", illuminant="D65", method="1nm"), sc.tristimulus(fine, observer="1931", illuminant="D65"), rtol=1e-13
     )
 
 
 def test_light_absolute_scale():
     g = sc.wavelength_grid(360, 830, 1)
     light = Spectrum.constant(1.0, g)
-    relative = sc.tristimulus(light, "1931")
-    absolute = sc.tristimulus(light, "1931", k="absolute")
+    relative = sc.tristimulus(light, observer="1931")
+    absolute = sc.tristimulus(light, observer="1931", k="absolute")
     np.testing.assert_allclose(absolute, 683.0 * relative)
     np.testing.assert_allclose(relative[1], sc.observer("1931").values[1].sum())
 
 
 def test_errors_are_clear():
     with pytest.raises(ColorimetryError, match="outside the CIE 1931"):
-        sc.weights(sc.wavelength_grid(300, 700, 10), "1931", "D65")
+        sc.weights(sc.wavelength_grid(300, 700, 10), observer="1931", illuminant="D65")
     with pytest.raises(ColorimetryError, match="Spectrum"):
         sc.tristimulus(np.ones(31))
     with pytest.raises(ColorimetryError, match="only for lights"):
         sc.tristimulus(Spectrum.constant(1, sc.wavelength_grid(400, 700, 10)), illuminant="D65", k=2)
     with pytest.raises(ColorimetryError, match="resample"):
-        sc.weights(sc.wavelength_grid(400, 700, 10), "1931", Spectrum([400, 700], [1, 1]))
+        sc.weights(sc.wavelength_grid(400, 700, 10), observer="1931", illuminant=Spectrum([400, 700], [1, 1]))
     with pytest.raises(ColorimetryError, match="summation method"):
         sc.weights(sc.wavelength_grid(400, 700, 10), method="simpson")
 
@@ -123,7 +123,7 @@ def test_agrees_with_colour_science_integration(step, observer, colour_observer)
     g = sc.wavelength_grid(380, 780, step)
     rng = np.random.default_rng(step)
     values = rng.random((1000, g.size))
-    ours = sc.tristimulus(Spectrum(g, values), observer, "D65")
+    ours = sc.tristimulus(Spectrum(g, values), observer=observer, illuminant="D65")
     shape = colour.SpectralShape(380, 780, step)
     cmfs = colour.MSDS_CMFS[colour_observer]
     illuminant = colour.SDS_ILLUMINANTS["D65"]
@@ -140,8 +140,8 @@ def test_agrees_with_colour_science_integration(step, observer, colour_observer)
 def test_float32_cube_stays_float32_and_agrees():
     g = sc.wavelength_grid(400, 700, 10)
     cube = np.random.default_rng(4).random((8, 9, g.size)).astype(np.float32)
-    XYZ32 = sc.tristimulus(Spectrum(g, cube), "1931", "D65")
-    XYZ64 = sc.tristimulus(Spectrum(g, cube.astype(float)), "1931", "D65")
+    XYZ32 = sc.tristimulus(Spectrum(g, cube), observer="1931", illuminant="D65")
+    XYZ64 = sc.tristimulus(Spectrum(g, cube.astype(float)), observer="1931", illuminant="D65")
     assert XYZ32.dtype == np.float32 and XYZ32.shape == (8, 9, 3)
     np.testing.assert_allclose(XYZ32, XYZ64, rtol=1e-5)
 
@@ -153,8 +153,8 @@ reflectances = arrays(np.float64, 31, elements=st.floats(0, 1))
 @given(reflectances, reflectances, st.floats(-3, 3))
 def test_tristimulus_is_linear(a, b, scale):
     g = sc.wavelength_grid(400, 700, 10)
-    lhs = sc.tristimulus(Spectrum(g, scale * a + b), "1964", "A")
-    rhs = scale * sc.tristimulus(Spectrum(g, a), "1964", "A") + sc.tristimulus(Spectrum(g, b), "1964", "A")
+    lhs = sc.tristimulus(Spectrum(g, scale * a + b), observer="1964", illuminant="A")
+    rhs = scale * sc.tristimulus(Spectrum(g, a), observer="1964", illuminant="A") + sc.tristimulus(Spectrum(g, b), observer="1964", illuminant="A")
     np.testing.assert_allclose(lhs, rhs, atol=1e-9)
 
 
@@ -166,9 +166,9 @@ def test_tristimulus_is_linear(a, b, scale):
 )
 def test_perfect_white_property(illuminant, observer, step):
     g = sc.wavelength_grid(380, 780, step)
-    XYZ = sc.tristimulus(Spectrum.constant(1.0, g), observer, illuminant)
+    XYZ = sc.tristimulus(Spectrum.constant(1.0, g), observer=observer, illuminant=illuminant)
     assert XYZ[1] == pytest.approx(100.0, rel=1e-12)
-    np.testing.assert_allclose(XYZ, sc.weights(g, observer, illuminant).sum(axis=0))
+    np.testing.assert_allclose(XYZ, sc.weights(g, observer=observer, illuminant=illuminant).sum(axis=0))
 
 
 def test_one_sample_is_not_a_summation():

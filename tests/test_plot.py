@@ -134,7 +134,7 @@ def test_colorchecker_labels_do_not_overlap(kind):
     from importlib.resources import files
 
     spectra = sc.read_spectra(files("spectrocolor") / "data/reflectances_colorchecker_babel.csv")
-    XYZ = sc.tristimulus(spectra, "1931", "D65")
+    XYZ = sc.tristimulus(spectra, observer="1931", illuminant="D65")
     ax = sc.chromaticity_diagram(kind=kind, points=XYZ, labels=list(spectra.names),
                                  whites={"D65": sc.white_point("D65")})
     texts, boxes = _text_boxes(ax)

@@ -103,7 +103,7 @@ def test_table39_cmfs():
 @pytest.mark.parametrize(("table", "name"), [("40", "A"), ("41", "B"), ("42", "C")])
 def test_tables40_42_normalisation_and_white(table, name):
     wavelengths, printed, _ = load(table)
-    W = sc.weights(wavelengths, "1931", name)
+    W = sc.weights(wavelengths, observer="1931", illuminant=name)
     # the tables are scaled so that the y weights sum to 100 (the perfect white has Y = 100)
     assert printed_sums(table)[1] == 100.0
     assert W[:, 1].sum() == pytest.approx(100.0, abs=1e-12)
@@ -179,7 +179,7 @@ KNOWN_OFF = {("D50", "1931"), ("A", "1931")}
 @pytest.mark.parametrize(("name", "observer"), sorted(CIE015_WHITES))
 def test_cie015_white_points(name, observer):
     method = "1nm" if (name, observer) in NEEDS_1NM else "sum"
-    ours = sc.xy(sc.white_point(name, observer, method=method))
+    ours = sc.xy(sc.white_point(name, observer=observer, method=method))
     error = np.abs(ours - CIE015_WHITES[name, observer]).max()
     if (name, observer) in KNOWN_OFF:
         assert 0.5e-5 < error < 1.1e-5

@@ -21,7 +21,7 @@ def planck_xy(temperature_K: float, observer: str = "1931") -> np.ndarray:
     """
     cmfs = sc.observer(observer)
     light = sc.blackbody(temperature_K, cmfs.wavelengths_nm, c2_m_K=1.4388e-2)
-    return sc.xy(sc.tristimulus(light, observer))
+    return sc.xy(sc.tristimulus(light, observer=observer))
 
 
 @pytest.mark.parametrize("temperature_K", [1500.0, 2856.0, 6504.0, 7000.0, 25000.0])

@@ -182,7 +182,7 @@ def _white_xy(white, observer: str) -> np.ndarray:
     if isinstance(white, str):
         from .colorimetry import white_point  # same layer; imported when a name is given
 
-        return xy_from_XYZ(white_point(white, observer))
+        return xy_from_XYZ(white_point(white, observer=observer))
     white_xy = colour_array(white, "white", 2, "the white's chromaticity x, y, or an illuminant name")
     if white_xy.shape != (2,) or not np.all(np.isfinite(white_xy)):
         raise ColorimetryError(

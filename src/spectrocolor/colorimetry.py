@@ -40,10 +40,11 @@ import numpy as np
 
 from .astm_e308 import astm_e308_weights
 from .errors import ColorimetryError
-from .illuminants import canonical_illuminant_name
+from .illuminants import canonical_illuminant
 from .illuminants import illuminant as named_illuminant
 from .interpolation import interpolation_matrix
-from .observers import canonical_observer_name
+from .observers import DEFAULT_OBSERVER, canonical_observer_name
+from .registry import Registry
 from .sampling import (
     cmfs_on,
     illuminant_on,
@@ -53,13 +54,12 @@ from .sampling import (
 )
 from .spectrum import Spectrum, validate_wavelengths
 
-METHODS = ("sum", "1nm", "astm-e308")
 #: Maximum luminous efficacy of radiation for photopic vision, lm/W (CIE 015:2018 §7.1).
 K_M_LM_PER_W = 683.0
 
 
-def _sum_weights(grid: np.ndarray, observer_name: str, illuminant) -> np.ndarray:
-    cmfs = cmfs_on(grid, observer_name)
+def _sum_weights(grid: np.ndarray, observer, illuminant) -> np.ndarray:
+    cmfs = cmfs_on(grid, observer)
     delta = interval_weights_nm(grid)
     if illuminant is None:
         return cmfs * delta[:, None]
@@ -67,22 +67,31 @@ def _sum_weights(grid: np.ndarray, observer_name: str, illuminant) -> np.ndarray
     return reflectance_weights(cmfs * (spd * delta)[:, None])
 
 
-def _compute_weights(grid: np.ndarray, observer_name: str, illuminant, method: str) -> np.ndarray:
-    if method == "sum":
-        result = _sum_weights(grid, observer_name, illuminant)
-    elif method == "astm-e308":
-        result = astm_e308_weights(grid, observer_name, illuminant)
-    else:
-        fine = np.arange(np.ceil(grid[0] - 1e-9), np.floor(grid[-1] + 1e-9) + 1.0)
-        if fine.size < 2:
-            raise ColorimetryError(f"method: '1nm' needs a range of at least 1 nm, got {grid[0]:g}–{grid[-1]:g} nm")
-        if fine[0] != grid[0] or fine[-1] != grid[-1]:
-            raise ColorimetryError(
-                f"method: '1nm' needs a grid that starts and ends on whole nanometres, got {grid[0]:g}–{grid[-1]:g}"
-            )
-        projection = interpolation_matrix(grid, fine, "linear")  # (M, K)
-        result = projection.T @ _sum_weights(fine, observer_name, illuminant)
-    result = np.ascontiguousarray(result)
+def _one_nm_weights(grid: np.ndarray, observer, illuminant) -> np.ndarray:
+    fine = np.arange(np.ceil(grid[0] - 1e-9), np.floor(grid[-1] + 1e-9) + 1.0)
+    if fine.size < 2:
+        raise ColorimetryError(f"method: '1nm' needs a range of at least 1 nm, got {grid[0]:g}–{grid[-1]:g} nm")
+    if fine[0] != grid[0] or fine[-1] != grid[-1]:
+        raise ColorimetryError(
+            f"method: '1nm' needs a grid that starts and ends on whole nanometres, got {grid[0]:g}–{grid[-1]:g}"
+        )
+    projection = interpolation_matrix(grid, fine, "linear")  # (M, K)
+    return projection.T @ _sum_weights(fine, observer, illuminant)
+
+
+#: The summation methods: name → function (grid, observer, illuminant) → (K, 3) weights.
+SUMMATION_METHODS = Registry("method", "a summation method")
+SUMMATION_METHODS.add("sum", _sum_weights, "sum at the spectrum's own samples (the definition; seeds 001, 003)")
+SUMMATION_METHODS.add("1nm", _one_nm_weights, "interpolate linearly to 1 nm, then sum (CIE 015's recommendation)")
+SUMMATION_METHODS.add(
+    "astm-e308", astm_e308_weights, "ASTM E308 Table 6 weights by ASTM E2022 (reflectances, uniform 1/5/10/20 nm)"
+)
+#: The summation method used when none is given.
+DEFAULT_METHOD = "sum"
+
+
+def _compute_weights(grid: np.ndarray, observer, illuminant, method: str) -> np.ndarray:
+    result = np.ascontiguousarray(SUMMATION_METHODS.get(method)(grid, observer, illuminant))
     result.setflags(write=False)
     return result
 
@@ -93,34 +102,43 @@ def _cached_weights(grid_key: bytes, observer_name: str, illuminant_name: str | 
     return _compute_weights(grid, observer_name, illuminant_name, method)
 
 
-def weights(wavelengths_nm, observer: str = "1931", illuminant=None, method: str = "sum") -> np.ndarray:
+def weights(wavelengths_nm, *, observer=DEFAULT_OBSERVER, illuminant=None, method: str = DEFAULT_METHOD) -> np.ndarray:
     """Weight matrix ``W`` (K, 3) such that ``XYZ = values @ W``.
 
     Parameters
     ----------
-    wavelengths_nm
+    wavelengths_nm : array_like, shape (K,)
         The spectra's sampling grid, nm (must lie within the observer's range).
-    observer
-        Observer name or alias (see :func:`spectrocolor.observer`), or a user's colour-matching
-        functions as a (3, K) :class:`Spectrum` (used as given, on its own samples).
-    illuminant
-        ``None`` for lights (``W = x̄ȳz̄ · Δλ``, relative units of the light); otherwise a CIE name
-        or a :class:`Spectrum` sampled at the summation grid, and the spectra are reflectance or
-        transmittance factors (0–1): ``W`` is normalised so the perfect white has ``Y = 100``.
-    method
-        ``"sum"`` (default, summation at the given samples), ``"1nm"`` (linear interpolation
-        to 1 nm, then summation) or ``"astm-e308"`` (ASTM E2022/E308 weighting factors for
-        uniform 1, 5, 10 or 20 nm data, reflectances only); see the module docstring.
+    observer : str or Spectrum, keyword-only
+        Observer name or alias (see :func:`spectrocolor.observer`; default CIE 1931 2°), or a
+        user's colour-matching functions as a (3, K) :class:`Spectrum` (used as given, on its own
+        samples).
+    illuminant : None, str, float or Spectrum, keyword-only
+        ``None`` (default) for lights (``W = x̄ȳz̄ · Δλ``, relative units of the light); otherwise
+        any form of :func:`spectrocolor.canonical_illuminant` (a CIE name, ``"blackbody:T"``,
+        ``"D:T"``, a temperature, a Spectrum sampled at the summation grid), and the spectra are
+        reflectance or transmittance factors (0–1): ``W`` is normalised so the perfect white has
+        ``Y = 100``.
+    method : str, keyword-only
+        A name in :data:`SUMMATION_METHODS`: ``"sum"`` (default, summation at the given samples),
+        ``"1nm"`` (linear interpolation to 1 nm, then summation) or ``"astm-e308"`` (ASTM
+        E2022/E308 weighting factors for uniform 1, 5, 10 or 20 nm data, reflectances only); see
+        the module docstring.
 
     Returns
     -------
     numpy.ndarray
         Read-only (K, 3) float64 array, cached per (grid, observer, named illuminant, method).
 
+    Raises
+    ------
+    ColorimetryError
+        For a grid outside the observer, an unknown observer, illuminant or method.
+
     Examples
     --------
     >>> from spectrocolor import wavelength_grid
-    >>> W = weights(wavelength_grid(380, 780, 10), "1931", "D65")
+    >>> W = weights(wavelength_grid(380, 780, 10), observer="1931", illuminant="D65")
     >>> round(float(W[:, 1].sum()), 9)
     100.0
     """
@@ -129,12 +147,11 @@ def weights(wavelengths_nm, observer: str = "1931", illuminant=None, method: str
         raise ColorimetryError(
             f"wavelengths_nm: summation needs at least two samples (Δλ is undefined for one), got {grid.tolist()}"
         )
-    if method not in METHODS:
-        raise ColorimetryError(f"method: {method!r} is not a summation method; choose one of {METHODS}")
-    if isinstance(observer, str) and (illuminant is None or isinstance(illuminant, str)):
-        name = None if illuminant is None else canonical_illuminant_name(illuminant)
-        return _cached_weights(grid.tobytes(), canonical_observer_name(observer), name, method)
-    return _compute_weights(grid, observer, illuminant, method)
+    method = SUMMATION_METHODS.canonical(method)
+    resolved = canonical_illuminant(illuminant)
+    if isinstance(observer, str) and not isinstance(resolved, Spectrum):
+        return _cached_weights(grid.tobytes(), canonical_observer_name(observer), resolved, method)
+    return _compute_weights(grid, observer, resolved, method)
 
 
 def apply_weights(values, W: np.ndarray) -> np.ndarray:
@@ -151,32 +168,42 @@ def apply_weights(values, W: np.ndarray) -> np.ndarray:
 
 def tristimulus(
     spectrum: Spectrum,
-    observer: str = "1931",
+    *,
+    observer=DEFAULT_OBSERVER,
     illuminant=None,
-    method: str = "sum",
+    method: str = DEFAULT_METHOD,
     k: float | str | None = None,
 ) -> np.ndarray:
     """CIE XYZ of spectra, shape ``(..., 3)``.
 
     Parameters
     ----------
-    spectrum
+    spectrum : Spectrum
         Spectra ``(..., K)``. With an illuminant: reflectance/transmittance factors (0–1) and the
         result is on the XYZ100 scale (perfect white Y = 100; Y is the luminance factor in %).
-        Without: lights, summed as ``k Σ S x̄ Δλ``.
-    observer, illuminant, method
+        Without (``illuminant=None``, the default): lights, summed as ``k Σ S x̄ Δλ``.
+    observer, illuminant, method : keyword-only
         As in :func:`weights`.
-    k
+    k : None, float or "absolute", keyword-only
         Lights only: ``None`` or a number (default 1: relative units of the light) or
         ``"absolute"`` for 683 lm/W (spectral radiance in W·sr⁻¹·m⁻²·nm⁻¹ gives Y in cd/m²).
 
-    Float32 spectra are summed in float32 (for large cubes); everything else in float64.
+    Returns
+    -------
+    numpy.ndarray
+        XYZ, shape ``spectrum.batch_shape + (3,)``. Float32 spectra are summed in float32 (for
+        large cubes); everything else in float64. NaN in a spectrum gives NaN in its XYZ.
+
+    Raises
+    ------
+    ColorimetryError
+        For a non-Spectrum input, ``k`` with an illuminant, and as :func:`weights`.
 
     Examples
     --------
     >>> from spectrocolor import Spectrum, wavelength_grid
     >>> white = Spectrum.constant(1.0, wavelength_grid(380, 780, 5))
-    >>> tristimulus(white, "1931", "D65").round(3).tolist()
+    >>> tristimulus(white, illuminant="D65").round(3).tolist()
     [95.043, 100.0, 108.88]
     """
     if not isinstance(spectrum, Spectrum):
@@ -186,7 +213,8 @@ def tristimulus(
         )
     if illuminant is not None and k is not None:
         raise ColorimetryError("k: only for lights; with an illuminant the scale is fixed by Y_white = 100")
-    XYZ = apply_weights(spectrum.values, weights(spectrum.wavelengths_nm, observer, illuminant, method))
+    W = weights(spectrum.wavelengths_nm, observer=observer, illuminant=illuminant, method=method)
+    XYZ = apply_weights(spectrum.values, W)
     if illuminant is None and k is not None:
         if k == "absolute":
             XYZ = XYZ * K_M_LM_PER_W
@@ -197,17 +225,44 @@ def tristimulus(
     return XYZ
 
 
-def white_point(illuminant, observer: str = "1931", wavelengths_nm=None, method: str = "sum") -> np.ndarray:
+def white_point(
+    illuminant, *, observer=DEFAULT_OBSERVER, wavelengths_nm=None, method: str = DEFAULT_METHOD
+) -> np.ndarray:
     """XYZ100 of the perfect reflecting diffuser under ``illuminant``, shape (3,), Y = 100.
 
-    ``wavelengths_nm`` defaults to the illuminant's own grid restricted to the observer's range and
-    (for the CIE tables: 5 nm, 380–780 nm, the range of CIE 015:2018 §7.2, which reproduces
-    its published white points, e.g. D65 1931: x = 0.31272, y = 0.32903).
+    Parameters
+    ----------
+    illuminant : str, float or Spectrum
+        Any form of :func:`spectrocolor.canonical_illuminant` except ``None``.
+    observer : str or Spectrum, keyword-only
+        As in :func:`weights` (default CIE 1931 2°).
+    wavelengths_nm : array_like, optional, keyword-only
+        The summation grid, nm. Default: the illuminant's own grid restricted to the observer's
+        range and to 380–780 nm (for the CIE tables: 5 nm, 380–780 nm, the range of CIE
+        015:2018 §7.2, which reproduces its published white points). A white for data on
+        another grid should be summed on that grid: pass ``wavelengths_nm=data.wavelengths_nm``.
+    method : str, keyword-only
+        As in :func:`weights`.
+
+    Returns
+    -------
+    numpy.ndarray
+        XYZ100 of the white, shape (3,).
+
+    Examples
+    --------
+    >>> from spectrocolor import xy
+    >>> xy(white_point("D65")).round(5).tolist()
+    [0.31272, 0.32903]
     """
+    resolved = canonical_illuminant(illuminant)
+    if resolved is None:
+        raise ColorimetryError(
+            "illuminant: a white point needs an illuminant; None means lights, which have no perfect white"
+        )
     if wavelengths_nm is None:
-        spd = named_illuminant(illuminant) if isinstance(illuminant, str) else illuminant
-        if not isinstance(spd, Spectrum):
-            raise ColorimetryError(f"illuminant: expected a name or a Spectrum, got {type(illuminant).__name__}")
+        spd = named_illuminant(resolved)
         lo, hi = resolve_observer(observer)[1].wavelengths_nm[[0, -1]]
         wavelengths_nm = spd.restrict(max(lo, 380.0), min(hi, 780.0)).wavelengths_nm
-    return np.array(weights(wavelengths_nm, observer, illuminant, method).sum(axis=0))
+    W = weights(wavelengths_nm, observer=observer, illuminant=resolved, method=method)
+    return np.array(W.sum(axis=0))

@@ -37,6 +37,9 @@ _TABULATED = (
 )  # fmt: skip
 _NAMES = ("A", *_TABULATED[:2], *_TABULATED[2:6], "E", *_TABULATED[6:])
 _DEFAULT_GRID = (300.0, 830.0, 5.0)
+#: Temperatures accepted for Planckian radiators, K. Below about 100 K the relative SPD
+#: over 360–830 nm underflows to zero (exp(c₂/λT) overflows), so nothing meaningful remains.
+MIN_TEMPERATURE_K, MAX_TEMPERATURE_K = 100.0, 1.0e6
 
 
 def illuminant_names() -> tuple[str, ...]:
@@ -57,6 +60,110 @@ def canonical_illuminant_name(name: str) -> str:
             "(or use blackbody(T) / daylight(T) for other temperatures)"
         )
     return key
+
+
+#: The illuminant used wherever a reflectance needs one and the caller gives none: CIE D65
+#: (CIE 015:2018 §4.1, the standard daylight illuminant). Stated here once; every function,
+#: the CLI and the app take their default from this constant.
+DEFAULT_ILLUMINANT = "D65"
+
+_TEMPERATURE_KEY = re.compile(r"^\s*(blackbody|planck|bb|d|daylight)\s*:\s*([^\s].*?)\s*(k)?\s*$", re.IGNORECASE)
+_ACCEPTED_SOURCES = (
+    "a CIE name such as 'D65' or 'A', 'blackbody:T' (a Planckian radiator at T kelvin), 'D:T' "
+    "(the CIE daylight of correlated colour temperature T, 4000–25000 K), a temperature in kelvin "
+    "(a blackbody), or a spectrocolor.Spectrum with one distribution"
+)
+_ACCEPTED = f"None (no illuminant: the spectra are lights), {_ACCEPTED_SOURCES}"
+
+
+def canonical_illuminant(illuminant, argument: str = "illuminant"):
+    """The one illuminant vocabulary of spectrocolor, resolved to a canonical form.
+
+    Every module, the command line and the app accept the same forms, and ``None`` means the
+    same thing everywhere: no illuminant, so the spectra are lights (sources), not reflectances.
+
+    Parameters
+    ----------
+    illuminant : None, str, int, float or Spectrum
+        ``None``; a CIE name in any spelling (``"D65"``, ``"d65"``, ``"FL 11"``, ``"led_b1"``);
+        ``"blackbody:T"`` (also ``"planck:T"``) for a Planckian radiator at ``T`` kelvin;
+        ``"D:T"`` (also ``"daylight:T"``) for the CIE daylight series at ``T`` kelvin; a number,
+        taken as a blackbody temperature in kelvin; or a :class:`Spectrum` with one distribution.
+    argument : str
+        The name of the caller's argument, used in the error message.
+
+    Returns
+    -------
+    None, str or Spectrum
+        ``None``; a canonical name (``"D65"``, ``"blackbody:6504"``, ``"D:5000"``), hashable and
+        usable as a cache key; or the Spectrum itself.
+
+    Raises
+    ------
+    ColorimetryError
+        For anything else, naming ``argument`` and listing the accepted forms.
+
+    Examples
+    --------
+    >>> canonical_illuminant("fl 11"), canonical_illuminant(6504), canonical_illuminant("daylight:5000K")
+    ('FL11', 'blackbody:6504', 'D:5000')
+    """
+    if illuminant is None:
+        return None
+    if isinstance(illuminant, Spectrum):
+        if illuminant.values.ndim != 1:
+            raise ColorimetryError(
+                f"{argument}: expected one spectral distribution, got a batch of shape {illuminant.batch_shape}"
+            )
+        return illuminant
+    if isinstance(illuminant, int | float | np.integer | np.floating) and not isinstance(illuminant, bool):
+        return f"blackbody:{_temperature(illuminant, argument):g}"
+    if isinstance(illuminant, str):
+        match = _TEMPERATURE_KEY.match(illuminant)
+        if match:
+            kind = match.group(1).lower()
+            try:
+                value = float(match.group(2))
+            except ValueError:
+                raise ColorimetryError(
+                    f"{argument}: {illuminant!r} needs a temperature in kelvin after the colon, e.g. 'blackbody:6504'"
+                ) from None
+            temperature = _temperature(value, argument)
+            if kind in ("d", "daylight"):
+                daylight_xy(temperature)  # validates the 4000–25000 K range
+                return f"D:{temperature:g}"
+            return f"blackbody:{temperature:g}"
+        try:
+            return canonical_illuminant_name(illuminant)
+        except ColorimetryError:
+            pass
+    raise ColorimetryError(f"{argument}: expected {_ACCEPTED}; got {illuminant!r:.80}")
+
+
+def _temperature(value, argument: str) -> float:
+    value = float(value)
+    if not (np.isfinite(value) and MIN_TEMPERATURE_K <= value <= MAX_TEMPERATURE_K):
+        raise ColorimetryError(
+            f"{argument}: a temperature must be {MIN_TEMPERATURE_K:g}–{MAX_TEMPERATURE_K:g} K, got {value!r}"
+        )
+    return value
+
+
+def illuminant_label(illuminant) -> str:
+    """A short human-readable name of an illuminant given in any accepted form.
+
+    >>> illuminant_label("d50"), illuminant_label(3000), illuminant_label(None)
+    ('D50', 'blackbody 3000 K', 'none (lights)')
+    """
+    resolved = canonical_illuminant(illuminant)
+    if resolved is None:
+        return "none (lights)"
+    if isinstance(resolved, Spectrum):
+        return resolved.names[0] if resolved.names and resolved.names[0] else "user illuminant"
+    kind, _, value = resolved.partition(":")
+    if not value:
+        return resolved
+    return f"blackbody {value} K" if kind == "blackbody" else f"CIE daylight {value} K"
 
 
 def _grid_or_default(wavelengths_nm, default: tuple[float, float, float]) -> np.ndarray:
@@ -105,24 +212,53 @@ def _table(name: str) -> Spectrum:
     return Spectrum(table[:, 0], table[:, 1], (name,))
 
 
-def illuminant(name: str, wavelengths_nm=None, method: str = "linear") -> Spectrum:
-    """Relative spectral power distribution of a CIE illuminant.
+def illuminant(name, wavelengths_nm=None, method: str = "linear") -> Spectrum:
+    """Relative spectral power distribution of an illuminant named in the library's vocabulary.
 
     Parameters
     ----------
-    name
-        ``"A"`` (evaluated from its defining formula on any grid), ``"E"`` (equal energy, 100
-        everywhere), ``"B"``, ``"C"``, ``"D50"``, ``"D55"``, ``"D65"``, ``"D75"``,
-        ``"FL1"``–``"FL12"``, ``"LED-B1"``–``"LED-B5"`` (the CIE tables, 5 nm).
-    wavelengths_nm
-        Grid to return, nm. ``None``: the table's own grid (A: 300–780 nm, E: 300–830 nm, 5 nm).
-        Tabulated illuminants are interpolated with ``method`` (default linear, as CIE 015
-        recommends for the daylight series) and never extrapolated.
+    name : str, int, float or Spectrum
+        Any form :func:`canonical_illuminant` accepts except ``None``: ``"A"`` (evaluated from
+        its defining formula on any grid), ``"E"`` (equal energy, 100 everywhere), ``"B"``,
+        ``"C"``, ``"D50"``, ``"D55"``, ``"D65"``, ``"D75"``, ``"FL1"``–``"FL12"``,
+        ``"LED-B1"``–``"LED-B5"`` (the CIE tables, 5 nm); ``"blackbody:T"`` or a number
+        (:func:`blackbody`); ``"D:T"`` (:func:`daylight`); a Spectrum (resampled if a grid is
+        given).
+    wavelengths_nm : array_like, optional
+        Grid to return, nm. ``None``: the table's own grid (A: 300–780 nm, E: 300–830 nm, 5 nm;
+        blackbody 360–830 nm at 1 nm; daylight 300–830 nm at 5 nm). Tabulated illuminants are
+        interpolated with ``method`` (default linear, as CIE 015 recommends for the daylight
+        series) and never extrapolated.
+    method : str
+        Interpolation for tabulated illuminants (see :meth:`Spectrum.resample`).
 
+    Returns
+    -------
+    Spectrum
+        Relative SPD (arbitrary units; the CIE tables are 100 at 560 nm).
+
+    Examples
+    --------
     >>> float(illuminant("D65", [560.0]).values[0])
     100.0
+    >>> float(illuminant("blackbody:2856", [560.0]).values[0])
+    100.0
     """
-    canonical = canonical_illuminant_name(name)
+    canonical = canonical_illuminant(name, "name")
+    if canonical is None:
+        raise ColorimetryError(f"name: expected {_ACCEPTED_SOURCES}; got None")
+    if isinstance(canonical, Spectrum):
+        if wavelengths_nm is None:
+            return canonical
+        try:
+            return canonical.resample(wavelengths_nm, method)
+        except SpectrumError as exc:
+            raise ColorimetryError(f"illuminant: {exc}") from None
+    kind, _, value = canonical.partition(":")
+    if kind == "blackbody":
+        return blackbody(float(value), wavelengths_nm)
+    if kind == "D" and value:
+        return daylight(float(value), wavelengths_nm)
     if canonical == "A":
         grid = _table("A").wavelengths_nm if wavelengths_nm is None else validate_wavelengths(wavelengths_nm)
         return Spectrum(grid, _illuminant_A(grid), ("A",))

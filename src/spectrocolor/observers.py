@@ -22,6 +22,10 @@ _FILES = {
     "CIE 2015 10°": "cmf_cie2015_10deg.csv",
 }
 
+#: The observer used wherever the caller gives none: the CIE 1931 2° standard colorimetric
+#: observer (CIE 015:2018 §3.1). Stated here once; every function, the CLI and the app use it.
+DEFAULT_OBSERVER = "CIE 1931 2°"
+
 _ALIASES = {
     "cie 1931 2°": "CIE 1931 2°",
     "cie 1931 2": "CIE 1931 2°",

@@ -74,7 +74,7 @@ def planckian_locus_xy(temperatures_K, observer: str = "1931") -> np.ndarray:
     temps = np.atleast_1d(np.asarray(temperatures_K, dtype=float))
     spectra = [blackbody(float(t)) for t in temps]
     batch = Spectrum(spectra[0].wavelengths_nm, np.stack([s.values for s in spectra]))
-    return xy(tristimulus(batch, observer))
+    return xy(tristimulus(batch, observer=observer))
 
 
 def horseshoe_image(kind: str = "xy", observer: str = "1931", space="sRGB", resolution: int = 400):
@@ -196,7 +196,7 @@ def chromaticity_diagram(
     if isinstance(whites, dict):
         named_whites = {k: np.asarray(v, float) for k, v in whites.items()}
     else:
-        named_whites = {name: white_point(name, observer) for name in (whites or ())}
+        named_whites = {name: white_point(name, observer=observer) for name in (whites or ())}
     markers = []  # (anchor, diameter in points): labels keep off every marker
     white_labels = []
     for label, XYZ in named_whites.items():

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import ColorimetryError, SpectrumError
+from .illuminants import canonical_illuminant
 from .illuminants import illuminant as named_illuminant
 from .interpolation import interpolation_matrix
 from .observers import canonical_observer_name
@@ -56,25 +57,25 @@ def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
 
 
 def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
-    """Relative SPD (K,) at ``grid`` (nm): a CIE name evaluated there, or a Spectrum's own samples."""
-    if isinstance(illuminant, str):
-        return named_illuminant(illuminant, grid).values
-    if isinstance(illuminant, Spectrum):
-        if illuminant.values.ndim != 1:
-            raise ColorimetryError(
-                f"illuminant: expected one spectral distribution, got batch {illuminant.batch_shape}"
-            )
-        source = illuminant.wavelengths_nm
-        position = np.searchsorted(source, grid)
-        position = np.clip(position, 0, source.size - 1)
-        if not np.allclose(source[position], grid, rtol=0, atol=1e-9):
-            raise ColorimetryError(
-                "illuminant: its wavelengths do not include every sample of the summation grid "
-                f"({grid[0]:g}–{grid[-1]:g} nm, K={grid.size}); resample it explicitly with "
-                ".resample(wavelengths_nm) or pass a CIE illuminant by name"
-            )
-        return illuminant.values[position]
-    raise ColorimetryError(f"illuminant: expected a name such as 'D65' or a Spectrum, got {type(illuminant).__name__}")
+    """Relative SPD (K,) at ``grid`` (nm) of an illuminant in any form of :func:`canonical_illuminant`.
+
+    A name (CIE, ``"blackbody:T"``, ``"D:T"``) is evaluated at ``grid``; a Spectrum must contain
+    every grid sample (its own samples are used, never interpolated behind the caller's back).
+    """
+    resolved = canonical_illuminant(illuminant)
+    if resolved is None:
+        raise ColorimetryError("illuminant: weights for reflectances need an illuminant, got None (lights)")
+    if isinstance(resolved, str):
+        return named_illuminant(resolved, grid).values
+    source = resolved.wavelengths_nm
+    position = np.clip(np.searchsorted(source, grid), 0, source.size - 1)
+    if not np.allclose(source[position], grid, rtol=0, atol=1e-9):
+        raise ColorimetryError(
+            "illuminant: its wavelengths do not include every sample of the summation grid "
+            f"({grid[0]:g}–{grid[-1]:g} nm, K={grid.size}); resample it explicitly with "
+            ".resample(wavelengths_nm) or pass a CIE illuminant by name"
+        )
+    return resolved.values[position]
 
 
 def reflectance_weights(products: np.ndarray) -> np.ndarray:

@@ -21,10 +21,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError, SpectrumError
+from ..illuminants import illuminant_label
+from ..observers import DEFAULT_OBSERVER
 from .optics import FilmOptics
 
 EXPOSURES = ("global-max", "perfect-reflector")
-DEFAULT_BLACKBODY_K = 6504.0
+#: Seed 000 (Zawischa) lights its films with a 6504 K Planckian radiator: the films' default.
+SEED_000_ILLUMINANT = "blackbody:6504"
 
 
 @dataclass(frozen=True)
@@ -59,43 +62,8 @@ class FilmColours:
         return self.rendering.codes.astype(np.uint8)
 
 
-def light_source(illuminant, wavelengths_nm):
-    """The light as a :class:`spectrocolor.Spectrum` on ``wavelengths_nm`` and its name.
-
-    ``illuminant`` may be ``None`` (blackbody 6504 K, seed 000), a number (a blackbody
-    temperature in K), ``"blackbody:T"``, a CIE illuminant name (``"D65"``, ``"A"``, ...) or a
-    Spectrum sampled at least at ``wavelengths_nm``.
-    """
-    from ..illuminants import blackbody
-    from ..illuminants import illuminant as cie_illuminant
-    from ..spectrum import Spectrum
-
-    if illuminant is None:
-        illuminant = DEFAULT_BLACKBODY_K
-    if isinstance(illuminant, str) and illuminant.lower().startswith("blackbody"):
-        _, _, value = illuminant.partition(":")
-        try:
-            illuminant = float(value)
-        except ValueError:
-            raise ColorimetryError(
-                f"illuminant: write a blackbody as 'blackbody:6504' (kelvin), got {illuminant!r}"
-            ) from None
-    if isinstance(illuminant, (int, float)) and not isinstance(illuminant, bool):
-        spd = blackbody(float(illuminant), wavelengths_nm)
-        return spd, f"blackbody {float(illuminant):g} K"
-    if isinstance(illuminant, str):
-        return cie_illuminant(illuminant, wavelengths_nm), illuminant
-    if isinstance(illuminant, Spectrum):
-        name = illuminant.names[0] if illuminant.names else "user illuminant"
-        return illuminant, name
-    raise ColorimetryError(
-        "illuminant: expected None (blackbody 6504 K), a temperature in K, 'blackbody:T', a CIE "
-        f"name such as 'D65', or a Spectrum; got {type(illuminant).__name__}"
-    )
-
-
-def film_colours(films, *, quantity: str = "reflectance", illuminant=None,
-                 observer: str = "1931", exposure: str = "global-max", gain: float = 1.0,
+def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_ILLUMINANT,
+                 observer=DEFAULT_OBSERVER, exposure: str = "global-max", gain: float = 1.0,
                  space="sRGB", gamut: str = "preserve-luminance", bit_depth: int = 8,
                  method: str = "sum") -> FilmColours:
     """Colours of films seen in reflection (or transmission) under a light.
@@ -108,9 +76,11 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=None,
     quantity
         ``"reflectance"`` or ``"transmittance"`` (FilmOptics only).
     illuminant
-        See :func:`light_source`; default blackbody 6504 K.
+        Any form of :func:`spectrocolor.canonical_illuminant` except ``None`` (a film's
+        reflectance needs a light); default ``"blackbody:6504"``, seed 000's light. A Spectrum
+        must contain every sample of the films' grid.
     observer
-        ``"1931"`` or ``"1964"`` (any name :func:`spectrocolor.observer` accepts).
+        Any name :func:`spectrocolor.observer` accepts (default CIE 1931 2°).
     exposure
         ``"global-max"`` or ``"perfect-reflector"`` (see the module docstring).
     gain
@@ -146,8 +116,12 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=None,
     if exposure == "global-max" and gain != 1.0:
         raise ColorimetryError('gain: only with exposure="perfect-reflector"')
     wl = spectrum.wavelengths_nm
-    light, light_name = light_source(illuminant, wl)
-    XYZ100 = spectrum.values @ weights(wl, observer, light, method)
+    if illuminant is None:
+        raise ColorimetryError(
+            "illuminant: a film's reflectance needs a light; give a CIE name, 'blackbody:T' or a Spectrum "
+            f"(seed 000 uses {SEED_000_ILLUMINANT!r}, the default)"
+        )
+    XYZ100 = spectrum.values @ weights(wl, observer=observer, illuminant=illuminant, method=method)
     rendering = render(
         XYZ100 * gain if exposure == "perfect-reflector" else XYZ100,
         space=space,
@@ -155,5 +129,5 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=None,
         gamut=gamut,
         bit_depth=bit_depth,
     )
-    return FilmColours(XYZ100, chromaticity(XYZ100), rendering, light_name, str(observer),
+    return FilmColours(XYZ100, chromaticity(XYZ100), rendering, illuminant_label(illuminant), str(observer),
                        exposure)
