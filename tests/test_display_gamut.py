@@ -159,7 +159,7 @@ def test_clip_is_per_channel():
 
 
 def test_unknown_strategy_and_bad_shape():
-    with pytest.raises(sc.ColorimetryError, match="accepted: flag, clip"):
+    with pytest.raises(sc.ColorimetryError, match="gamut: 'compress' is not a gamut strategy; choose one of 'flag'"):
         apply_gamut(np.zeros(3), "compress", np.ones(3))
     with pytest.raises(sc.ColorimetryError, match=r"shape \(\.\.\., 3\)"):
         clip(np.zeros(4))

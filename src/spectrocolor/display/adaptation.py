@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..registry import Registry
 from .spaces import rgb_space
 
 __all__ = ["ADAPTATION_METHODS", "adaptation_matrix", "adapt"]
@@ -55,7 +56,19 @@ _SENSORS = {
     "xyz scaling": np.eye(3),
 }
 
-ADAPTATION_METHODS = (*_SENSORS, "display rgb")
+_DESCRIPTIONS = {
+    "bradford": "Bradford (Lam 1985; ICC v4's transform)",
+    "von kries": "von Kries with Hunt-Pointer-Estévez cone responses",
+    "cat02": "CAT02 (CIECAM02's transform)",
+    "cat16": "CAT16 (CAM16's transform)",
+    "xyz scaling": "scale X, Y, Z by the ratio of the whites",
+}
+#: The chromatic adaptation transforms: name → sensor matrix, or ``None`` for "display rgb"
+#: (SPECTRA's "adapted to the screen": von Kries in the display's own RGB).
+ADAPTATION_METHODS = Registry("method", "a chromatic adaptation transform")
+for _name, _matrix in _SENSORS.items():
+    ADAPTATION_METHODS.add(_name, np.asarray(_matrix, dtype=float), _DESCRIPTIONS[_name])
+ADAPTATION_METHODS.add("display rgb", None, "von Kries in the display's linear RGB (SPECTRA, seed 002)")
 
 
 def _white(value, argument: str) -> np.ndarray:
@@ -66,18 +79,14 @@ def _white(value, argument: str) -> np.ndarray:
 
 
 def _sensor(method: str, space) -> np.ndarray:
-    key = method.strip().lower() if isinstance(method, str) else method
+    key = ADAPTATION_METHODS.canonical(method)
     if key == "display rgb":
         if space is None:
             raise ColorimetryError('method="display rgb" needs space (an RGBSpace or its name)')
         return rgb_space(space).matrix_from_XYZ
     if space is not None:
         raise ColorimetryError(f'space is used only with method="display rgb", not {method!r}')
-    if key not in _SENSORS:
-        raise ColorimetryError(
-            f"method {method!r} is unknown; accepted: {', '.join(ADAPTATION_METHODS)}"
-        )
-    return np.asarray(_SENSORS[key], dtype=float)
+    return ADAPTATION_METHODS.get(key)
 
 
 def adaptation_matrix(

@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..registry import Registry
 
 __all__ = [
     "GAMUT_STRATEGIES",
@@ -28,7 +29,6 @@ __all__ = [
     "desaturate",
 ]
 
-GAMUT_STRATEGIES = ("flag", "clip", "preserve-luminance", "desaturate")
 
 #: Channels within this distance of [0, 1] count as in gamut (absorbs round-off such as the
 #: 1 + 2e-16 that the white of a space can produce).
@@ -142,18 +142,48 @@ def desaturate(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
     return np.where(_inside(rgb), rgb, np.clip(out, 0.0, 1.0))
 
 
+#: The gamut strategies: name → function (rgb_linear, luminance_row, tolerance) → rgb_linear.
+GAMUT_STRATEGIES = Registry("gamut", "a gamut strategy")
+GAMUT_STRATEGIES.add(
+    "flag", lambda rgb, row, tol: flag_black(rgb, tol),
+    "show colours the display cannot reproduce as black (SPECTRA's 'cannot be reproduced')",
+)
+GAMUT_STRATEGIES.add(
+    "clip", lambda rgb, row, tol: clip(rgb, tol), "clip each channel to [0, 1] (hue and luminance may shift)"
+)
+GAMUT_STRATEGIES.add(
+    "preserve-luminance", preserve_luminance,
+    "add white until no channel is negative, keeping luminance (Zawischa eqs. 20-21), then clip over-range",
+)
+GAMUT_STRATEGIES.add(
+    "desaturate", desaturate, "move towards the grey of equal luminance along constant hue: the least change"
+)
+
+
 def apply_gamut(
     rgb_linear, strategy: str, luminance_row, tolerance: float = DEFAULT_TOLERANCE
 ) -> np.ndarray:
-    """Apply one of :data:`GAMUT_STRATEGIES` to ``(..., 3)`` linear RGB."""
-    if strategy == "flag":
-        return flag_black(rgb_linear, tolerance)
-    if strategy == "clip":
-        return clip(rgb_linear, tolerance)
-    if strategy == "preserve-luminance":
-        return preserve_luminance(rgb_linear, luminance_row, tolerance)
-    if strategy == "desaturate":
-        return desaturate(rgb_linear, luminance_row, tolerance)
-    raise ColorimetryError(
-        f"gamut {strategy!r} is unknown; accepted: {', '.join(GAMUT_STRATEGIES)}"
-    )
+    """Apply one of :data:`GAMUT_STRATEGIES` to ``(..., 3)`` linear RGB.
+
+    Parameters
+    ----------
+    rgb_linear : array_like, shape (..., 3)
+        Normalised linear RGB (1 = full drive).
+    strategy : str
+        A name in :data:`GAMUT_STRATEGIES`.
+    luminance_row : array_like, shape (3,)
+        The Y row of the display's RGB → XYZ matrix (used by the luminance-keeping strategies).
+    tolerance : float
+        Channels within this distance of [0, 1] count as in gamut.
+
+    Returns
+    -------
+    numpy.ndarray
+        Linear RGB in [0, 1], shape (..., 3).
+
+    Examples
+    --------
+    >>> apply_gamut([[1.2, 0.5, -0.1]], "clip", [0.2126, 0.7152, 0.0722]).tolist()
+    [[1.0, 0.5, 0.0]]
+    """
+    return GAMUT_STRATEGIES.get(strategy)(rgb_linear, luminance_row, tolerance)

@@ -23,11 +23,17 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..registry import Registry
 from .spaces import rgb_space
 
 __all__ = ["NORMALISATIONS", "normalise", "max_object_rgb", "white_scale"]
 
-NORMALISATIONS = ("none", "fixed", "per-colour", "global-max")
+#: The normalisations of linear RGB before display (seed 002, normalisation alternatives).
+NORMALISATIONS = Registry("normalise", "a normalisation")
+NORMALISATIONS.add("none", "none", "use linear RGB as computed (1 = full drive)")
+NORMALISATIONS.add("fixed", "fixed", "divide every colour by one given scale (the white's or the brightest object's)")
+NORMALISATIONS.add("per-colour", "per-colour", "scale each colour so its largest channel is 1 (chromaticity only)")
+NORMALISATIONS.add("global-max", "global-max", "scale all colours together so the largest channel of all is 1")
 
 
 def normalise(rgb_linear, method: str, scale=None):
@@ -51,10 +57,7 @@ def normalise(rgb_linear, method: str, scale=None):
         ``"global-max"``.
     """
     rgb = np.asarray(rgb_linear, dtype=float)
-    if method not in NORMALISATIONS:
-        raise ColorimetryError(
-            f"normalise {method!r} is unknown; accepted: {', '.join(NORMALISATIONS)}"
-        )
+    method = NORMALISATIONS.canonical(method)
     if method == "fixed":
         if (scale is None or isinstance(scale, (str, bytes)) or np.ndim(scale) != 0
                 or not np.isfinite(scale) or scale <= 0):

@@ -129,10 +129,7 @@ def render(
         raise ColorimetryError(f"XYZ100 must have shape (..., 3), got {np.shape(XYZ100)}")
     if not np.all(np.isfinite(XYZ)):
         raise ColorimetryError("XYZ100 contains NaN or infinite values; nothing can be displayed")
-    if gamut not in GAMUT_STRATEGIES:
-        raise ColorimetryError(
-            f"gamut {gamut!r} is unknown; accepted: {', '.join(GAMUT_STRATEGIES)}"
-        )
+    gamut = GAMUT_STRATEGIES.canonical(gamut)
     table = sp.transfer if isinstance(sp.transfer, LevelTable) else None
     if table is not None:
         native = int(np.log2(table.n_levels))
