@@ -88,7 +88,7 @@ def test_lookup_is_case_insensitive_and_passes_spaces_through():
 
 
 def test_bad_inputs_raise_clear_errors():
-    with pytest.raises(ColorimetryError, match="space 'CMYK' is unknown; accepted"):
+    with pytest.raises(ColorimetryError, match="space: 'CMYK' is not a built-in RGB space; choose one of 'sRGB'"):
         rgb_space("CMYK")
     with pytest.raises(ColorimetryError, match="red_xy"):
         RGBSpace.from_chromaticities((0.7,), (0.2, 0.7), (0.15, 0.05), (0.3, 0.3))

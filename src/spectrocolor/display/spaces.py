@@ -25,6 +25,7 @@ from functools import cache
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..registry import Registry
 from .transfer import Transfer, spectra_excitation_table
 from .transfer import transfer as _transfer
 
@@ -222,51 +223,59 @@ def _spectra_equal_energy() -> RGBSpace:
     )
 
 
-_BUILDERS = {
-    "sRGB": lambda: RGBSpace.from_chromaticities(
-        (0.64, 0.33), (0.30, 0.60), (0.15, 0.06), _D65_XY, transfer="srgb", name="sRGB"
-    ),
-    "Display P3": lambda: RGBSpace.from_chromaticities(
-        (0.680, 0.320), (0.265, 0.690), (0.150, 0.060), _D65_XY, transfer="srgb",
-        name="Display P3",
-    ),
-    "Adobe RGB (1998)": lambda: RGBSpace.from_chromaticities(
-        (0.64, 0.33), (0.21, 0.71), (0.15, 0.06), _D65_XY, transfer="adobe rgb",
-        name="Adobe RGB (1998)",
-    ),
-    "Rec. 2020": lambda: RGBSpace.from_chromaticities(
-        (0.708, 0.292), (0.170, 0.797), (0.131, 0.046), _D65_XY, transfer="bt.2020",
-        name="Rec. 2020",
-    ),
-    "SPECTRA 7000K": _spectra_7000k,
-    "SPECTRA equal-energy": _spectra_equal_energy,
-}
+def _srgb() -> RGBSpace:
+    return RGBSpace.from_chromaticities((0.64, 0.33), (0.30, 0.60), (0.15, 0.06), _D65_XY, transfer="srgb", name="sRGB")
 
-_ALIASES = {
-    "srgb": "sRGB",
-    "display p3": "Display P3",
-    "p3": "Display P3",
-    "adobe rgb (1998)": "Adobe RGB (1998)",
-    "adobe rgb": "Adobe RGB (1998)",
-    "rec. 2020": "Rec. 2020",
-    "rec.2020": "Rec. 2020",
-    "rec2020": "Rec. 2020",
-    "bt.2020": "Rec. 2020",
-    "spectra 7000k": "SPECTRA 7000K",
-    "spectra": "SPECTRA 7000K",
-    "spectra equal-energy": "SPECTRA equal-energy",
-    "spectra equal energy": "SPECTRA equal-energy",
-}
+
+def _display_p3() -> RGBSpace:
+    return RGBSpace.from_chromaticities(
+        (0.680, 0.320), (0.265, 0.690), (0.150, 0.060), _D65_XY, transfer="srgb", name="Display P3"
+    )
+
+
+def _adobe_rgb() -> RGBSpace:
+    return RGBSpace.from_chromaticities(
+        (0.64, 0.33), (0.21, 0.71), (0.15, 0.06), _D65_XY, transfer="adobe rgb", name="Adobe RGB (1998)"
+    )
+
+
+def _rec_2020() -> RGBSpace:
+    return RGBSpace.from_chromaticities(
+        (0.708, 0.292), (0.170, 0.797), (0.131, 0.046), _D65_XY, transfer="bt.2020", name="Rec. 2020"
+    )
+
+
+#: The built-in RGB spaces: name → builder (called once, on first use).
+RGB_SPACES = Registry("space", "a built-in RGB space")
+RGB_SPACES.add("sRGB", _srgb, "IEC 61966-2-1: Rec. 709 primaries, D65 white, the sRGB curve")
+RGB_SPACES.add("Display P3", _display_p3, "DCI-P3 primaries, D65 white, the sRGB curve", aliases=("p3",))
+RGB_SPACES.add(
+    "Adobe RGB (1998)", _adobe_rgb, "Adobe RGB (1998): wider greens, D65 white, gamma 563/256",
+    aliases=("adobe rgb",),
+)
+RGB_SPACES.add(
+    "Rec. 2020", _rec_2020, "ITU-R BT.2020 primaries, D65 white, the BT.2020 curve",
+    aliases=("rec.2020", "rec2020", "bt.2020"),
+)
+RGB_SPACES.add(
+    "SPECTRA 7000K", _spectra_7000k, "seed 002's measured monitor (matris.d, white ≈ 7000 K, 64-level c.dat)",
+    aliases=("spectra",),
+)
+RGB_SPACES.add(
+    "SPECTRA equal-energy", _spectra_equal_energy,
+    "seed 002's phosphors with the equal-energy white (matris.equ): X = Y = Z drives R = G = B",
+    aliases=("spectra equal energy",),
+)
 
 
 def rgb_space_names() -> tuple[str, ...]:
-    """Canonical names of the built-in RGB spaces."""
-    return tuple(_BUILDERS)
+    """Canonical names of the built-in RGB spaces (the names of :data:`RGB_SPACES`)."""
+    return RGB_SPACES.names()
 
 
 @cache
 def _built(name: str) -> RGBSpace:
-    return _BUILDERS[name]()
+    return RGB_SPACES.get(name)()
 
 
 def rgb_space(name) -> RGBSpace:
@@ -282,11 +291,4 @@ def rgb_space(name) -> RGBSpace:
     """
     if isinstance(name, RGBSpace):
         return name
-    if isinstance(name, str):
-        canonical = _ALIASES.get(name.strip().lower())
-        if canonical is not None:
-            return _built(canonical)
-    raise ColorimetryError(
-        f"space {name!r} is unknown; accepted: an RGBSpace or one of "
-        f"{', '.join(rgb_space_names())}"
-    )
+    return _built(RGB_SPACES.canonical(name))

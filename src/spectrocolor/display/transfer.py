@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..registry import Registry
 
 __all__ = [
     "SRGBCurve",
@@ -225,22 +226,24 @@ def spectra_excitation_table(gamma: float = 2.204, n_levels: int = 64) -> LevelT
     return LevelTable(levels, name=f"SPECTRA c.dat ({n} levels, gamma {gamma:g})")
 
 
-def _named_transfers() -> dict[str, Transfer]:
-    return {
-        "srgb": SRGBCurve(),
-        "srgb-1996": SRGBCurve(threshold=0.00304, name="sRGB, 1996 threshold 0.00304 (seed 000)"),
-        "linear": PowerLaw(1.0, name="linear"),
-        "gamma 2.2": PowerLaw(2.2),
-        "gamma 2.204": PowerLaw(2.204),
-        "adobe rgb": PowerLaw(563 / 256, name="Adobe RGB (1998), gamma 563/256"),
-        "bt.2020": BT2020Curve(),
-        "spectra c.dat": spectra_excitation_table(),
-    }
+#: The named transfer functions: name → transfer object.
+TRANSFERS = Registry("transfer", "a transfer function (or give a gamma number or a transfer object)")
+TRANSFERS.add("srgb", SRGBCurve(), "IEC 61966-2-1 sRGB curve (linear segment below 0.0031308)")
+TRANSFERS.add(
+    "srgb-1996", SRGBCurve(threshold=0.00304, name="sRGB, 1996 threshold 0.00304 (seed 000)"),
+    "the 1996 sRGB draft's threshold 0.00304, as seed 000 prints it",
+)
+TRANSFERS.add("linear", PowerLaw(1.0, name="linear"), "no encoding: codes proportional to linear RGB")
+TRANSFERS.add("gamma 2.2", PowerLaw(2.2), "pure power law, gamma 2.2")
+TRANSFERS.add("gamma 2.204", PowerLaw(2.204), "pure power law, gamma 2.204 (SPECTRA's excitation fit)")
+TRANSFERS.add("adobe rgb", PowerLaw(563 / 256, name="Adobe RGB (1998), gamma 563/256"), "gamma 563/256")
+TRANSFERS.add("bt.2020", BT2020Curve(), "ITU-R BT.2020 opto-electronic curve")
+TRANSFERS.add("spectra c.dat", spectra_excitation_table(), "SPECTRA's 64-level excitation table (seed 002)")
 
 
 def transfer_names() -> tuple[str, ...]:
-    """Names accepted by :func:`transfer`."""
-    return tuple(_named_transfers())
+    """Names accepted by :func:`transfer` (the names of :data:`TRANSFERS`)."""
+    return TRANSFERS.names()
 
 
 def transfer(spec) -> Transfer:
@@ -256,14 +259,7 @@ def transfer(spec) -> Transfer:
         return spec
     if isinstance(spec, int | float) and not isinstance(spec, bool):
         return PowerLaw(float(spec))
-    if isinstance(spec, str):
-        found = _named_transfers().get(spec.strip().lower())
-        if found is not None:
-            return found
-    raise ColorimetryError(
-        f"transfer {spec!r} is unknown; accepted: a gamma number, a transfer object, or one of "
-        f"{', '.join(transfer_names())}"
-    )
+    return TRANSFERS.get(spec)
 
 
 def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
