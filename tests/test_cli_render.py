@@ -52,8 +52,8 @@ def test_render_writes_swatches_with_the_library_codes(spectra_file, tmp_path, c
     assert "grey" in text and f"{v} {v} {v}\tin gamut" in text
     # green: compare with the library chain written out here
     s = sc.read_spectra(spectra_file)
-    XYZ = sc.tristimulus(s, "1931", "D65")
-    W = sc.weights(s.wavelengths_nm, "1931", "D65")
+    XYZ = sc.tristimulus(s, observer="1931", illuminant="D65")
+    W = sc.weights(s.wavelengths_nm, observer="1931", illuminant="D65")
     space = sc.rgb_space("sRGB")
     XYZ = sc.adapt(XYZ, W.sum(0), space.white_XYZ, "bradford")
     r = sc.render(XYZ, space, gamut="desaturate")
@@ -80,7 +80,7 @@ def test_user_errors_are_one_line(spectra_file, tmp_path, capsys):
     assert "error: --out must end in .png or .ppm" in capsys.readouterr().err
     assert main(["render", str(spectra_file), "--space", "XYZ", "--out",
                  str(tmp_path / "a.png")]) == 2
-    assert "space 'XYZ' is unknown" in capsys.readouterr().err
+    assert "space: 'XYZ' is not a built-in RGB space; choose one of 'sRGB'" in capsys.readouterr().err
     assert main(["render", str(spectra_file), "--normalise", "fixed", "--out",
                  str(tmp_path / "a.png")]) == 2
     assert "needs --scale" in capsys.readouterr().err
