@@ -1,0 +1,165 @@
+"""Spectral measurement files in and out, the format told by the content, never by a guess.
+
+:func:`read_spectra` reads, whatever the file's name:
+
+==========================  =====================================================  ==============
+format                      recognised by                                          module
+==========================  =====================================================  ==============
+JSON                        first character ``{``                                  here
+IES TM-27-14/-20 XML        document element ``<IESTM2714>``                       :mod:`.tm27`
+CGATS.17, i1Profiler,       a ``BEGIN_DATA_FORMAT`` line                           :mod:`.cgats`
+Argyll ``.ti3``/``.sp``
+CSV/TSV/``;``, long/wide    anything else, by its header                           :mod:`.delimited`
+==========================  =====================================================  ==============
+
+No registry package reads these formats to this standard without pulling in a large dependency
+(colour-science reads TM-27-14 only; no maintained CGATS reader on PyPI keeps sample names,
+keywords and the percent declaration), so the readers are written here on the standard library.
+A file that is none of them gets one line naming the formats tried and what each expects.
+
+Writers: :func:`write_spectra` (``.csv``, ``.json``, ``.cgats``), and the text writers in
+:mod:`.writers` used by the command line.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SpectrumError
+from ..spectrum import Spectrum
+from . import cgats, delimited, tm27
+from .text import apply_scale, read_text
+from .writers import spectra_to_cgats, spectra_to_csv, table_to_cgats
+
+__all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "spectra_to_cgats", "table_to_cgats"]
+
+#: Formats tried, in order, with what each expects (error messages list them).
+FORMATS = (
+    ("JSON", '{"wavelengths_nm": […], "spectra": {name: […]}}'),
+    ("IES TM-27 XML", tm27.EXPECTED),
+    ("CGATS", cgats.EXPECTED),
+    ("CSV/TSV", delimited.EXPECTED),
+)
+
+
+def _parse_json(text: str, source: str, percent: bool | None) -> Spectrum:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise SpectrumError(f"{source}: not valid JSON ({exc})") from None
+    try:
+        spectrum = Spectrum.from_dict(data)
+    except (SpectrumError, ValueError, TypeError) as exc:
+        raise SpectrumError(f"{source}: {exc}") from None
+    if not np.all(np.isfinite(spectrum.values)):
+        raise SpectrumError(f"{source}: values: NaN or infinite numbers; every value must be finite")
+    values, note = apply_scale(spectrum.values, None, percent, source, "")
+    return Spectrum(spectrum.wavelengths_nm, values, spectrum.names, {"format": "JSON", "value_scale": note})
+
+
+def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None) -> Spectrum:
+    """Spectra from a file's text, the format detected from the content (see the module docstring).
+
+    Parameters
+    ----------
+    text
+        The whole file as text.
+    source
+        Name used in messages (normally the file name).
+    percent
+        ``None``: follow the file where its format declares percent or fraction (Argyll
+        ``SPECTRAL_NORM``, ``CTI3``, ``SPECTRAL_PCT``/``SPECTRAL_DEC`` fields) and otherwise keep
+        the values as written; ``True``: the values are percentages (divided by 100); ``False``:
+        they are fractions. Contradicting the file's declaration is an error.
+
+    Returns
+    -------
+    Spectrum
+        ``(N, K)`` (or ``(K,)`` for one spectrum) with names and ``metadata`` (``format``,
+        ``value_scale`` and whatever the file says: ``instrument``, ``illuminant``, ``geometry``,
+        ``date``, ``keywords``, ``sample_fields``).
+
+    Raises
+    ------
+    SpectrumError
+        One line: where the file is wrong, or which formats were tried and what they expect.
+
+    Examples
+    --------
+    >>> s = parse_spectra("Sample,400,500,600\\nred,5,20,60\\n", "tiles.csv", percent=True)
+    >>> s.names, s.values.tolist(), s.metadata["format"]
+    (('red',), [0.05, 0.2, 0.6], 'CSV, wide')
+    """
+    if percent not in (None, True, False):
+        raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
+    head = text.lstrip()
+    if head.startswith("{"):
+        return _parse_json(text, source, percent)
+    if head.startswith("<"):
+        if tm27.looks_like_tm27(text):
+            return tm27.parse_tm27(text, source, percent)
+        raise SpectrumError(f"{source}: XML, but not IES TM-27; expected {tm27.EXPECTED}")
+    if cgats.looks_like_cgats(text):
+        return cgats.parse_cgats(text, source, percent)
+    try:
+        return delimited.parse_delimited(text, source, percent)
+    except SpectrumError as exc:
+        if "not a spectral table" not in str(exc) and "no data" not in str(exc):
+            raise
+        tried = "; ".join(f"{name}: {expected}" for name, expected in FORMATS)
+        raise SpectrumError(f"{exc} [formats tried: {tried}]") from None
+
+
+def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:
+    """Read the spectra in a measurement file: CSV/TSV (long or wide, ``;`` with decimal commas),
+    CGATS.17 (i1Profiler, X-Rite, Barbieri), ArgyllCMS ``.ti3``/``.sp``, IES TM-27 XML or JSON.
+
+    The format is told by the content, not the file name. See :func:`parse_spectra` for
+    ``percent`` and what the result holds; wavelengths must be strictly increasing, and a
+    ``wavelength_um`` column is converted to nm.
+
+    Examples
+    --------
+    >>> from importlib.resources import files
+    >>> tcs = read_spectra(files("spectrocolor") / "data" / "reflectances_cie_tcs.csv")
+    >>> tcs.values.shape[0], tcs.metadata["format"]
+    (14, 'CSV, long')
+    """
+    if not isinstance(path, (str, Path)) and not hasattr(path, "read_bytes"):
+        raise SpectrumError(f"path: expected a file name (str or Path), got {type(path).__name__}")
+    path = Path(str(path))
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file")
+    if path.is_dir():
+        raise SpectrumError(f"{path}: is a folder, not a spectral file (CSV, CGATS, TM-27 XML or JSON)")
+    return parse_spectra(read_text(path), str(path), percent)
+
+
+def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:
+    """Write ``spectrum`` to ``path`` atomically: ``.csv``/``.txt`` (long CSV), ``.json`` or
+    ``.cgats`` (CGATS.17, 0–1 scale declared); returns the path.
+
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> s = Spectrum([400, 500], [[0.1, 0.2], [0.3, 0.4]], ["a", "b"])
+    >>> read_spectra(write_spectra(s, folder / "s.cgats")) == s
+    True
+    """
+    from ..safe_write import write_text
+
+    if not isinstance(spectrum, Spectrum):
+        raise SpectrumError(f"spectrum: expected a Spectrum, got {type(spectrum).__name__}")
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".json":
+        text = json.dumps(spectrum.to_dict(), indent=1)
+    elif suffix in (".csv", ".txt"):
+        text = spectra_to_csv(spectrum)
+    elif suffix == ".cgats":
+        text = spectra_to_cgats(spectrum)
+    else:
+        raise SpectrumError(f"path: unknown spectral file type {path.suffix!r}; use .csv, .json or .cgats")
+    return write_text(path, text)

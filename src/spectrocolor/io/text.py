@@ -1,0 +1,109 @@
+"""Shared machinery of the spectral-file readers: bounded text reading, numbers, scale options.
+
+Every reader turns a file's text into a :class:`~spectrocolor.Spectrum`; this module holds what
+they share: reading at most :data:`MAX_FILE_BYTES` of UTF-8 text, parsing numbers (with an
+optional decimal comma), wavelength labels such as ``380``, ``380nm``, ``SPECTRAL_NM380``, and
+the one rule for percent versus fraction (:func:`apply_scale`).
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SpectrumError
+
+#: Largest spectral file read, bytes (a 10 000-sample, 401-band table is about 40 MB).
+MAX_FILE_BYTES = 256 * 1024 * 1024
+
+#: Column or field names that carry a wavelength: ``380``, ``380nm``, ``380 nm``, ``nm380``,
+#: ``R380``, ``SPECTRAL_NM380``, ``SPECTRAL_NM_380``, ``SPECTRAL_380``, ``SPEC_380``,
+#: ``SPECTRAL_PCT_380``, ``SPECTRAL_DEC_380`` (case-insensitive; decimals allowed).
+WAVELENGTH_LABEL = re.compile(
+    r"^(?:(?P<prefix>spectral_(?:nm|pct|dec)?_?|spec_|nm_?|r_?|λ)?)"
+    r"(?P<nm>\d{3,4}(?:\.\d+)?)\s*(?:nm)?$",
+    re.IGNORECASE,
+)
+
+
+def read_text(path: Path) -> str:
+    """The file's text (UTF-8, optional BOM), after checking its size; SpectrumError otherwise."""
+    size = path.stat().st_size
+    if size > MAX_FILE_BYTES:
+        raise SpectrumError(
+            f"{path}: {size} bytes; spectral tables are read up to {MAX_FILE_BYTES} bytes "
+            "(split the file, or read a spectral image with read_cube)"
+        )
+    try:
+        return path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise SpectrumError(
+            f"{path}: not UTF-8 text (byte {exc.start}); save the file as UTF-8 (CSV, CGATS, XML or JSON)"
+        ) from None
+
+
+def wavelength_of(label: str) -> float | None:
+    """The wavelength in nm that a column label names (see :data:`WAVELENGTH_LABEL`), or None.
+
+    >>> wavelength_of("SPECTRAL_NM_380"), wavelength_of("400nm"), wavelength_of("Sample")
+    (380.0, 400.0, None)
+    """
+    match = WAVELENGTH_LABEL.match(label.strip())
+    return float(match["nm"]) if match else None
+
+
+def number(cell: str, where: str, decimal_comma: bool = False) -> float:
+    """``cell`` as a finite float (``0,5`` accepted with ``decimal_comma``), or a SpectrumError."""
+    text = cell.strip()
+    if decimal_comma:
+        text = text.replace(",", ".")
+    try:
+        value = float(text)
+    except ValueError:
+        raise SpectrumError(f"{where}: {cell.strip()[:40]!r} is not a number") from None
+    if not np.isfinite(value):
+        raise SpectrumError(f"{where}: {cell.strip()[:40]!r} is not a finite number")
+    return value
+
+
+def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None, source: str, how: str):
+    """Values on the file's declared scale turned into fractions, following the one rule.
+
+    Parameters
+    ----------
+    values
+        The numbers as written in the file.
+    declared
+        The full-scale value the file declares (100 for percent, 1 for fractions, Argyll's
+        ``SPECTRAL_NORM``), or ``None`` where the format does not say.
+    percent
+        The caller's option: ``True`` (the values are percentages), ``False`` (fractions) or
+        ``None`` (follow the file; where the file does not say, keep the values as written).
+    source, how
+        File name and what declared the scale, for messages.
+
+    Returns
+    -------
+    tuple
+        ``(values, note)``: the scaled values and a note for ``metadata["value_scale"]``.
+
+    Raises
+    ------
+    SpectrumError
+        When ``percent`` contradicts what the file declares.
+    """
+    if declared is not None:
+        if percent is not None and (declared != 1.0) != percent:
+            said = "percent" if declared == 100.0 else f"full scale {declared:g}"
+            raise SpectrumError(
+                f"percent: {source} declares its values on {said if declared != 1.0 else 'the 0–1 scale'} "
+                f"({how}); percent={percent} contradicts it; leave percent unset"
+            )
+        return values / declared, f"divided by {declared:g} as the file declares ({how})"
+    if percent is None:
+        return values, "as written (the file does not declare percent or fraction; pass percent=True/False)"
+    if percent:
+        return values / 100.0, "divided by 100 (percent=True)"
+    return values, "as written (percent=False)"

@@ -1,0 +1,136 @@
+"""IES TM-27 spectral data XML (TM-27-14 and TM-27-20; ``.xml``, ``.spdx``).
+
+The document element is ``IESTM2714`` (in the TM-27 namespace, whatever its URI; ``version``
+says which edition). Its ``Header`` (manufacturer, description, laboratory, report date,
+measurement equipment …) and other sections (luminaire, equipment) are kept in ``metadata``; each
+``SpectralDistribution`` element holds ``SpectralQuantity``, optional ``BandwidthFWHM``,
+``BandwidthCorrected``, ``ReflectionGeometry``/``TransmissionGeometry`` and the samples as
+``<SpectralData wavelength="380">0.06</SpectralData>``. Several ``SpectralDistribution`` elements
+on one grid become a batch.
+
+The reader uses the element names that TM-27-14 defines and TM-27-20 keeps; elements it does not
+know are kept as text in ``metadata`` under ``Section/Element``. Documents with a ``DOCTYPE`` are
+refused (no entity expansion). TM-27 does not declare percent or fraction for reflectance data;
+the caller's ``percent`` option decides (:func:`spectrocolor.io.text.apply_scale`).
+
+References
+----------
+IES TM-27-14, *IES Standard Format for the Electronic Transfer of Spectral Data*, Illuminating
+Engineering Society, 2014; IES TM-27-20 (second edition), 2020.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ElementTree
+
+import numpy as np
+
+from ..errors import SpectrumError
+from ..spectrum import Spectrum
+from .text import apply_scale, number
+
+EXPECTED = "IES TM-27-14/-20 XML (<IESTM2714> with <SpectralDistribution><SpectralData wavelength=…>)"
+
+
+def looks_like_tm27(text: str) -> bool:
+    """True for XML whose document element is ``IESTM2714`` (any namespace prefix)."""
+    head = text.lstrip()[:4096]
+    return head.startswith("<") and re.search(r"<\s*(\w+:)?IESTM2714\b", head) is not None
+
+
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def _leaves(element, prefix: str, into: dict[str, object]) -> None:
+    for child in element:
+        name = f"{prefix}/{_local(child.tag)}" if prefix else _local(child.tag)
+        if len(child):
+            _leaves(child, name, into)
+        elif child.text and child.text.strip():
+            into[name] = child.text.strip()
+
+
+def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
+    """Spectra from an IES TM-27 XML document (see the module docstring).
+
+    Examples
+    --------
+    >>> doc = ('<IESTM2714 xmlns="iesna.org/tm2714" version="1.0"><Header><Description>LED'
+    ...        '</Description></Header><SpectralDistribution><SpectralQuantity>relative</SpectralQuantity>'
+    ...        '<SpectralData wavelength="400">0.5</SpectralData><SpectralData wavelength="410">1'
+    ...        '</SpectralData></SpectralDistribution></IESTM2714>')
+    >>> s = parse_tm27(doc, "led.xml")
+    >>> s.names, s.values.tolist(), s.metadata["spectral_quantity"]
+    (('LED',), [0.5, 1.0], 'relative')
+    """
+    if re.search(r"<!DOCTYPE|<!ENTITY", text[:65536], re.IGNORECASE):
+        raise SpectrumError(f"{source}: XML with a DOCTYPE or ENTITY declaration is not accepted (TM-27 needs none)")
+    try:
+        root = ElementTree.fromstring(text)
+    except ElementTree.ParseError as exc:
+        raise SpectrumError(f"{source}: not well-formed XML ({exc})") from None
+    if _local(root.tag) != "IESTM2714":
+        raise SpectrumError(f"{source}: XML document element is <{_local(root.tag)}>, expected {EXPECTED}")
+    metadata: dict[str, object] = {"format": f"IES TM-27 XML (version {root.get('version', 'not given')})"}
+    for section in root:
+        if _local(section.tag) != "SpectralDistribution":
+            _leaves(section, _local(section.tag), metadata)
+    distributions = [e for e in root if _local(e.tag) == "SpectralDistribution"]
+    if not distributions:
+        raise SpectrumError(f"{source}: no <SpectralDistribution> element; expected {EXPECTED}")
+    grids, rows, facts = [], [], []
+    for d, distribution in enumerate(distributions, start=1):
+        wavelengths, values, info = [], [], {}
+        for element in distribution:
+            tag = _local(element.tag)
+            if tag == "SpectralData":
+                where = f"{source}: SpectralDistribution {d}, SpectralData"
+                if "wavelength" not in element.attrib:
+                    raise SpectrumError(f"{where}: missing the wavelength attribute")
+                wavelengths.append(number(element.attrib["wavelength"], f"{where} wavelength"))
+                values.append(number(element.text or "", f"{where} at {wavelengths[-1]:g} nm"))
+            elif element.text and element.text.strip():
+                info[tag] = element.text.strip()
+        if len(wavelengths) < 1:
+            raise SpectrumError(f"{source}: SpectralDistribution {d} has no <SpectralData wavelength=…> samples")
+        order = np.argsort(wavelengths, kind="stable")
+        grids.append(np.asarray(wavelengths)[order])
+        rows.append(np.asarray(values)[order])
+        facts.append(info)
+    if any(g.shape != grids[0].shape or not np.array_equal(g, grids[0]) for g in grids):
+        raise SpectrumError(f"{source}: the SpectralDistribution elements are on different wavelength grids")
+    names = _names(metadata, len(distributions))
+    for key, tag in (
+        ("spectral_quantity", "SpectralQuantity"),
+        ("bandwidth_fwhm_nm", "BandwidthFWHM"),
+        ("bandwidth_corrected", "BandwidthCorrected"),
+    ):
+        found = {info.get(tag) for info in facts} - {None}
+        if found:
+            metadata[key] = found.pop() if len(found) == 1 else tuple(info.get(tag) for info in facts)
+    geometry = [info.get("ReflectionGeometry") or info.get("TransmissionGeometry") for info in facts]
+    if any(geometry):
+        metadata["geometry"] = geometry[0] if len(set(geometry)) == 1 else tuple(geometry)
+    for fact, keys in (
+        ("instrument", ("Header/MeasurementEquipment", "Equipment/Model", "Equipment/Name")),
+        ("date", ("Header/ReportDate", "Header/DocumentCreationDate")),
+    ):
+        found = next((metadata[k] for k in keys if k in metadata), None)
+        if found is not None:
+            metadata[fact] = found
+    values, note = apply_scale(np.array(rows), None, percent, source, "")
+    metadata["value_scale"] = note
+    try:
+        return Spectrum(grids[0], values if len(rows) > 1 else values[0], names, metadata)
+    except SpectrumError as exc:
+        raise SpectrumError(f"{source}: SpectralData: {exc}") from None
+
+
+def _names(metadata: dict[str, object], count: int) -> list[str]:
+    parts = [
+        str(metadata[k]) for k in ("Header/Manufacturer", "Header/CatalogNumber", "Header/Description") if k in metadata
+    ]
+    base = " – ".join(parts) if parts else "spectrum"
+    return [base] if count == 1 else [f"{base} {i + 1}" for i in range(count)]
