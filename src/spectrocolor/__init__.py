@@ -18,8 +18,9 @@ _PUBLIC: dict[str, str] = {
     "SpectrumError": "errors",
     "ColorimetryError": "errors",
     "wavelength_grid": "spectrum",
-    "read_spectra": "spectrum_io",
-    "write_spectra": "spectrum_io",
+    "read_spectra": "io",
+    "write_spectra": "io",
+    "parse_spectra": "io",
     # standard data
     "observer": "observers",
     "observer_names": "observers",

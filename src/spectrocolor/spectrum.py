@@ -8,8 +8,9 @@ explicitly resampled, and resampling never extrapolates.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from numbers import Real
+from types import MappingProxyType
 
 import numpy as np
 
@@ -116,6 +117,11 @@ class Spectrum:
         values stay float32 (useful for large cubes); integers become float64.
     names
         Optional names, one per spectrum of a ``(N, K)`` batch (or one for a single spectrum).
+    metadata
+        Optional facts about where the data came from (file format, instrument, illuminant,
+        geometry, date …) as a mapping with string keys; key ``"sample_fields"`` maps field names
+        to one value per sample of a batch. Kept read-only, carried by :meth:`resample`,
+        :meth:`restrict` and indexing (which selects the per-sample fields too), dropped by arithmetic.
 
     Examples
     --------
@@ -124,12 +130,21 @@ class Spectrum:
     array([0.9, 0.5, 0.1])
     """
 
-    __slots__ = ("_wavelengths_nm", "_values", "_names")
+    __slots__ = ("_wavelengths_nm", "_values", "_names", "_metadata")
 
-    def __init__(self, wavelengths_nm: ArrayLike, values: ArrayLike, names: Sequence[str] | None = None):
+    def __init__(
+        self,
+        wavelengths_nm: ArrayLike,
+        values: ArrayLike,
+        names: Sequence[str] | None = None,
+        metadata: Mapping[str, object] | None = None,
+    ):
         self._wavelengths_nm = validate_wavelengths(wavelengths_nm)
         self._values = _as_values(values, self._wavelengths_nm.size)
         self._names = self._check_names(names)
+        if metadata is not None and not (isinstance(metadata, Mapping) and all(isinstance(k, str) for k in metadata)):
+            raise SpectrumError(f"metadata: expected a mapping with string keys, got {type(metadata).__name__}")
+        self._metadata = MappingProxyType(dict(metadata or {}))
 
     def _check_names(self, names: Sequence[str] | None) -> tuple[str, ...] | None:
         if names is None:
@@ -161,6 +176,11 @@ class Spectrum:
     def names(self) -> tuple[str, ...] | None:
         """Names of the spectra of a batch, or ``None``."""
         return self._names
+
+    @property
+    def metadata(self) -> Mapping[str, object]:
+        """Read-only facts about the data's origin (empty unless a reader or the caller set them)."""
+        return self._metadata
 
     @property
     def batch_shape(self) -> tuple[int, ...]:
@@ -254,7 +274,8 @@ class Spectrum:
         if target.shape == self._wavelengths_nm.shape and np.array_equal(target, self._wavelengths_nm):
             return self
         matrix = interpolation_matrix(self._wavelengths_nm, target, method)
-        return Spectrum(target, self._values @ matrix.T.astype(self._values.dtype, copy=False), self._names)
+        values = self._values @ matrix.T.astype(self._values.dtype, copy=False)
+        return Spectrum(target, values, self._names, self._metadata)
 
     def restrict(self, start_nm: float, stop_nm: float) -> Spectrum:
         """The samples with ``start_nm ≤ λ ≤ stop_nm`` (no interpolation)."""
@@ -266,7 +287,7 @@ class Spectrum:
                 f"start_nm/stop_nm: {start_nm:g}–{stop_nm:g} nm holds none of this spectrum's samples "
                 f"({grid[0]:g}–{grid[-1]:g} nm)"
             )
-        return Spectrum(grid[keep], self._values[..., keep], self._names)
+        return Spectrum(grid[keep], self._values[..., keep], self._names, self._metadata)
 
     def same_grid(self, other: Spectrum) -> bool:
         """True if ``other`` is sampled at exactly the same wavelengths."""
@@ -282,7 +303,13 @@ class Spectrum:
         if self._names is not None and self._values.ndim == 2:
             picked = np.asarray(self._names, dtype=object)[index]
             names = tuple(np.atleast_1d(picked)) if values.ndim == 2 else (str(picked),)
-        return Spectrum(self._wavelengths_nm, values, names)
+        metadata = dict(self._metadata)
+        fields = metadata.pop("sample_fields", None)  # one entry per sample: select them too
+        if fields and self._values.ndim == 2:
+            metadata["sample_fields"] = {
+                key: tuple(np.atleast_1d(np.asarray(column, dtype=object)[index])) for key, column in fields.items()
+            }
+        return Spectrum(self._wavelengths_nm, values, names, metadata)
 
     # ------------------------------------------------------------------ arithmetic
     def _operand(self, other, operation: str):
