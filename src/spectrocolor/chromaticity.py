@@ -64,7 +64,7 @@ import numpy as np
 from .coordinates import colour_array
 from .coordinates import xy as xy_from_XYZ
 from .errors import ColorimetryError
-from .observers import canonical_observer_name
+from .observers import DEFAULT_OBSERVER, canonical_observer_name
 from .observers import observer as named_observer
 
 __all__ = [
@@ -144,7 +144,7 @@ def _locus(canonical: str, full: bool) -> SpectralLocus:
     return SpectralLocus(_readonly(wavelengths[keep].copy()), _readonly(xy[keep].copy()))
 
 
-def spectral_locus(observer: str = "1931", *, full: bool = False) -> SpectralLocus:
+def spectral_locus(observer=DEFAULT_OBSERVER, *, full: bool = False) -> SpectralLocus:
     """Chromaticity (x, y) of monochromatic light, from the observer's CMFs at 1 nm.
 
     Parameters
@@ -282,7 +282,7 @@ def _boundary(xy, white, observer: str) -> _Boundary:
     return _Boundary(wavelength, complementary, purity, boundary_xy)
 
 
-def dominant_wavelength(xy, white, observer: str = "1931") -> DominantWavelength:
+def dominant_wavelength(xy, white, observer=DEFAULT_OBSERVER) -> DominantWavelength:
     """Dominant (or complementary) wavelength and excitation purity of chromaticities.
 
     Parameters
@@ -324,7 +324,7 @@ def dominant_wavelength(xy, white, observer: str = "1931") -> DominantWavelength
     return DominantWavelength(hit.wavelength_nm, hit.complementary, hit.excitation_purity)
 
 
-def colorimetric_purity(xy, white, observer: str = "1931") -> np.ndarray:
+def colorimetric_purity(xy, white, observer=DEFAULT_OBSERVER) -> np.ndarray:
     """Colorimetric purity ``p_c = p_e · y_b / y`` of chromaticities.
 
     ``p_e`` is the excitation purity and ``y_b`` the y chromaticity of the boundary point

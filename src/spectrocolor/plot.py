@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import ColorimetryError
+from .observers import DEFAULT_OBSERVER
 
 __all__ = ["chromaticity_diagram", "spectrum_plot", "planckian_locus_xy", "horseshoe_image"]
 
@@ -64,7 +65,7 @@ def _as_xy(values, argument: str) -> np.ndarray:
     return xy(a) if a.shape[1] == 3 else a
 
 
-def planckian_locus_xy(temperatures_K, observer: str = "1931") -> np.ndarray:
+def planckian_locus_xy(temperatures_K, observer=DEFAULT_OBSERVER) -> np.ndarray:
     """xy of blackbody radiators (CIE summation at 1 nm over the observer's range), (N, 2)."""
     from .colorimetry import tristimulus
     from .coordinates import xy
@@ -77,7 +78,7 @@ def planckian_locus_xy(temperatures_K, observer: str = "1931") -> np.ndarray:
     return xy(tristimulus(batch, observer=observer))
 
 
-def horseshoe_image(kind: str = "xy", observer: str = "1931", space="sRGB", resolution: int = 400):
+def horseshoe_image(kind: str = "xy", observer=DEFAULT_OBSERVER, space="sRGB", resolution: int = 400):
     """RGBA image (H, W, 4) of the filled spectral-locus region and its extent.
 
     See the module docstring for how colours outside the display gamut are painted. The image
@@ -126,7 +127,7 @@ def _kind(kind: str) -> str:
 
 def chromaticity_diagram(
     kind: str = "xy",
-    observer: str = "1931",
+    observer=DEFAULT_OBSERVER,
     spaces=("sRGB",),
     whites=("D65",),
     planckian: bool = True,

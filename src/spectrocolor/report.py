@@ -31,6 +31,8 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ColorimetryError, SpectrumError
+from .illuminants import DEFAULT_ILLUMINANT, illuminant_label
+from .observers import DEFAULT_OBSERVER, canonical_observer_name
 from .safe_write import write_text
 from .spectrum import Spectrum
 from .spreadsheet import neutralise_cell
@@ -141,7 +143,7 @@ class MeasurementReport:
         }
 
 
-def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str = "1931",
+def measurement_report(spectra: Spectrum, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER,
                        method: str = "sum") -> MeasurementReport:
     """Colorimetry of reflectance samples for a measurement report.
 
@@ -149,11 +151,12 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
     ----------
     spectra : Spectrum
         Reflectance factors (0-1) of N samples, values (N, K) or (K,) for one.
-    illuminant : str or Spectrum
-        The illuminant (seed 001 uses C; also A, B, D65, ...). The white point for dominant
-        wavelength and purity is the perfect reflector under it (Visser section 1.8).
+    illuminant : str, float or Spectrum
+        Any form of :func:`spectrocolor.canonical_illuminant` except ``None`` (default D65; seed
+        001 uses C). The white point for dominant wavelength and purity is the perfect reflector
+        under it (Visser section 1.8).
     observer : str
-        "1931" (seed 001) or another observer name.
+        Default CIE 1931 2° (seed 001), or another observer name.
     method : str
         Summation method of :func:`spectrocolor.weights`.
 
@@ -191,8 +194,8 @@ def measurement_report(spectra: Spectrum, illuminant: str = "C", observer: str =
     return MeasurementReport(
         names=tuple(names),
         spectra=samples,
-        illuminant=illuminant if isinstance(illuminant, str) else "custom",
-        observer=str(observer),
+        illuminant=illuminant_label(illuminant),
+        observer=canonical_observer_name(observer) if isinstance(observer, str) else "custom observer",
         method=method,
         XYZ=XYZ,
         xy=chromaticity,
@@ -437,7 +440,7 @@ def report_html(report: MeasurementReport, *, title: str | None = None,
         "<dl>",
         f"<dt>samples</dt><dd>{n}</dd>",
         f"<dt>illuminant</dt><dd>{html.escape(report.illuminant)}</dd>",
-        f"<dt>observer</dt><dd>CIE {html.escape(report.observer)}</dd>",
+        f"<dt>observer</dt><dd>{html.escape(report.observer)}</dd>",
         f"<dt>summation</dt><dd>{html.escape(report.method)} over {grid['count']} wavelengths, "
         f"{grid['start']:g}–{grid['stop']:g} nm</dd>",
         f"<dt>white (perfect reflector)</dt><dd>X = {conditions['white_XYZ'][0]}, Y = 100, "

@@ -42,7 +42,7 @@ import numpy as np
 from .coordinates import uv_1960, xy_from_uv_1960
 from .errors import ColorimetryError
 from .illuminants import C2_CIE_LOCUS_M_K, planck
-from .observers import canonical_observer_name
+from .observers import DEFAULT_OBSERVER, canonical_observer_name
 from .observers import observer as named_observer
 
 __all__ = ["CCT", "cct", "xy_from_cct"]
@@ -113,7 +113,7 @@ def _nearest_index(points: np.ndarray, table: np.ndarray) -> np.ndarray:
     return index
 
 
-def cct(xy=None, *, XYZ=None, observer: str = "1931") -> CCT:
+def cct(xy=None, *, XYZ=None, observer=DEFAULT_OBSERVER) -> CCT:
     """Correlated colour temperature and Duv (Ohno 2013 definition, exact projection).
 
     Parameters
@@ -182,7 +182,7 @@ def cct(xy=None, *, XYZ=None, observer: str = "1931") -> CCT:
     return CCT(T.reshape(shape), duv.reshape(shape))
 
 
-def xy_from_cct(cct_K, duv=0.0, observer: str = "1931") -> np.ndarray:
+def xy_from_cct(cct_K, duv=0.0, observer=DEFAULT_OBSERVER) -> np.ndarray:
     """Chromaticity of a colour temperature, on the Planckian locus or Duv away from it.
 
     Parameters

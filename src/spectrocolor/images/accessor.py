@@ -23,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from ..errors import SpectrumError
+from ..observers import DEFAULT_OBSERVER
 from .convert import plan_conversion
 from .cube import wavelengths_to_nm
 
@@ -77,14 +78,14 @@ class SpectroAccessor:
             result.attrs["white_XYZ"] = np.asarray(plan.white_XYZ).tolist()
         return result
 
-    def to_xyz(self, illuminant=None, observer: str = "1931", method: str = "sum",
+    def to_xyz(self, illuminant=None, observer=DEFAULT_OBSERVER, method: str = "sum",
                scale: float = 1.0) -> xr.DataArray:
         """CIE XYZ per pixel, dims (..., "XYZ"); arguments as :func:`cube_to_xyz`."""
         plan = plan_conversion("xyz", self.wavelengths_nm, illuminant=illuminant,
                                observer=observer, method=method, scale=scale)
         return self._apply(plan, "XYZ", ("X", "Y", "Z"))
 
-    def to_lab(self, illuminant=None, observer: str = "1931", method: str = "sum",
+    def to_lab(self, illuminant=None, observer=DEFAULT_OBSERVER, method: str = "sum",
                scale: float = 1.0, white_XYZ=None) -> xr.DataArray:
         """CIELAB per pixel, dims (..., "Lab"); arguments as :func:`cube_to_lab`."""
         plan = plan_conversion("lab", self.wavelengths_nm, illuminant=illuminant,
@@ -92,7 +93,7 @@ class SpectroAccessor:
                                white_XYZ=white_XYZ)
         return self._apply(plan, "Lab", ("L*", "a*", "b*"))
 
-    def to_rgb(self, illuminant=None, observer: str = "1931", method: str = "sum",
+    def to_rgb(self, illuminant=None, observer=DEFAULT_OBSERVER, method: str = "sum",
                scale: float = 1.0, space="sRGB", gamut: str = "clip", exposure: float = 1.0,
                adaptation: str | None = "bradford", bit_depth: int = 8,
                output: str = "codes") -> xr.DataArray:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError, SpectrumError
+from ..observers import DEFAULT_OBSERVER
 from . import blocks
 from .cube import SpectralCube
 
@@ -53,7 +54,7 @@ def plan_conversion(
     wavelengths_nm,
     *,
     illuminant=None,
-    observer: str = "1931",
+    observer=DEFAULT_OBSERVER,
     method: str = "sum",
     scale: float = 1.0,
     white_XYZ=None,
@@ -198,7 +199,7 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     return out
 
 
-def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer: str = "1931",
+def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, rows_per_block=None,
                 max_block_mib: float = 64.0, out=None, progress: bool = False) -> np.ndarray:
     """CIE XYZ of every pixel of a spectral cube, converted in bounded-memory row blocks.
@@ -244,7 +245,7 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer: str = "
                       out=out, progress=progress)
 
 
-def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer: str = "1931",
+def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, white_XYZ=None, rows_per_block=None,
                 max_block_mib: float = 64.0, out=None, progress: bool = False) -> np.ndarray:
     """CIELAB (L*, a*, b*) of every pixel, in bounded-memory row blocks.
@@ -266,7 +267,7 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer: str = "
                       out=out, progress=progress)
 
 
-def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer: str = "1931",
+def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, space="sRGB", gamut: str = "clip",
                 exposure: float = 1.0, adaptation: str | None = "bradford", bit_depth: int = 8,
                 output: str = "codes", rows_per_block=None, max_block_mib: float = 64.0,
