@@ -1,0 +1,329 @@
+"""Apply an upsampling table: table coordinates → reflectance spectra by tetrahedral blending.
+
+Each query ``t`` (linear RGB, or XYZ100 / white for an ``"XYZ"`` table) falls in one cell of
+the node grid and, within it, in one of the six Freudenthal tetrahedra (chosen by the order of
+its fractional coordinates). Its barycentric weights ``β`` (non-negative, summing to one) give
+``ρ = Σ β_i ρ_i`` over the tetrahedron's four nodes.
+
+What "exact" means. The colour map is linear and ``Σ β_i t_i = t``, so
+``ρ @ W = Σ β_i (ρ_i @ W) = matrix @ t`` whenever every node reproduces its own colour; nodes
+are checked to 1e-11 relative (:data:`~spectrocolor.upsampling.table.NODE_TOLERANCE`), so a
+query in a tetrahedron of exact nodes is reproduced to that order (tests hold it to 1e-9), and
+``0 ≤ ρ ≤ 1`` holds exactly (the blend is convex; the rounding excursion above 1 of at most a
+few ulps is clamped). Queries the table cannot reproduce exactly — outside the cube, or in a
+tetrahedron with a node moved toward grey because its colour is outside the object-colour
+solid — follow a named strategy from :data:`OUT_OF_RANGE_STRATEGIES` and are reported
+``exact=False``.
+
+References
+----------
+J. M. Kasson, S. I. Nin, W. Plouffe, J. L. Hafner, "Performing color space conversions with
+three-dimensional linear interpolation", J. Electronic Imaging 4, 226–250 (1995)
+(tetrahedral interpolation).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ColorimetryError
+from .table import GREY, UpsamplingTable
+
+__all__ = ["OUT_OF_RANGE_STRATEGIES", "Lookup", "Upsampled", "lookup", "upsample",
+           "upsample_spectra", "colours_under", "texel_coefficients", "upsample_blocks",
+           "upsample_dask"]
+
+
+def _toward_grey(t: np.ndarray) -> np.ndarray:
+    """Move each point along the segment to grey (0.5, 0.5, 0.5) onto the cube's surface."""
+    d = t - GREY
+    with np.errstate(divide="ignore", invalid="ignore"):
+        limit = np.where(d > 0, 0.5 / d, np.where(d < 0, -0.5 / d, np.inf)).min(axis=-1)
+    s = np.minimum(limit, 1.0)[..., None]
+    return np.clip(GREY + s * d, 0.0, 1.0)
+
+
+#: Strategies for queries the table cannot reproduce exactly (outside the cube ``[0, 1]^3``, or
+#: in a tetrahedron with a moved node). Each maps points outside the cube into it; ``"nan"``
+#: additionally returns NaN spectra for every inexact query.
+OUT_OF_RANGE_STRATEGIES = {
+    "toward-grey": _toward_grey,
+    "clip": lambda t: np.clip(t, 0.0, 1.0),
+    "nan": lambda t: np.clip(t, 0.0, 1.0),
+}
+
+
+def _strategy(name: str):
+    if not isinstance(name, str) or name not in OUT_OF_RANGE_STRATEGIES:
+        raise ColorimetryError(
+            f"out_of_range: expected one of {', '.join(OUT_OF_RANGE_STRATEGIES)}, got {name!r}"
+        )
+    return OUT_OF_RANGE_STRATEGIES[name]
+
+
+def _coordinates(t, argument: str = "rgb_linear") -> np.ndarray:
+    try:
+        a = np.asarray(t, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ColorimetryError(f"{argument}: expected numbers of shape (..., 3), got {t!r}") from None
+    if a.ndim == 0 or a.shape[-1] != 3:
+        raise ColorimetryError(f"{argument}: expected shape (..., 3), got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ColorimetryError(f"{argument}: contains NaN or infinite values; pass finite values")
+    return a
+
+
+@dataclass(frozen=True)
+class Lookup:
+    """Where each query lands: four node indices and their barycentric weights.
+
+    Attributes
+    ----------
+    nodes : ndarray (..., 4) of intp
+        Flat node indices (``(i n + j) n + k``).
+    weights : ndarray (..., 4) float64
+        Barycentric weights, ≥ 0, summing to 1 (to rounding).
+    exact : ndarray of bool (...)
+        The query was inside the cube and its four nodes are exact.
+    moved : ndarray of bool (...)
+        The query was outside the cube and was moved into it by the strategy.
+    """
+
+    nodes: np.ndarray
+    weights: np.ndarray
+    exact: np.ndarray
+    moved: np.ndarray
+
+
+def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey") -> Lookup:
+    """Tetrahedron and barycentric weights of each query (see the module docstring).
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+    rgb_linear : array_like (..., 3)
+        Table coordinates (linear RGB of the table's space, or XYZ100 / white).
+    out_of_range : str
+        A key of :data:`OUT_OF_RANGE_STRATEGIES` (default ``"toward-grey"``).
+
+    Returns
+    -------
+    Lookup
+    """
+    move = _strategy(out_of_range)
+    t = _coordinates(rgb_linear)
+    outside = np.any((t < 0.0) | (t > 1.0), axis=-1)
+    if outside.any():
+        t = t.copy()
+        t[outside] = move(t[outside])
+    n = table.resolution
+    s = t * (n - 1)
+    base = np.minimum(s.astype(np.intp), n - 2)  # t >= 0 here, so truncation is floor
+    f = s - base
+    order = np.argsort(-f, axis=-1, kind="stable")  # axes by decreasing fraction
+    fs = np.take_along_axis(f, order, axis=-1)
+    weights = np.empty((*t.shape[:-1], 4))
+    weights[..., 0] = 1.0 - fs[..., 0]
+    weights[..., 1] = fs[..., 0] - fs[..., 1]
+    weights[..., 2] = fs[..., 1] - fs[..., 2]
+    weights[..., 3] = fs[..., 2]
+    strides = np.array([n * n, n, 1], dtype=np.intp)
+    steps = strides[order]  # (..., 3): flat step along each axis in order
+    nodes = np.empty((*t.shape[:-1], 4), dtype=np.intp)
+    nodes[..., 0] = base @ strides
+    np.cumsum(steps, axis=-1, out=nodes[..., 1:])
+    nodes[..., 1:] += nodes[..., :1]
+    if table.all_exact:
+        exact = ~outside
+    else:
+        exact = ~outside & np.all(table.node_status.ravel()[nodes] == 0, axis=-1)
+    return Lookup(nodes, weights, exact, outside)
+
+
+def _blend(values: np.ndarray, found: Lookup, out: np.ndarray | None = None) -> np.ndarray:
+    """``Σ_j weights_j · values[nodes_j]`` along a new last axis of length values.shape[1]."""
+    lead = found.nodes.shape[:-1]
+    idx = found.nodes.reshape(-1, 4)
+    w = found.weights.reshape(-1, 4)
+    result = np.multiply(values[idx[:, 0]], w[:, :1], out=out)
+    scratch = np.empty_like(result)
+    for j in range(1, 4):
+        np.take(values, idx[:, j], axis=0, out=scratch)
+        scratch *= w[:, j:j + 1]
+        result += scratch
+    return result.reshape(*lead, values.shape[1])
+
+
+@dataclass(frozen=True)
+class Upsampled:
+    """Result of :func:`upsample`.
+
+    Attributes
+    ----------
+    reflectance : ndarray (..., K)
+        Reflectance factors (0–1), on ``wavelengths_nm``; NaN where ``out_of_range="nan"``
+        refused a query.
+    wavelengths_nm : ndarray (K,)
+    exact : ndarray of bool (...)
+        The spectrum reproduces the query's colour (``table.matrix @ t``) to 1e-9 relative.
+    moved : ndarray of bool (...)
+        The query lay outside the cube and was moved by the strategy.
+    out_of_range : str
+        The strategy used.
+    """
+
+    reflectance: np.ndarray
+    wavelengths_nm: np.ndarray
+    exact: np.ndarray
+    moved: np.ndarray
+    out_of_range: str
+
+
+def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey") -> Upsampled:
+    """Reflectance spectra for colours, by tetrahedral blending of the table's nodes.
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+    rgb_linear : array_like (..., 3)
+        Linear RGB of the table's space (or XYZ100 / white for an ``"XYZ"`` table). Decode
+        8/16-bit images first with :func:`spectrocolor.upsampling.rgb_linear_from_image`.
+    out_of_range : {"toward-grey", "clip", "nan"}
+        What to do with queries that cannot be reproduced exactly (see
+        :data:`OUT_OF_RANGE_STRATEGIES`); they are reported in ``exact``/``moved``.
+
+    Returns
+    -------
+    Upsampled
+
+    Examples
+    --------
+    >>> from spectrocolor.upsampling import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> u = upsample(table, [[0.2, 0.5, 0.7], [1.5, 0.5, 0.5]])
+    >>> u.exact.tolist(), u.moved.tolist()
+    ([True, False], [False, True])
+    >>> XYZ = u.reflectance[0] @ table.weights
+    >>> bool(abs(XYZ - table.matrix @ [0.2, 0.5, 0.7]).max() < 1e-9 * XYZ.max())
+    True
+    """
+    found = lookup(table, rgb_linear, out_of_range)
+    rho = _blend(table.flat_reflectance, found)
+    np.minimum(rho, 1.0, out=rho)
+    if out_of_range == "nan":
+        rho[~found.exact] = np.nan
+    return Upsampled(rho, table.wavelengths_nm, found.exact, found.moved, out_of_range)
+
+
+def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey",
+                     out: np.ndarray | None = None) -> np.ndarray:
+    """Only the spectra of :func:`upsample` (``(..., K)`` float64), optionally into ``out``."""
+    found = lookup(table, rgb_linear, out_of_range)
+    flat_out = None if out is None else out.reshape(-1, table.wavelengths_nm.size)
+    rho = _blend(table.flat_reflectance, found, flat_out)
+    np.minimum(rho, 1.0, out=rho)
+    if out_of_range == "nan":
+        rho[~found.exact] = np.nan
+    return rho
+
+
+def node_colours(table: UpsamplingTable, weights) -> np.ndarray:
+    """Colours of the nodes under other weights ``(K, 3)``: ``(n³, 3)`` = ``ρ_nodes @ weights``."""
+    W = np.asarray(weights, dtype=np.float64)
+    K = table.wavelengths_nm.size
+    if W.shape != (K, 3):
+        raise ColorimetryError(f"weights: expected shape ({K}, 3) on the table's grid, got {W.shape}")
+    return table.flat_reflectance @ W
+
+
+def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str = "toward-grey"):
+    """The colour of each query's upsampled spectrum under other weights, without the spectra.
+
+    Because blending is linear, ``(Σ β_i ρ_i) @ W' = Σ β_i (ρ_i @ W')``: the node colours under
+    the new weights form a 3-channel table and each query costs four 3-vector gathers instead
+    of four K-vector gathers. Equal to ``upsample(...).reflectance @ weights`` to rounding.
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+    rgb_linear : array_like (..., 3)
+    weights : ndarray (K, 3)
+        E.g. ``spectrocolor.weights(table.wavelengths_nm, illuminant="A")`` (XYZ100 under A).
+    out_of_range : str
+
+    Returns
+    -------
+    XYZ : ndarray (..., 3)
+    exact : ndarray of bool (...)
+    """
+    found = lookup(table, rgb_linear, out_of_range)
+    XYZ = _blend(node_colours(table, weights), found)
+    if out_of_range == "nan":
+        XYZ[~found.exact] = np.nan
+    return XYZ, found.exact
+
+
+def texel_coefficients(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"):
+    """Per-texel coefficients for texture baking: four node indices and four weights.
+
+    A renderer holding the table evaluates the texel's reflectance at any wavelength as
+    ``Σ_j weights[j] · ρ_{nodes[j]}(λ)`` (linear interpolation between the table's wavelength
+    samples), with no lookup at render time.
+
+    Returns
+    -------
+    nodes : ndarray (..., 4) uint32
+        Flat node indices into the table's ``(n³, K)`` reflectance array.
+    weights : ndarray (..., 4) float32
+        Barycentric weights (sum to 1 within float32 rounding, ~1e-7).
+    exact : ndarray of bool (...)
+    """
+    found = lookup(table, rgb_linear, out_of_range)
+    return found.nodes.astype(np.uint32), found.weights.astype(np.float32), found.exact
+
+
+def upsample_blocks(table: UpsamplingTable, image, out_of_range: str = "toward-grey",
+                    max_block_mib: float = 64.0):
+    """Stream the spectra of a large image in row blocks of bounded memory.
+
+    Parameters
+    ----------
+    image : array_like (H, ...) with last axis 3, e.g. a ``np.memmap``
+        Linear table coordinates; only one block is read and converted at a time.
+    max_block_mib : float
+        Budget of one block's spectra (float64), MiB.
+
+    Yields
+    ------
+    (slice, ndarray)
+        The rows and their spectra ``(rows, ..., K)``.
+    """
+    shape = tuple(np.shape(image))
+    if len(shape) < 2 or shape[-1] != 3:
+        raise ColorimetryError(f"image: expected shape (H, ..., 3), got {shape}")
+    max_block_mib = float(max_block_mib)
+    if not np.isfinite(max_block_mib) or max_block_mib <= 0:
+        raise ColorimetryError(f"max_block_mib: expected a positive number, got {max_block_mib!r}")
+    per_row = int(np.prod(shape[1:-1], dtype=np.int64)) * table.wavelengths_nm.size * 8 * 3
+    rows = max(1, int(max_block_mib * 2**20) // max(per_row, 1))
+    for start in range(0, shape[0], rows):
+        block = slice(start, min(start + rows, shape[0]))
+        yield block, upsample_spectra(table, image[block], out_of_range)
+
+
+def upsample_dask(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"):
+    """Lazy spectra of a dask array ``(..., 3)`` (chunked on the leading axes): ``(..., K)``.
+
+    Each chunk goes through :func:`upsample_spectra`, so the numbers equal the NumPy path's.
+    """
+    import dask.array as da
+
+    _strategy(out_of_range)
+    if rgb_linear.ndim == 0 or rgb_linear.shape[-1] != 3:
+        raise ColorimetryError(f"rgb_linear: expected shape (..., 3), got {rgb_linear.shape}")
+    arr = rgb_linear.rechunk({rgb_linear.ndim - 1: 3})
+    K = table.wavelengths_nm.size
+    return da.map_blocks(upsample_spectra, table, arr, out_of_range, dtype=np.float64,
+                         chunks=(*arr.chunks[:-1], (K,)))
