@@ -1,0 +1,22 @@
+// The server's JSON API: every colour number the page shows comes from the library through it.
+
+export class ApiError extends Error {}
+
+export async function api(path, body) {
+  const opts = body === undefined ? {} : {method: "POST", headers: {"Content-Type": "application/json"},
+    body: JSON.stringify(body)};
+  let res;
+  try {
+    res = await fetch(path, opts);
+  } catch (err) {
+    throw new ApiError(`the explorer's server did not answer (${err.message}); is it still running?`);
+  }
+  if (!res.ok) {
+    let msg = `${res.status} ${res.statusText}`;
+    try { msg = (await res.json()).error || msg; } catch { /* not JSON */ }
+    throw new ApiError(msg);
+  }
+  return res;
+}
+
+export const apiJSON = async (path, body) => (await api(path, body)).json();

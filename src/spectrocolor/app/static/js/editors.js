@@ -1,0 +1,171 @@
+// The bar editors: one canvas per distribution, each an ARIA slider for its selected bin
+// ("550 nm, 18 of 30"), edited by mouse, finger or keys.
+
+import {$, el, fill} from "./dom.js";
+import {S, EDITORS, FULL, quantise, remember} from "./state.js";
+import {displayName, product} from "./view.js";
+
+const PAD_TOP = 14, PAD_BOTTOM = 16;
+const OUTLINE = "#d7dbe4";  // bar outline: ≥ 3:1 against the panel (#1e2128) for every tint
+
+export const editorCount = () => EDITORS[S.setting].length;
+export const cursorOf = (i) => S.cursor[`${S.setting}:${i}`] ?? Math.floor(S.wl.length / 2);
+
+/** Build the editors of the current setting; `onEdit` runs after every change of levels. */
+export function buildEditors(onEdit) {
+  const names = EDITORS[S.setting];
+  const readonly = S.setting === 5 ? ["product"] : [];
+  const box = $("editors");
+  box.className = names.length + readonly.length === 3 ? "three" : names.length === 2 ? "two" : "";
+  fill(box, [...names, ...readonly].map((n, i) => {
+    const ro = i >= names.length;
+    const canvas = el("canvas", ro
+      ? {role: "img", "aria-label": "the product of the two filters: light through both"}
+      : {role: "slider", tabindex: 0, "aria-label": `${n}: level of the selected bin`,
+        "aria-valuemin": 0, "aria-valuemax": FULL, "aria-orientation": "vertical"});
+    return el("div", {class: `editor ${ro ? "readonly" : ""}`, "data-e": i},
+      el("div", {class: "head"}, el("span", {}, el("b", {}, n), " ", el("span", {class: "pname"})),
+        el("span", {class: "cur", "aria-hidden": "true"})),
+      canvas);
+  }));
+  box.querySelectorAll(".editor").forEach((ed) => {
+    const i = Number(ed.dataset.e);
+    if (i >= names.length) return;
+    const cv = ed.querySelector("canvas");
+    cv.addEventListener("focus", () => { S.active[S.setting] = i; drawEditors(); });
+    let last = null;
+    const at = (ev) => {
+      const r = cv.getBoundingClientRect();
+      const k = Math.min(S.wl.length - 1, Math.max(0, Math.floor((ev.clientX - r.left) / r.width * S.wl.length)));
+      const h = r.height - PAD_TOP - PAD_BOTTOM;
+      const v = Math.min(FULL, Math.max(0, (1 - (ev.clientY - r.top - PAD_TOP) / h) * FULL));
+      return [k, quantise(v, S.step)];
+    };
+    cv.addEventListener("pointerdown", (ev) => {
+      ev.preventDefault(); cv.setPointerCapture(ev.pointerId); cv.focus({preventScroll: true});
+      remember();
+      S.active[S.setting] = i; const [k, v] = at(ev); last = [k, v];
+      S.cursor[`${S.setting}:${i}`] = k; setLevel(i, k, v); onEdit();
+    });
+    cv.addEventListener("pointermove", (ev) => {
+      if (!last || (!(ev.buttons & 1) && ev.pointerType === "mouse")) return;
+      const [k, v] = at(ev);
+      const [k0, v0] = last, n = Math.abs(k - k0);
+      for (let j = 1; j <= n; j++) setLevel(i, k0 + Math.sign(k - k0) * j, v0 + (v - v0) * j / n);
+      if (n === 0) setLevel(i, k, v);
+      last = [k, v]; S.cursor[`${S.setting}:${i}`] = k; onEdit();
+    });
+    const stop = () => { if (last) { last = null; onEdit(true); } };
+    cv.addEventListener("pointerup", stop); cv.addEventListener("pointercancel", stop);
+  });
+}
+
+/** Set bin k of editor i (setting 3: what one side loses, the other gains). */
+export function setLevel(i, k, v) {
+  v = quantise(v, S.step);
+  const d = S.dists[S.setting];
+  if (S.setting === 3) {
+    const total = d[0][k] + d[1][k];
+    v = Math.min(Math.min(FULL, total), Math.max(Math.max(0, total - FULL), v));
+    d[i][k] = v; d[1 - i][k] = Math.round((total - v) * 1e9) / 1e9;
+    S.edited[3][0] = S.edited[3][1] = true;
+  } else {
+    d[i][k] = Math.min(FULL, Math.max(0, v));
+    S.edited[S.setting][i] = true;
+  }
+}
+
+function plotArea(cv) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = cv.clientWidth, h = cv.clientHeight;
+  if (cv.width !== Math.round(w * dpr) || cv.height !== Math.round(h * dpr)) {
+    cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr);
+  }
+  const g = cv.getContext("2d");
+  g.setTransform(dpr, 0, 0, dpr, 0, 0); g.clearRect(0, 0, w, h);
+  return [g, w, h];
+}
+
+function grid(g, w, hh) {
+  g.strokeStyle = "#3a3f4b"; g.lineWidth = 1;
+  for (const L of [10, 20, 30]) {
+    const y = PAD_TOP + hh * (1 - L / FULL);
+    g.beginPath(); g.moveTo(0, y); g.lineTo(w, y); g.stroke();
+  }
+}
+
+function labels(g, w, h, hh) {  // drawn over the bars, with a dark halo so they stay readable
+  g.font = "10px system-ui, sans-serif"; g.lineWidth = 3; g.strokeStyle = "#15171c"; g.fillStyle = "#cfd4de";
+  const text = (t, x, y) => { g.strokeText(t, x, y); g.fillText(t, x, y); };
+  for (const L of [10, 20, 30]) text(String(L), 2, PAD_TOP + hh * (1 - L / FULL) - 2);
+  const K = S.wl.length, bw = w / K;
+  for (const nm of [400, 500, 600, 700]) {
+    const k = S.wl.indexOf(nm);
+    if (k >= 0) text(nm === 700 ? "700 nm" : String(nm), Math.min(w - 34, k * bw), h - 3);
+  }
+}
+
+export function drawEditors() {
+  const names = EDITORS[S.setting];
+  const lists = [...S.dists[S.setting]];
+  if (S.setting === 5) lists.push(product());
+  const tints = S.model ? S.model.tints : null;
+  document.querySelectorAll("#editors .editor").forEach((ed, i) => {
+    const cv = ed.querySelector("canvas");
+    const [g, w, h] = plotArea(cv);
+    const levels = lists[i], K = levels.length, bw = w / K, hh = h - PAD_TOP - PAD_BOTTOM;
+    grid(g, w, hh);
+    const gap = K <= 61 ? 1 : 0;
+    for (let k = 0; k < K; k++) {
+      const t = tints ? tints[k] : [0.6, 0.6, 0.6];
+      g.fillStyle = `rgb(${t[0] * 255},${t[1] * 255},${t[2] * 255})`;
+      const bh = hh * levels[k] / FULL;
+      g.fillRect(k * bw + gap, PAD_TOP + hh - bh, Math.max(1, bw - 2 * gap), bh);
+    }
+    // the outline of the distribution, in a colour that stands out from the panel and every bar
+    g.strokeStyle = OUTLINE; g.lineWidth = 1.5; g.beginPath();
+    for (let k = 0; k < K; k++) {
+      const y = PAD_TOP + hh * (1 - levels[k] / FULL);
+      if (k === 0) g.moveTo(0, y); else g.lineTo(k * bw, y);
+      g.lineTo((k + 1) * bw, y);
+    }
+    g.stroke();
+    if (S.setting === 3 && i < 2) {  // the conserved total
+      g.strokeStyle = "rgba(255,255,255,0.55)"; g.setLineDash([3, 3]); g.beginPath();
+      for (let k = 0; k < K; k++) { const y = PAD_TOP + hh * (1 - (S.dists[3][0][k] + S.dists[3][1][k]) / FULL); g.lineTo(k * bw, y); g.lineTo((k + 1) * bw, y); }
+      g.stroke(); g.setLineDash([]);
+    }
+    labels(g, w, h, hh);
+    const active = i < names.length && S.active[S.setting] === i;
+    ed.classList.toggle("active", active && names.length > 1);
+    if (i >= names.length) return;
+    const k = cursorOf(i);
+    g.strokeStyle = active ? "#6aa9ff" : "#8b93a5"; g.lineWidth = 2; g.strokeRect(k * bw + 1, PAD_TOP, Math.max(2, bw - 2), hh);
+    const value = levels[k], digits = S.step === 10 && Number.isInteger(value) ? 0 : 1;
+    ed.querySelector(".cur").textContent = `${S.wl[k]} nm: ${value.toFixed(digits)} of ${FULL}`;
+    ed.querySelector(".pname").textContent = displayName(S.setting, i);
+    cv.setAttribute("aria-valuenow", String(value));
+    cv.setAttribute("aria-valuetext", `${S.wl[k]} nm, ${value.toFixed(digits)} of ${FULL}`);
+  });
+}
+
+/** Step 4 of SPECTRA: the light the display emits for a colour, C(λ) = Σ γ(code)·primary(λ),
+ * drawn over the distribution it matches (both scaled to their peaks). */
+export function drawEmitted(cv, emitted, target) {
+  const [g, w, h] = plotArea(cv);
+  const hh = h - PAD_TOP - PAD_BOTTOM;
+  grid(g, w, hh);
+  labels(g, w, h, hh);
+  const line = (values, colour, dash) => {
+    const top = Math.max(...values);
+    if (!(top > 0)) return;
+    g.strokeStyle = colour; g.lineWidth = 1.5; g.setLineDash(dash); g.beginPath();
+    values.forEach((v, k) => {
+      const x = (k + 0.5) * w / values.length, y = PAD_TOP + hh * (1 - v / top);
+      if (k === 0) g.moveTo(x, y); else g.lineTo(x, y);
+    });
+    g.stroke(); g.setLineDash([]);
+  };
+  line(target, "#8b93a5", [3, 3]);
+  line(emitted, "#ffd166", []);
+}

@@ -1,0 +1,429 @@
+// spectrocolor explorer: wiring. Colour numbers come from the server (the library); while an
+// edit is in progress the page repaints from the local fast path (colour.js) in the same frame,
+// and the server's answer replaces it as soon as it arrives.
+
+import {$, el, fill} from "./dom.js";
+import {apiJSON, api} from "./api.js";
+import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stateURL, readURLOptions,
+  readURLDistributions, persist, readPersisted} from "./state.js";
+import {localColour, weightsUnder, fixedScale, whiteOf} from "./colour.js";
+import {buildPatches, buildCards, paint, evalSpec, markStale, GAMUT_TEXT} from "./view.js";
+import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
+import {drawDiagram, drawPoints} from "./diagram.js";
+import {applyPreset, presetButtons} from "./presets.js";
+
+window.__spectra = S;  // for the browser tests and the latency bench
+
+// ---------------------------------------------------------------- messages
+/** A note next to the actions (saved, file read, …): replaced by the next one. */
+function say(text) { $("note").textContent = text || ""; }
+
+/** An error under the header, in view, until dismissed. `where` names the action that failed. */
+function fail(where, err) {
+  $("error-text").textContent = `${where}: ${err.message || err}`;
+  $("error").hidden = false;
+}
+function dismissError() { $("error").hidden = true; $("error-text").textContent = ""; }
+
+// ---------------------------------------------------------------- evaluation
+function requestBody() {
+  const e = evalSpec();
+  const body = {step_nm: S.step, observer: S.observer, display: S.display, normalise: S.normalise,
+    gamut: S.gamut, spectra: e.spectra, pairs: e.pairs};
+  if (S.adaptation) body.adaptation = S.adaptation;
+  if (e.illuminant) body.illuminant = e.illuminant;
+  return body;
+}
+
+/** Weights and fixed scale for the current setting (under E, or under setting 4's illuminant). */
+function localWeights(e) {
+  const m = S.model;
+  if (!e.illuminant) return {W: m.weights, scale: m.fixed_scale};
+  if (!e.illuminant.some((v) => v > 0)) return null;  // nothing lit: the server says why
+  const W = weightsUnder(e.illuminant, m);
+  return {W, scale: fixedScale(W, m.matrix_from_XYZ)};
+}
+
+let urlTimer = null;
+/** Repaint now from the local fast path, then ask the server. `final`: an edit has ended. */
+function update(final = true) {
+  S.settled = false;
+  const e = evalSpec();
+  const lw = localWeights(e);
+  drawEditors();
+  if (lw) {
+    S.localWhite = whiteOf(lw.W);
+    S.local = e.spectra.map((s) => localColour(s, S.model, {W: lw.W, scale: lw.scale, normalise: S.normalise, gamut: S.gamut}));
+    paint(S.local, null);
+    drawPoints(S.local, e.labels, null);
+  }
+  S.dirty = true;
+  pump();
+  clearTimeout(urlTimer);
+  if (final) saveState(); else urlTimer = setTimeout(saveState, 250);
+  undoButtons();
+}
+async function pump() {
+  if (S.inflight || !S.dirty) return;
+  S.inflight = true; S.dirty = false;
+  const seq = ++S.seq;
+  try {
+    const r = await apiJSON("/api/evaluate", requestBody());
+    if (!S.dirty && seq === S.seq) {
+      S.server = r; S.localWhite = r.white_XYZ;
+      paint(r.colours, r); drawPoints(r.colours, evalSpec().labels, r); drawEmittedLight(r);
+      markStale(null);
+      S.settled = true;
+    }
+  } catch (err) {
+    if (!S.dirty && seq === S.seq) {
+      markStale("the library refused the last change");
+      fail("Could not compute the colours", err);
+      S.settled = true;
+    }
+  }
+  S.inflight = false;
+  if (S.dirty) pump();
+}
+
+function drawEmittedLight(r) {
+  const box = $("emitted-box");
+  const c = r.colours[0];
+  const emitted = S.setting === 1 ? c.emitted_levels ?? c.emitted : null;
+  box.hidden = !emitted;
+  if (emitted) drawEmitted($("emitted"), Array.isArray(emitted) ? emitted : emitted.values, S.dists[1][0]);
+}
+
+// ---------------------------------------------------------------- history and the URL
+function saveState() {
+  persist();
+  const url = stateURL();
+  if (url !== location.pathname + location.search) history.replaceState({setting: S.setting}, "", url);
+}
+
+function undoButtons() {
+  $("undo").disabled = !S.undo[S.setting].length;
+  $("redo").disabled = !S.redo[S.setting].length;
+}
+
+function doUndo(back) {
+  if (!(back ? undo() : redo())) { say(back ? "nothing to undo in this setting" : "nothing to redo"); return; }
+  update();
+}
+
+// ---------------------------------------------------------------- settings and options
+function selectSetting(n, push = true) {
+  S.setting = n;
+  document.querySelectorAll("#tabs [role=tab]").forEach((b) => {
+    const on = Number(b.dataset.setting) === n;
+    b.classList.toggle("on", on); b.setAttribute("aria-selected", String(on)); b.tabIndex = on ? 0 : -1;
+  });
+  $("stage").setAttribute("aria-labelledby", `tab-${n}`);
+  document.title = `spectrocolor · ${SETTING_NAMES[n]}`;
+  buildEditors(update); buildPatches(); buildCards(evalSpec().spectra.length);
+  presetButtons(update, say); actionButtons();
+  $("emitted-box").hidden = true;
+  if (push) history.pushState({setting: n}, "", stateURL());
+  update();
+}
+
+function actionButtons() {
+  const act = $("actions");
+  fill(act, S.setting === 2 ? el("button", {id: "metamer", type: "button", onclick: makeMetamer,
+    title: "Replace the right distribution by the smoothest one with the same colour as the left (van Trigt)"}, "Make a metamer") : null);
+}
+
+async function loadModel() {
+  const body = {step_nm: S.step, observer: S.observer, display: S.display};
+  if (S.adaptation) body.adaptation = S.adaptation;
+  S.model = await apiJSON("/api/model", body);
+  S.wl = S.model.wavelengths_nm;
+  drawDiagram();
+}
+
+/** A chosen option: reload what depends on it, then give the keyboard back to the bars. */
+async function option(name, value) {
+  S[name] = value;
+  try {
+    if (name === "display" || name === "observer" || name === "adaptation") await loadModel();
+    update();
+  } catch (err) { fail(`Could not switch ${name}`, err); }
+  focusBars();
+}
+function focusBars() {
+  const cv = document.querySelector(`#editors .editor[data-e='${S.active[S.setting]}'] canvas`);
+  if (cv) cv.focus({preventScroll: true});
+}
+
+async function changeStep(step) {
+  const fromWl = S.wl;
+  try {
+    S.step = step;
+    S.presets = await apiJSON(`/api/presets?step_nm=${step}`);
+    await loadModel();
+  } catch (err) { fail("Could not change the bins", err); return; }
+  resampleAll(fromWl, S.wl, step);
+  for (const key of Object.keys(S.cursor)) {  // keep each cursor on the same wavelength
+    const nm = fromWl[S.cursor[key]];
+    S.cursor[key] = S.wl.reduce((best, w, k) => Math.abs(w - nm) < Math.abs(S.wl[best] - nm) ? k : best, 0);
+  }
+  selectSetting(S.setting, false);
+  say(`resampled every distribution to ${S.wl.length} bins (linear interpolation${step === 10 ? ", whole levels" : ", levels in tenths"})`);
+  focusBars();
+}
+
+function toggleNorm() {
+  S.normalise = S.normalise === "fixed" ? "per-colour" : "fixed";
+  normButton(); update();
+}
+function normButton() {
+  const b = $("norm"), fixed = S.normalise === "fixed";
+  b.textContent = fixed ? "A · fixed scale" : "B · per colour";
+  b.classList.toggle("b", !fixed); b.setAttribute("aria-pressed", String(!fixed));
+}
+
+// ---------------------------------------------------------------- save, recall, pair
+const storeKey = (n) => `spectrocolor:setting${n}:step${S.step}`;
+function saveSlot() {
+  localStorage.setItem(storeKey(S.setting), JSON.stringify({dists: S.dists[S.setting], names: S.names[S.setting], edited: S.edited[S.setting]}));
+  say(`saved (0 recalls it${S.setting === 2 || S.setting === 3 ? "; 9 in other settings loads this pair" : ""})`);
+}
+function recall(from) {
+  const raw = localStorage.getItem(storeKey(from));
+  if (!raw) { say(`nothing saved in setting ${from} yet (press S there)`); return; }
+  const saved = JSON.parse(raw);
+  remember();
+  const n = S.setting, copy = (a) => a.slice();
+  if (from === n) {
+    S.dists[n] = saved.dists.map(copy); S.names[n] = saved.names.slice(); S.edited[n] = (saved.edited || saved.names.map(() => false)).slice();
+  } else if (n === 4) {  // key 9: the pair from setting 2 as the two samples
+    for (const j of [0, 1]) { S.dists[4][j + 1] = copy(saved.dists[j]); S.names[4][j + 1] = saved.names[j]; S.edited[4][j + 1] = false; }
+  } else {
+    const count = S.dists[n].length;
+    S.dists[n] = saved.dists.slice(0, count).map(copy); S.names[n] = saved.names.slice(0, count); S.edited[n] = S.names[n].map(() => false);
+  }
+  say(from === n ? "recalled the saved distributions" : `loaded the pair saved in setting ${from}`);
+  update();
+}
+const pairSource = () => (S.setting === 2 ? 3 : 2);
+
+// ---------------------------------------------------------------- keys and touch buttons
+function moveCursor(delta) {
+  const a = S.active[S.setting];
+  S.cursor[`${S.setting}:${a}`] = Math.min(S.wl.length - 1, Math.max(0, cursorOf(a) + delta));
+  drawEditors();
+}
+function stepLevel(delta) {
+  const a = S.active[S.setting], k = cursorOf(a);
+  S.cursor[`${S.setting}:${a}`] = k;
+  remember();
+  setLevel(a, k, S.dists[S.setting][a][k] + delta);
+  update();
+}
+function nextDistribution() {
+  S.active[S.setting] = (S.active[S.setting] + 1) % editorCount();
+  drawEditors();
+  if (document.activeElement && document.activeElement.closest("#editors")) focusBars();
+}
+const levelStep = (fine) => (S.step === 10 ? 1 : fine ? 0.1 : 1);
+
+const COMMANDS = {
+  left: () => moveCursor(-1), right: () => moveCursor(1),
+  up: () => stepLevel(levelStep(false)), down: () => stepLevel(-levelStep(false)),
+  next: nextDistribution, save: saveSlot, recall: () => recall(S.setting),
+  pair: () => (S.setting === 1 ? say("key 9 loads a pair: use it in settings 2–5") : recall(pairSource())),
+  undo: () => doUndo(true), redo: () => doUndo(false), norm: toggleNorm,
+};
+
+function onKey(ev) {
+  const t = ev.target;
+  if (t.closest && t.closest("select, input, textarea, dialog[open]")) return;
+  const mod = ev.ctrlKey || ev.metaKey;
+  if (mod && !ev.altKey && (ev.key === "z" || ev.key === "Z")) { doUndo(!ev.shiftKey); ev.preventDefault(); return; }
+  if (mod && !ev.altKey && (ev.key === "y" || ev.key === "Y")) { doUndo(false); ev.preventDefault(); return; }
+  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+  if (t.getAttribute && t.getAttribute("role") === "tab" && (ev.key === "ArrowLeft" || ev.key === "ArrowRight")) {
+    const n = ((S.setting - 1 + (ev.key === "ArrowRight" ? 1 : 4)) % 5) + 1;  // tabs: arrows move between them
+    selectSetting(n); $(`tab-${n}`).focus(); ev.preventDefault(); return;
+  }
+  const onButton = t.closest && t.closest("button, a, summary");
+  let handled = true;
+  switch (ev.key) {
+    case "ArrowLeft": moveCursor(-1); break;
+    case "ArrowRight": moveCursor(1); break;
+    case "ArrowUp": stepLevel(S.step === 10 ? 1 : ev.shiftKey ? 0.1 : 1); break;
+    case "ArrowDown": stepLevel(-(S.step === 10 ? 1 : ev.shiftKey ? 0.1 : 1)); break;
+    case " ": if (onButton) handled = false; else nextDistribution(); break;
+    case "x": case "X": toggleNorm(); break;
+    case "s": case "S": saveSlot(); break;
+    case "0": recall(S.setting); break;
+    case "9": COMMANDS.pair(); break;
+    default:
+      if (/^[1-8]$/.test(ev.key)) applyPreset(ev.key, update, say); else handled = false;
+  }
+  if (handled) ev.preventDefault();
+}
+
+// ---------------------------------------------------------------- metamer, files
+async function makeMetamer() {
+  try {
+    const r = await apiJSON("/api/metamer", {step_nm: S.step, observer: S.observer, target: S.dists[2][0]});
+    remember();
+    S.dists[2][1] = r.levels.map((v) => Math.min(FULL, Math.max(0, v)));
+    S.names[2][1] = "smoothest metamer"; S.edited[2][1] = false;
+    update();
+  } catch (err) { fail("Make a metamer", err); }
+}
+async function saveFile(format) {
+  const names = EDITORS[S.setting].map((n, i) => `${n} ${S.names[S.setting][i] || ""}`.trim().replace(/[^\w .,()+-]/g, "_").slice(0, 60));
+  try {
+    const res = await api("/api/export", {format, step_nm: S.step, names, spectra: S.dists[S.setting]});
+    const blob = await res.blob(), a = el("a", {href: URL.createObjectURL(blob), download: `spectra-setting${S.setting}.${format}`});
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  } catch (err) { fail(`Save ${format.toUpperCase()}`, err); }
+}
+async function loadFile(file) {
+  try {
+    const r = await apiJSON("/api/import", {filename: file.name, content: await file.text(), step_nm: S.step,
+      method: "linear", scale: $("upload-scale").value});
+    const slots = editorCount() - (S.setting === 3 ? 1 : 0);
+    const place = (picks) => {
+      remember();
+      const a = S.active[S.setting];
+      picks.forEach((j, n) => {
+        const i = S.setting === 3 ? a : (a + n) % editorCount();
+        if (S.setting === 3) {  // a complementary pair: the other side is what the full spectrum leaves
+          S.dists[3][i] = r.levels[j].slice(); S.dists[3][1 - i] = r.levels[j].map((v) => FULL - v);
+          S.names[3][i] = r.names[j]; S.names[3][1 - i] = `complement of ${r.names[j]}`; S.edited[3] = [false, false];
+        } else {
+          S.dists[S.setting][i] = r.levels[j].slice(); S.names[S.setting][i] = r.names[j]; S.edited[S.setting][i] = false;
+        }
+      });
+      say(r.note); update();
+    };
+    if (r.levels.length <= slots) place(r.levels.map((_, j) => j));
+    else chooseSpectra(r.names, Math.min(slots, r.levels.length), place);
+  } catch (err) { fail(`Load ${file.name}`, err); }
+}
+
+/** The file holds more spectra than this setting has editors: let the user pick which. */
+function chooseSpectra(names, count, place) {
+  const dlg = $("choose"), targets = EDITORS[S.setting];
+  const a = S.active[S.setting];
+  const selects = Array.from({length: count}, (_, n) => el("select", {id: `pick-${n}`},
+    names.map((name, j) => el("option", {value: j, selected: j === n}, `${j + 1}. ${name}`))));
+  fill($("choose-rows"), selects.map((sel, n) => el("p", {},
+    el("label", {for: sel.id}, `${targets[S.setting === 3 ? a : (a + n) % targets.length]}: `), sel)));
+  $("choose-count").textContent = `The file holds ${names.length} spectra; this setting shows ${count} at a time.`;
+  dlg.onclose = () => { if (dlg.returnValue === "ok") place(selects.map((s) => Number(s.value))); focusBars(); };
+  dlg.returnValue = "";
+  dlg.showModal();
+}
+
+// ---------------------------------------------------------------- setup
+function defaults() {
+  const p = S.presets, copy = (a) => a.slice();
+  S.dists = {1: [copy(p.setting1[0].levels)], 2: [copy(p.setting2.left[6].levels), copy(p.setting2.right[6].levels)],
+    3: [copy(p.setting3[0].left), copy(p.setting3[0].right)],
+    4: [copy(p.setting4.illuminants[1].levels), copy(p.setting4.samples[0].left), copy(p.setting4.samples[0].right)],
+    5: [copy(p.setting5[0].left), copy(p.setting5[0].right)]};
+  S.names = {1: [p.setting1[0].name], 2: [p.setting2.left[6].name, p.setting2.right[6].name],
+    3: p.setting3[0].name.split(" / ").map((s) => s.trim()),
+    4: [p.setting4.illuminants[1].name, `${p.setting4.samples[0].name} 1`, `${p.setting4.samples[0].name} 2`],
+    5: p.setting5[0].name.split(":")[0].split(" and ").map((s) => s.trim())};
+  S.edited = Object.fromEntries(Object.entries(S.dists).map(([n, d]) => [n, d.map(() => false)]));
+}
+
+function fillSelect(id, items, value) {
+  fill($(id), items.map(([v, text, help]) => el("option", {value: v, title: help}, text)));
+  $(id).value = value;
+}
+
+/** The state a URL asks for (options it names that the server does not offer are ignored). */
+function fromURL(search) {
+  const o = readURLOptions(search), opts = S.options;
+  if (o.step && opts.steps_nm.includes(o.step)) S.step = o.step;
+  if (o.observer && o.observer in opts.observers) S.observer = o.observer;
+  if (o.display && opts.displays.includes(o.display)) S.display = o.display;
+  if (o.gamut && opts.gamuts.includes(o.gamut)) S.gamut = o.gamut;
+  if (o.adaptation && (opts.adaptations || []).some((a) => (a[0] ?? a) === o.adaptation)) S.adaptation = o.adaptation;
+  if (o.normalise) S.normalise = o.normalise;
+  return o.setting;
+}
+function syncControls() {
+  $("display").value = S.display; $("observer").value = S.observer; $("gamut").value = S.gamut;
+  $("step").value = String(S.step); normButton();
+  if (S.adaptation) $("adaptation").value = S.adaptation;
+}
+
+async function onPopState() {
+  const step = S.step, display = S.display, observer = S.observer, adaptation = S.adaptation;
+  const setting = fromURL(location.search) || 1;
+  try {
+    if (step !== S.step) S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
+    if (step !== S.step || display !== S.display || observer !== S.observer || adaptation !== S.adaptation) await loadModel();
+  } catch (err) { fail("Could not go back", err); return; }
+  if (step !== S.step) defaults();
+  const d = readURLDistributions(location.search, setting, S.wl.length);
+  if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
+  syncControls();
+  selectSetting(setting, false);
+}
+
+async function init() {
+  const o = S.options = await apiJSON("/api/options");
+  S.gamut = o.default_gamut || o.gamuts[0];
+  S.display = o.default_display || o.displays[0];
+  if (o.adaptations) S.adaptation = o.default_adaptation || (o.adaptations[0][0] ?? o.adaptations[0]);
+  const setting = fromURL(location.search) || 1;
+  fillSelect("display", o.displays.map((d) => [d, d, (o.display_notes || {})[d]]), S.display);
+  fillSelect("observer", Object.entries(o.observers), S.observer);
+  fillSelect("gamut", o.gamuts.map((g) => [g, (GAMUT_TEXT[g] || [g])[0], (GAMUT_TEXT[g] || [])[1]]), S.gamut);
+  if (o.adaptations) {
+    fillSelect("adaptation", o.adaptations.map((a) => (Array.isArray(a) ? a : [a, a, ""])), S.adaptation);
+    $("adaptation-label").hidden = false;
+  }
+  for (const name of ["display", "observer", "gamut", "adaptation"]) {
+    $(name).addEventListener("change", (e) => option(name, e.target.value));
+  }
+  $("step").addEventListener("change", (e) => changeStep(Number(e.target.value)));
+  $("norm").addEventListener("click", toggleNorm);
+  $("save-csv").addEventListener("click", () => saveFile("csv"));
+  $("save-json").addEventListener("click", () => saveFile("json"));
+  $("load-file").addEventListener("click", () => $("file").click());
+  $("file").addEventListener("change", (e) => { if (e.target.files[0]) loadFile(e.target.files[0]); e.target.value = ""; });
+  $("about-open").addEventListener("click", () => $("about").showModal());
+  $("error-close").addEventListener("click", dismissError);
+  $("locus-fill").addEventListener("change", (e) => { S.filledLocus = e.target.checked; drawDiagram(); update(); });
+  $("menu").addEventListener("click", () => {
+    const open = document.body.classList.toggle("tools-open");
+    $("menu").setAttribute("aria-expanded", String(open));
+  });
+  document.querySelectorAll("#tabs [role=tab]").forEach((b) => b.addEventListener("click", (ev) => {
+    selectSetting(Number(b.dataset.setting));
+    if (ev.detail > 0) focusBars();  // a mouse or finger choice gives the keys back to the bars
+  }));
+  document.querySelectorAll("#touch [data-command]").forEach((b) => b.addEventListener("click", () => COMMANDS[b.dataset.command]()));
+  $("undo").addEventListener("click", () => doUndo(true));
+  $("redo").addEventListener("click", () => doUndo(false));
+  $("numbers").addEventListener("click", (ev) => {
+    const b = ev.target.closest(".badge-switch");
+    if (b) { $("gamut").value = b.dataset.gamut; option("gamut", b.dataset.gamut); }
+  });
+  document.addEventListener("keydown", onKey);
+  window.addEventListener("resize", () => drawEditors());
+  window.addEventListener("popstate", onPopState);
+
+  S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
+  await loadModel();
+  defaults();
+  const saved = readPersisted(S.step, S.wl.length);
+  if (saved) { S.dists = saved.dists; S.names = saved.names; S.edited = saved.edited; }
+  const d = readURLDistributions(location.search, setting, S.wl.length);
+  if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
+  syncControls();
+  selectSetting(setting, false);
+  history.replaceState({setting}, "", stateURL());
+}
+init().catch((err) => fail("The explorer could not start", err));

@@ -1,0 +1,57 @@
+// The seed's defaults on keys 1–8 and as buttons (from /api/presets).
+
+import {$, el, fill} from "./dom.js";
+import {S, remember} from "./state.js";
+
+const copy = (a) => a.slice();
+
+/** Key `key` in the current setting: load that default (one undo step). */
+export function applyPreset(key, update, say) {
+  const p = S.presets, n = S.setting, d = S.dists[n], names = S.names[n], edited = S.edited[n];
+  const find = (list) => list.find((q) => q.key === key);
+  let first = true;
+  const load = (i, levels, name) => {
+    if (first) { remember(); first = false; }
+    d[i] = copy(levels); names[i] = name; edited[i] = false;
+  };
+  if (n === 1) {
+    const q = find(p.setting1); if (!q) return;
+    if (q.cycle) { S.sunset = (S.sunset + 1) % q.cycle.length; load(0, q.cycle[S.sunset].levels, `${q.name} d = ${q.cycle[S.sunset].d}`); }
+    else { S.sunset = -1; load(0, q.levels, q.name); }
+  } else if (n === 2) {
+    const i = S.active[2], side = i === 0 ? "left" : "right";
+    const q = find(p.setting2[side]); if (!q) return;
+    if (q.cycle) { S.level[side] = (S.level[side] + 1) % q.cycle.length; load(i, q.cycle[S.level[side]].levels, `level ${S.level[side]}`); }
+    else load(i, q.levels, q.name);
+  } else if (n === 4) {
+    const qi = find(p.setting4.illuminants), qs = find(p.setting4.samples);
+    if (qi) load(0, qi.levels, qi.name);
+    if (qs) { load(1, qs.left, `${qs.name} 1`); load(2, qs.right, `${qs.name} 2`); }
+    if (!qi && !qs) return;
+  } else {
+    const q = find(n === 3 ? p.setting3 : p.setting5); if (!q) return;
+    const parts = q.name.split(":")[0].split(n === 3 ? " / " : " and ");
+    load(0, q.left, parts[0].trim()); load(1, q.right, (parts[1] || parts[0]).trim());
+  }
+  const text = $("presets").querySelector(`button[data-key='${key}']`);
+  say(text ? `default ${key}: ${text.dataset.name}` : "");
+  update();
+}
+
+export function presetButtons(update, say) {
+  const p = S.presets, n = S.setting;
+  const btn = (group, q) => el("button", {type: "button", "data-group": group, "data-key": q.key, "data-name": q.name,
+    title: `key ${q.key}${q.cycle ? " (press again for the next)" : ""}`}, el("kbd", {}, q.key), q.name);
+  const group = (text) => el("span", {class: "group"}, text);
+  let items;
+  if (n === 1) items = p.setting1.map((q) => btn("s1", q));
+  if (n === 2) items = [group("left"), ...p.setting2.left.map((q) => btn("left", q)), group("right"), ...p.setting2.right.map((q) => btn("right", q))];
+  if (n === 3) items = p.setting3.map((q) => btn("pair", q));
+  if (n === 4) items = [group("illuminant"), ...p.setting4.illuminants.map((q) => btn("ill", q)), group("samples"), ...p.setting4.samples.map((q) => btn("pair", q))];
+  if (n === 5) items = p.setting5.map((q) => btn("pair", q));
+  fill($("presets"), items);
+  $("presets").querySelectorAll("button").forEach((b) => b.addEventListener("click", () => {
+    if (n === 2) S.active[2] = b.dataset.group === "left" ? 0 : 1;
+    applyPreset(b.dataset.key, update, say);
+  }));
+}

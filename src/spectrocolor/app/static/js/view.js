@@ -1,0 +1,188 @@
+// The patches and the number cards: built once per setting from DOM nodes, then updated in place
+// on every repaint (cheap enough for the frame of a drag, and never parsing text as HTML).
+
+import {$, el, fill} from "./dom.js";
+import {S, FULL} from "./state.js";
+import {hexOf, lab} from "./colour.js";
+
+const fmt = (v, n) => (v === null || v === undefined || !Number.isFinite(v)) ? "—" : v.toFixed(n);
+
+export const GAMUT_TEXT = {
+  "flag": ["cannot be reproduced (SPECTRA)", "SPECTRA's strict rule: a colour no mix of the primaries can show is drawn black and flagged."],
+  "clip": ["channels clipped", "Each linear channel is cut to 0–1 on its own: hue, saturation and luminance change."],
+  "preserve-luminance": ["negative channels zeroed, luminance kept", "Negative channels are set to 0 and the others scaled so Y stays the same (Zawischa eqs. 20–21)."],
+  "desaturate": ["desaturated at constant luminance", "Mixed with the grey of the same luminance, just enough to enter the display's gamut: hue angle and Y are kept."],
+};
+export const gamutLabel = (g) => (GAMUT_TEXT[g] || [g])[0];
+
+/** What each setting evaluates: the spectra sent to the library, their labels, the pairs. */
+export function evalSpec() {
+  const d = S.dists[S.setting], name = (i) => displayName(S.setting, i);
+  switch (S.setting) {
+    case 1: return {spectra: [d[0]], labels: [name(0)], pairs: []};
+    case 2: case 3: return {spectra: [d[0], d[1]], labels: [name(0), name(1)], pairs: [[0, 1]]};
+    case 4: return {spectra: [Array(S.wl.length).fill(FULL), d[1], d[2]], illuminant: d[0],
+      labels: [`illuminant ${name(0)} (perfect white)`, name(1), name(2)], pairs: [[1, 2]]};
+    case 5: return {spectra: [Array(S.wl.length).fill(FULL), d[0], d[1], product()],
+      labels: ["initial light (E)", name(0), name(1), "through both filters"], pairs: []};
+  }
+}
+export function product() { const [a, b] = S.dists[5]; return a.map((v, k) => v * b[k] / FULL); }
+
+/** A distribution's name, "(edited)" once its bars were changed by hand. */
+export function displayName(n, i) {
+  const base = S.names[n][i] || "";
+  return S.edited[n][i] ? `${base || "distribution"} (edited)` : base;
+}
+
+// ---------------------------------------------------------------- building
+const patch = (i, extra = {}) => el("div", {class: `patch ${extra.cls || ""}`, "data-i": i, style: extra.style},
+  el("span", {class: "tag"}), extra.inner);
+
+function patchbox(cls, label, ...children) {
+  return el("div", {class: `patchbox ${cls}`, role: "img", "aria-label": label}, ...children);
+}
+
+export function buildPatches() {
+  let boxes;
+  switch (S.setting) {
+    case 1: boxes = [patchbox("", "", patch(0))]; break;
+    case 2: case 3: boxes = [patchbox("split", "", patch(0), patch(1))]; break;
+    case 4: boxes = [patchbox("", "", patch(0, {inner: [patch(1, {cls: "inner", style: "left:14%"}),
+      patch(2, {cls: "inner", style: "left:60%"})]}))]; break;
+    case 5: boxes = [patchbox("", "", patch(0, {inner: patch(3, {cls: "inner", style: "left:37%"})})),
+      patchbox("filters", "", patch(1), patch(2))]; break;
+  }
+  fill($("patches"), boxes);
+}
+
+const ROWS = [
+  ["XYZ", "X Y Z", "CIE tristimulus values; Y = 100 for the full spectrum (settings 1–3, 5) or the perfect white under the illuminant (4)."],
+  ["xy", "x y", "Chromaticity coordinates x = X/(X+Y+Z), y = Y/(X+Y+Z)."],
+  ["lab", "L* a* b*", "CIELAB relative to the reference white (L* = 100 for it)."],
+  ["rgb", "linear R G B", "Linear display RGB after normalisation, before gamut handling: 0–1 is what the display can show."],
+  ["codes", "codes r g b", "The numbers sent to the display (8-bit 0–255; SPECTRA's monitor: 6-bit 0–63), and as hex."],
+  ["dom", "λd, purity", "Dominant wavelength (λc: complementary, for purples) and excitation purity relative to the reference white: 0 = white, 1 = spectral colour."],
+];
+
+export function buildCards(count) {
+  const cards = [];
+  if (evalSpec().pairs.length) {
+    cards.push(el("div", {class: "card de-card"},
+      el("h3", {}, el("span", {class: "de-title"}), " ", el("span", {class: "de"})),
+      el("div", {class: "status de-status"}),
+      el("p", {class: "explain"}, "CIEDE2000 colour difference of the two lights (under the illuminant in setting 4); below about 1 it is hardly visible side by side.")));
+  }
+  for (let i = 0; i < count; i++) {
+    cards.push(el("div", {class: "card", "data-i": i},
+      el("h3", {}, el("span", {class: "sw"}), el("span", {class: "cname"})),
+      el("table", {}, el("tbody", {}, ROWS.map(([cls, head, help]) => el("tr", {},
+        el("th", {scope: "row", title: help}, head), el("td", {class: cls}), cls === "codes" ? el("td", {class: "hex"}) : null)))),
+      el("div", {class: "status"}),
+      el("div", {class: "badge", hidden: true}, el("span", {class: "badge-text"}),
+        el("button", {class: "badge-switch", type: "button"}))));
+  }
+  fill($("numbers"), cards);
+}
+
+// ---------------------------------------------------------------- updating
+export function cssColour(c) {
+  const [r, g, b] = c.rgb_encoded;
+  if (S.display === "Display P3") return `color(display-p3 ${r} ${g} ${b})`;
+  return `rgb(${(r * 255).toFixed(3)}, ${(g * 255).toFixed(3)}, ${(b * 255).toFixed(3)})`;
+}
+
+function statusOf(c, gamut) {
+  if (!(c.XYZ[1] > 0)) return ["black: no light", ""];
+  if (!c.in_gamut) {
+    const what = [];
+    if (c.negative.length) what.push(`${c.negative.join(", ")} negative`);
+    if (c.over.length) what.push(`${c.over.join(", ")} above 1`);
+    if (gamut === "flag") return [`cannot be reproduced (${what.join("; ")})`, "bad"];
+    return [`outside the display (${what.join("; ")})`, "warn"];
+  }
+  return S.normalise === "per-colour" ? ["Optimised!", "opt"] : ["", ""];
+}
+
+/** Repaint patches and numbers from `colours` (local fast path, or the server's answer). */
+export function paint(colours, server) {
+  const e = evalSpec(), m = S.model;
+  const gamut = server ? server.gamut : S.gamut;
+  const local = S.localWhite;
+  colours.forEach((c, i) => {
+    const css = cssColour(c), hex = hexOf(c.codes, m);
+    for (const p of document.querySelectorAll(`#patches .patch[data-i='${i}']`)) {
+      p.style.background = css;
+      p.querySelector(".tag").textContent = e.labels[i];
+    }
+    const card = document.querySelector(`#numbers .card[data-i='${i}']`);
+    if (!card) return;
+    const [status, cls] = statusOf(c, gamut);
+    card.querySelector(".sw").style.background = css;
+    card.querySelector(".cname").textContent = e.labels[i];
+    const cell = (k) => card.querySelector(`td.${k}`);
+    cell("XYZ").textContent = c.XYZ.map((v) => fmt(v, 2)).join("  ");
+    cell("xy").textContent = c.xy.map((v) => fmt(v, 4)).join("  ");
+    const L = server ? server.colours[i].lab : lab(c.XYZ, local);
+    cell("lab").textContent = L.map((v) => fmt(v, 1)).join("  ");
+    cell("rgb").textContent = c.rgb_unmapped.map((v) => fmt(v, 3)).join("  ");
+    cell("codes").textContent = c.codes.join("  ");
+    cell("hex").textContent = hex;
+    const dom = server ? server.colours[i] : null;
+    cell("dom").textContent = !dom ? "…" : dom.dominant_nm === null ? "— (undefined for this light)"
+      : `${dom.complementary ? "λc" : "λd"} ${fmt(dom.dominant_nm, 1)} nm${dom.complementary ? " (compl.)" : ""}, p ${fmt(dom.purity, 3)}`;
+    const st = card.querySelector(".status");
+    st.textContent = status; st.className = `status ${cls}`;
+    const badge = card.querySelector(".badge");
+    badge.hidden = c.in_gamut || !(c.XYZ[1] > 0);
+    if (!badge.hidden) {
+      const channels = [...c.negative.map((ch) => `${ch} negative`), ...c.over.map((ch) => `${ch} above 1`)].join(", ");
+      badge.querySelector(".badge-text").textContent = `${gamutLabel(gamut)} · ${channels}`;
+      badge.title = (GAMUT_TEXT[gamut] || ["", ""])[1];
+      const strict = gamut === "flag";
+      const sw = badge.querySelector(".badge-switch");
+      sw.textContent = strict ? "show the nearest colour" : "strict: cannot be reproduced";
+      sw.dataset.gamut = strict ? (S.options.default_gamut !== "flag" && S.options.default_gamut) || "desaturate" : "flag";
+    }
+    const p = document.querySelector(`#patches .patch[data-i='${i}']`);
+    if (p) p.title = `${e.labels[i]}: ${hex}${status ? ", " + status : ""}`;
+  });
+  for (const box of document.querySelectorAll("#patches .patchbox")) {
+    const shown = [...box.querySelectorAll(".patch")].map((p) => {
+      const i = Number(p.dataset.i);
+      return `${e.labels[i]} ${hexOf(colours[i].codes, m)}${colours[i].in_gamut ? "" : " (outside the display)"}`;
+    });
+    box.setAttribute("aria-label", `Colour patch: ${shown.join("; ")}`);
+  }
+  if (S.setting === 2 || S.setting === 3) {
+    // SPECTRA: the border vanishes when the two displayed lights are the same (equal codes)
+    const same = colours[0].in_gamut && colours[1].in_gamut && colours[0].codes.every((v, j) => v === colours[1].codes[j]);
+    document.querySelector("#patches .patchbox.split").classList.toggle("metameric", same);
+  }
+  paintDeltaE(server);
+}
+
+function paintDeltaE(server) {
+  const card = document.querySelector("#numbers .de-card");
+  if (!card) return;
+  card.querySelector(".de-title").textContent = `ΔE00 between ${S.setting === 4 ? "the samples" : "the two"}:`;
+  if (!server || !server.delta_e_2000.length) { card.querySelector(".de").textContent = "…"; return; }
+  // Under B each patch is scaled on its own, so the split patch compares the lights as shown;
+  // the unscaled lights' difference is given beside it.
+  const scaled = S.normalise === "per-colour";
+  const de = scaled ? server.delta_e_2000_shown[0] : server.delta_e_2000[0];
+  card.querySelector(".de").textContent = fmt(de, 2);
+  const st = card.querySelector(".de-status");
+  st.textContent = [de < 0.5 ? "metameric" : "", scaled ? `as shown (B); unscaled lights ${fmt(server.delta_e_2000[0], 2)}` : ""]
+    .filter(Boolean).join(" · ");
+  st.className = `status de-status ${de < 0.5 ? "opt" : ""}`;
+}
+
+/** Mark results that could not be recomputed (or clear the mark). */
+export function markStale(reason) {
+  S.stale = Boolean(reason);
+  for (const id of ["patches", "numbers"]) $(id).classList.toggle("stale", S.stale);
+  const note = $("stale-note");
+  note.hidden = !S.stale;
+  note.textContent = S.stale ? `Not recomputed — these results belong to an earlier state (${reason}).` : "";
+}
