@@ -20,7 +20,7 @@ WL = np.arange(400.0, 701.0, 10.0)
 
 @pytest.fixture(scope="module")
 def client():
-    return TestClient(create_app())
+    return TestClient(create_app(), base_url="http://127.0.0.1")  # the Host a browser sends
 
 
 def evaluate(client, spectra, **kw):

@@ -1,30 +1,48 @@
 """The explorer's HTTP server: static page plus a small JSON API, all computed by the library.
 
-Security: it binds 127.0.0.1 unless told otherwise (see :mod:`spectrocolor.cli.app`), accepts
-only JSON bodies of bounded size validated by pydantic models (bin counts, finite numbers in
-range, known names), answers anything malformed with a 4xx and a one-line message, and never
-reads or writes a path that the page sends: uploads arrive as text and are parsed from a
-temporary file that the server itself creates.
+Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
+
+* it binds 127.0.0.1 unless told otherwise (see :mod:`spectrocolor.cli.app`) and answers only
+  requests whose Host is this loopback server and whose Origin, if any, is its own page;
+* bodies are counted as they stream in, whatever the transfer encoding, and refused (413) past
+  :data:`MAX_BODY_BYTES`; JSON nested deeper than :data:`MAX_JSON_DEPTH` is refused before parsing;
+* requests are validated by pydantic models (bin counts, finite numbers in range, known names);
+  anything malformed gets a 4xx, and every error of every route -- 403, 404, 405, 413, 422,
+  429 -- has one shape, ``{"error": "one line"}``, which the page shows;
+* it never reads or writes a path that the page sends: uploads arrive as text and are parsed
+  from a temporary file that the server itself creates, at most :data:`MAX_PARSERS` at a time
+  (in the thread pool, so other clients are answered meanwhile; 429 when all are busy).
 """
 
 from __future__ import annotations
 
+import csv
 import tempfile
+import threading
 from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
 
-from fastapi import FastAPI, Request
+from fastapi import FastAPI
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel, ConfigDict, Field, model_validator
+from starlette.exceptions import HTTPException
 
 from spectrocolor.errors import ColorimetryError, SpectrumError
+from spectrocolor.spreadsheet import neutralise_cell
 
 from . import compute
+from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
 
+#: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
 MAX_BODY_BYTES = 2_000_000
+#: Deepest JSON nesting accepted in a body or an imported file (the API needs 3).
+MAX_JSON_DEPTH = 32
+#: Imports parsed at the same time; more wait up to PARSER_WAIT_S, then get 429.
+MAX_PARSERS = 2
+PARSER_WAIT_S = 10.0
 MAX_SPECTRA = 4
 MAX_BINS = 301  # 400-700 nm at 1 nm
 
@@ -32,7 +50,8 @@ Step = Literal[10, 5, 2, 1]
 Observer = Literal["1931", "1964", "2015-2", "2015-10"]
 Display = Literal["sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy"]
 Gamut = Literal["flag", "clip", "preserve-luminance", "desaturate"]
-Normalise = Literal["fixed", "per-colour"]
+Normalise = Literal["fixed", "per-colour", "spectra-exact"]
+Adaptation = Literal["bradford", "display rgb", "none"]
 Level = Annotated[float, Field(ge=0, le=compute.FULL_LEVEL, allow_inf_nan=False)]
 Levels = Annotated[list[Level], Field(min_length=31, max_length=MAX_BINS)]
 
@@ -65,9 +84,15 @@ class ModelRequest(_Strict):
         return self
 
 
-class EvaluateRequest(ModelRequest):
-    normalise: Normalise = "fixed"
-    gamut: Gamut = "flag"
+class DisplayRequest(ModelRequest):
+    """The model for one set of display choices (normalisation, adaptation of the white)."""
+
+    normalise: Normalise = compute.DEFAULT_NORMALISE
+    adaptation: Adaptation = compute.DEFAULT_ADAPTATION
+
+
+class EvaluateRequest(DisplayRequest):
+    gamut: Gamut = compute.DEFAULT_GAMUT
     spectra: Annotated[list[Levels], Field(min_length=1, max_length=MAX_SPECTRA)]
     pairs: Annotated[list[tuple[int, int]], Field(max_length=MAX_SPECTRA)] = []
 
@@ -148,18 +173,35 @@ def _message(exc: RequestValidationError) -> str:
     return "; ".join(parts[:5]) + (f" (and {len(parts) - 5} more)" if len(parts) > 5 else "")
 
 
-def create_app() -> FastAPI:
-    """The explorer's FastAPI application (static page at ``/``, JSON API under ``/api``)."""
+def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
+    """The explorer's FastAPI application (static page at ``/``, JSON API under ``/api``).
+
+    Parameters
+    ----------
+    port : int, optional
+        The port the server is bound to: only ``Host`` values 127.0.0.1, localhost and [::1]
+        with this port are answered. None accepts those names with any port (tests, or a server
+        whose port is not known in advance).
+    check_host : bool
+        False only for a server that the user chose to open to other machines
+        (``spectrocolor app --allow-remote``); foreign Origins are refused in any case.
+    """
     app = FastAPI(title="spectrocolor explorer", docs_url=None, redoc_url=None, openapi_url=None)
     static = Path(str(resources.files("spectrocolor.app") / "static"))
+    parsers = threading.BoundedSemaphore(MAX_PARSERS)
+    # added last = outermost: Host/Origin first, then the body count, then FastAPI
+    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
+    app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
 
-    @app.middleware("http")
-    async def _limit_body(request: Request, call_next):
-        length = request.headers.get("content-length")
-        if length is not None and (not length.isdigit() or int(length) > MAX_BODY_BYTES):
-            return JSONResponse({"error": f"request body larger than {MAX_BODY_BYTES} bytes"},
-                                status_code=413)
-        return await call_next(request)
+    @app.exception_handler(HTTPException)
+    async def _http(_request, exc: HTTPException):
+        message = exc.detail if isinstance(exc.detail, str) else str(exc.status_code)
+        return JSONResponse({"error": message}, status_code=exc.status_code, headers=exc.headers)
+
+    @app.exception_handler(Exception)
+    async def _unexpected(_request, exc: Exception):  # a bug: still the page's error shape
+        return JSONResponse({"error": f"internal error ({exc.__class__.__name__})"},
+                            status_code=500)
 
     @app.exception_handler(RequestValidationError)
     async def _invalid(_request, exc: RequestValidationError):
@@ -184,6 +226,9 @@ def create_app() -> FastAPI:
             "displays": list(compute.DISPLAYS),
             "gamuts": list(compute.GAMUTS),
             "normalisations": list(compute.NORMALISATIONS),
+            "adaptations": compute.ADAPTATIONS,
+            "defaults": {"gamut": compute.DEFAULT_GAMUT, "normalise": compute.DEFAULT_NORMALISE,
+                         "adaptation": compute.DEFAULT_ADAPTATION},
             "full_level": compute.FULL_LEVEL,
         }
 
@@ -196,35 +241,51 @@ def create_app() -> FastAPI:
         return compute.presets(float(step_nm))
 
     @app.post("/api/model")
-    def model(req: ModelRequest):
-        return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant)
+    def model(req: DisplayRequest):
+        return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
+                             req.normalise, req.adaptation)
 
     @app.post("/api/evaluate")
     def evaluate(req: EvaluateRequest):
         return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
-                                req.gamut, req.spectra, req.illuminant, req.pairs)
+                                req.gamut, req.spectra, req.illuminant, req.pairs,
+                                req.adaptation)
 
     @app.post("/api/metamer")
     def metamer(req: MetamerRequest):
         return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
 
     @app.post("/api/import")
-    def import_(req: ImportRequest):
+    def import_(req: ImportRequest):  # a plain def: FastAPI runs it in its thread pool
         suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
-        with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
-            path = Path(folder) / f"upload{suffix}"
-            path.write_text(req.content, encoding="utf-8")
-            try:
-                return compute.import_spectra(path, float(req.step_nm), req.method, req.scale,
-                                              max_spectra=MAX_SPECTRA)
-            except SpectrumError as exc:
-                raise SpectrumError(str(exc).replace(str(path), req.filename)) from None
+        if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
+            raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
+        if not parsers.acquire(timeout=PARSER_WAIT_S):
+            return JSONResponse({"error": "the server is busy reading other files; try again"},
+                                status_code=429)
+        try:
+            with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
+                path = Path(folder) / f"upload{suffix}"
+                path.write_text(req.content, encoding="utf-8")
+                try:
+                    return compute.import_spectra(path, float(req.step_nm), req.method,
+                                                  req.scale, max_spectra=MAX_SPECTRA)
+                except (ValueError, csv.Error, RecursionError, UnicodeError) as exc:
+                    # SpectrumError, and what a reader lets through on a hostile file (a cell
+                    # over the csv module's field limit, ...): the file's fault, never a 500
+                    message = str(exc).replace(str(path), req.filename).splitlines()[0][:300]
+                    if not isinstance(exc, SpectrumError):
+                        message = f"{req.filename}: cannot be read ({message})"
+                    raise SpectrumError(message) from None
+        finally:
+            parsers.release()
 
     @app.post("/api/export")
     def export(req: ExportRequest):
         with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
             path = Path(folder) / f"spectra.{req.format}"
-            compute.export_spectra(float(req.step_nm), req.names, req.spectra, path)
+            names = [neutralise_cell(n) for n in req.names] if req.format == "csv" else req.names
+            compute.export_spectra(float(req.step_nm), names, req.spectra, path)
             body = path.read_bytes()
         media = "text/csv" if req.format == "csv" else "application/json"
         return Response(body, media_type=media, headers={

@@ -1,7 +1,14 @@
-"""``spectrocolor app``: serve the SPECTRA explorer on this machine and open it in a browser."""
+"""``spectrocolor app``: serve the SPECTRA explorer on this machine and open it in a browser.
+
+The server listens on the loopback address (127.0.0.1) and answers only requests addressed to
+it by a loopback name (127.0.0.1, localhost, [::1]) and its port. Any other ``--host`` opens it
+to the network; that needs ``--allow-remote`` and prints a warning, since the explorer has no
+accounts and no encryption.
+"""
 
 from __future__ import annotations
 
+import ipaddress
 import os
 import socket
 import sys
@@ -18,7 +25,11 @@ def register(subparsers) -> None:
     p.add_argument("--port", type=int, default=8765,
                    help="TCP port (default 8765; 0 picks a free one)")
     p.add_argument("--host", default="127.0.0.1",
-                   help="address to bind (default 127.0.0.1: only this machine can connect)")
+                   help="address to bind (default 127.0.0.1: only this machine can connect); "
+                   "a non-loopback address needs --allow-remote")
+    p.add_argument("--allow-remote", action="store_true",
+                   help="allow a --host that other machines can reach (no accounts, no TLS: "
+                   "anyone who can reach the port can use the explorer)")
     p.add_argument("--no-browser", action="store_true", help="print the URL, open nothing")
     p.set_defaults(handler=run)
 
@@ -27,6 +38,22 @@ def _has_display() -> bool:
     if sys.platform in ("darwin", "win32"):
         return True
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def is_loopback(host: str) -> bool:
+    """Whether ``host`` (a name or an address, IPv6 with or without brackets) is loopback only.
+
+    Examples
+    --------
+    >>> [is_loopback(h) for h in ("127.0.0.1", "localhost", "::1", "[::1]", "0.0.0.0", "")]
+    [True, True, True, True, False, False]
+    """
+    if host.lower() == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host.strip("[]")).is_loopback
+    except ValueError:
+        return False
 
 
 def _bind(host: str, port: int) -> socket.socket:
@@ -52,7 +79,14 @@ def run(args) -> int:
         raise UserError(
             f"the explorer needs the 'app' extra ({exc.name} is missing): "
             "pip install 'spectrocolor[app]'") from None
-    sock = _bind(args.host, args.port)
+    remote = not is_loopback(args.host)
+    if remote and not args.allow_remote:
+        raise UserError(f"--host {args.host!r} is not a loopback address: other machines could "
+                        "use the explorer; add --allow-remote if that is what you want")
+    if remote:
+        print(f"warning: serving on {args.host}: anyone who can reach this port can use the "
+              "explorer (no accounts, no encryption)", file=sys.stderr, flush=True)
+    sock = _bind(args.host.strip("[]"), args.port)
     host, port = sock.getsockname()[:2]
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{port}/"
@@ -61,7 +95,8 @@ def run(args) -> int:
         import webbrowser
 
         webbrowser.open(url)
-    config = uvicorn.Config(create_app(), log_level="warning")
+    app = create_app(port=port, check_host=not remote)
+    config = uvicorn.Config(app, log_level="warning")
     server = uvicorn.Server(config)
     try:
         server.run(sockets=[sock])

@@ -1,0 +1,283 @@
+"""Hostile HTTP against the real server, started as a user starts it (``spectrocolor app``).
+
+Every answer must be a 2xx or a 4xx with the page's one error shape ``{"error": "..."}``; never
+a 5xx, never a body larger than the limit parsed, never a foreign Host or Origin answered.
+Raw sockets are used where an HTTP library would correct the request (chunked bodies, Host).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import select
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+
+pytest.importorskip("fastapi")
+pytest.importorskip("uvicorn")
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from spectrocolor.app.server import MAX_BODY_BYTES, MAX_JSON_DEPTH  # noqa: E402
+
+ROUTES = [("GET", "/"), ("GET", "/api/options"), ("GET", "/api/presets"),
+          ("POST", "/api/model"), ("POST", "/api/evaluate"), ("POST", "/api/metamer"),
+          ("POST", "/api/import"), ("POST", "/api/export")]
+
+
+@pytest.fixture(scope="module")
+def server():
+    """``spectrocolor app --port 0 --no-browser`` in a subprocess; yields (port, pid)."""
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--port", "0",
+                             "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, env=env)
+    line = proc.stdout.readline()
+    match = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+    assert match, f"no URL printed: {line!r} {proc.stderr.read() if proc.poll() else ''}"
+    port = int(match.group(1))
+    for _ in range(100):  # the socket is bound before the URL is printed; wait for uvicorn
+        try:
+            status, _, _ = request(port, "GET", "/api/options")
+            if status == 200:
+                break
+        except OSError:
+            time.sleep(0.05)
+    yield port, proc.pid
+    proc.terminate()
+    proc.wait(10)
+
+
+def _read_response(sock: socket.socket, timeout: float = 30.0) -> tuple[int, dict, bytes]:
+    sock.settimeout(timeout)
+    data = b""
+    while b"\r\n\r\n" not in data:
+        chunk = sock.recv(65536)
+        if not chunk:
+            break
+        data += chunk
+    head, _, body = data.partition(b"\r\n\r\n")
+    lines = head.decode("latin-1").split("\r\n")
+    status = int(lines[0].split()[1])
+    headers = {k.strip().lower(): v.strip() for k, _, v in (x.partition(":") for x in lines[1:])}
+    length = int(headers.get("content-length", "-1"))
+    while length >= 0 and len(body) < length:
+        chunk = sock.recv(65536)
+        if not chunk:
+            break
+        body += chunk
+    if length < 0:  # read to close
+        while chunk := sock.recv(65536):
+            body += chunk
+    return status, headers, body
+
+
+def request(port, method, path, body: bytes | None = None, headers: dict | None = None,
+            host: str | None = None) -> tuple[int, dict, bytes]:
+    """One request on a fresh connection, headers exactly as given (no Host added if given)."""
+    hdrs = {"Host": host or f"127.0.0.1:{port}", "Connection": "close", **(headers or {})}
+    if body is not None and "Transfer-Encoding" not in hdrs:
+        hdrs.setdefault("Content-Length", str(len(body)))
+        hdrs.setdefault("Content-Type", "application/json")
+    head = f"{method} {path} HTTP/1.1\r\n" + "".join(f"{k}: {v}\r\n" for k, v in hdrs.items())
+    with socket.create_connection(("127.0.0.1", port), timeout=30) as sock:
+        sock.sendall(head.encode("latin-1") + b"\r\n" + (body or b""))
+        return _read_response(sock)
+
+
+def post_json(port, path, payload, **kw):
+    return request(port, "POST", path, json.dumps(payload).encode(), **kw)
+
+
+def assert_clean(status: int, headers: dict, body: bytes) -> None:
+    """A 2xx, or a 4xx whose body is {"error": one line}; never a 5xx."""
+    assert status < 500, (status, body[:300])
+    if status >= 400:
+        assert headers.get("content-type", "").startswith("application/json"), (status, body[:200])
+        error = json.loads(body)["error"]
+        assert isinstance(error, str) and error and "\n" not in error and "Traceback" not in error
+
+
+def rss_kib(pid: int) -> int:
+    with open(f"/proc/{pid}/status") as fh:
+        return next(int(line.split()[1]) for line in fh if line.startswith("VmRSS"))
+
+
+# --- body limits ---------------------------------------------------------------------------------
+
+
+def test_chunked_body_over_the_limit_is_refused_early(server):
+    port, pid = server
+    head = (f"POST /api/evaluate HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+            "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n").encode()
+    chunk = b"[" * 65536
+    framed = f"{len(chunk):x}\r\n".encode() + chunk + b"\r\n"
+    sent = 0
+    rss_before = rss_kib(pid)
+    with socket.create_connection(("127.0.0.1", port), timeout=30) as sock:
+        sock.sendall(head)
+        answered = False
+        while sent < 50 * 2**20:  # a 50 MiB chunked body, unless the server answers first
+            if select.select([sock], [], [], 0)[0]:
+                answered = True
+                break
+            try:
+                sock.sendall(framed)
+            except (BrokenPipeError, ConnectionResetError):
+                break
+            sent += len(chunk)
+        status, headers, body = _read_response(sock)
+    assert status == 413 and "larger than" in json.loads(body)["error"]
+    # refused after the limit plus what the kernel's socket buffers held (a few MiB), not 50 MiB
+    assert answered and sent < MAX_BODY_BYTES + 16 * 2**20, sent
+    assert rss_kib(pid) - rss_before < 64 * 1024  # never the 600 MiB of a parsed 50 MiB body
+
+
+def test_chunked_body_under_the_limit_is_served(server):
+    port, _ = server
+    payload = json.dumps({"spectra": [[10.0] * 31]}).encode()
+    pieces = [payload[i:i + 7] for i in range(0, len(payload), 7)]
+    body = b"".join(f"{len(p):x}\r\n".encode() + p + b"\r\n" for p in pieces) + b"0\r\n\r\n"
+    status, headers, answer = request(port, "POST", "/api/evaluate", body,
+                                      {"Transfer-Encoding": "chunked",
+                                       "Content-Type": "application/json"})
+    assert status == 200, answer[:200]
+    assert len(json.loads(answer)["colours"]) == 1
+
+
+@pytest.mark.parametrize("length", [str(MAX_BODY_BYTES + 1), "99999999999999999999"])
+def test_content_length_over_the_limit_is_413(server, length):
+    port, _ = server
+    status, headers, body = request(port, "POST", "/api/evaluate", b"{}",
+                                    {"Content-Length": length})
+    assert status == 413
+    assert_clean(status, headers, body)
+
+
+# --- Host and Origin -----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("host", ["evil.example", "evil.example:{port}", "127.0.0.1:1",
+                                  "localhost.evil.example:{port}", "", "127.0.0.2:{port}"])
+def test_foreign_host_is_refused(server, host):
+    port, _ = server
+    status, headers, body = request(port, "GET", "/api/options", host=host.format(port=port) or " ")
+    assert status in (400, 403), status
+    if status == 403:
+        assert_clean(status, headers, body)
+        assert "Host" in json.loads(body)["error"]
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1:{port}", "localhost:{port}", "[::1]:{port}",
+                                  "LOCALHOST:{port}"])
+def test_own_names_are_answered(server, host):
+    port, _ = server
+    status, _, body = request(port, "GET", "/api/options", host=host.format(port=port))
+    assert status == 200 and "steps_nm" in json.loads(body)
+
+
+@pytest.mark.parametrize("origin", ["http://evil.example", "null", "http://127.0.0.1:1",
+                                    "https://127.0.0.1:{port}", "http://localhost:{port}"])
+def test_foreign_origin_is_refused(server, origin):
+    port, _ = server  # localhost is the same machine, but another origin than 127.0.0.1:port
+    status, headers, body = post_json(port, "/api/evaluate", {"spectra": [[10.0] * 31]},
+                                      headers={"Origin": origin.format(port=port)})
+    assert status == 403
+    assert_clean(status, headers, body)
+
+
+def test_own_origin_is_answered(server):
+    port, _ = server
+    status, _, _ = post_json(port, "/api/evaluate", {"spectra": [[10.0] * 31]},
+                             headers={"Origin": f"http://127.0.0.1:{port}"})
+    assert status == 200
+
+
+# --- bodies that broke the parsers ---------------------------------------------------------------
+
+
+@pytest.mark.parametrize("depth", [MAX_JSON_DEPTH + 1, 100_000])
+def test_deeply_nested_json_is_422(server, depth):
+    port, _ = server
+    body = b"[" * depth + b"]" * depth
+    for _, path in filter(lambda r: r[0] == "POST", ROUTES):
+        status, headers, answer = request(port, "POST", path, body)
+        assert status == 422
+        assert_clean(status, headers, answer)
+    content = "[" * depth + "]" * depth
+    status, headers, answer = post_json(port, "/api/import",
+                                        {"filename": "deep.json", "content": content})
+    assert status == 422 and "nested" in json.loads(answer)["error"]
+
+
+@pytest.mark.parametrize("cell", [200_000, 900_000])
+def test_very_long_csv_cell_is_422(server, cell):
+    port, _ = server
+    content = "wavelength_nm," + "a" * cell + "\n400,1\n700,1\n"
+    status, headers, answer = post_json(port, "/api/import",
+                                        {"filename": "long.csv", "content": content})
+    assert status == 422
+    assert_clean(status, headers, answer)
+
+
+# --- the one error shape on every route ----------------------------------------------------------
+
+
+@pytest.mark.parametrize("method,path,status", [
+    ("GET", "/nothing-here", 404), ("GET", "/static/missing.js", 404),
+    ("GET", "/static/../../etc/passwd", 404), ("GET", "/api/evaluate", 405),
+    ("DELETE", "/api/options", 405), ("POST", "/api/evaluate", 422),
+    ("GET", "/api/presets?step_nm=3", 422)])
+def test_errors_have_one_shape(server, method, path, status):
+    port, _ = server
+    got, headers, body = request(port, method, path, b"{}" if method == "POST" else None)
+    assert got == status
+    assert_clean(got, headers, body)
+
+
+def test_export_neutralises_names_a_spreadsheet_would_run(server):
+    port, _ = server
+    status, _, body = post_json(port, "/api/export", {
+        "format": "csv", "names": ["+cmd", "-2+3", "plain"], "spectra": [[1.0] * 31] * 3})
+    assert status == 200
+    header = body.decode().splitlines()[0]
+    assert "'+cmd" in header and "'-2+3" in header and ",plain" in header
+
+
+JSON_VALUES = st.recursive(
+    st.none() | st.booleans() | st.floats(allow_nan=False) | st.integers() | st.text(max_size=30),
+    lambda children: st.lists(children, max_size=40)
+    | st.dictionaries(st.sampled_from(["spectra", "step_nm", "illuminant", "target", "names",
+                                       "format", "filename", "content", "observer", "pairs",
+                                       "gamut", "normalise", "scale", "method", "x"]), children,
+                      max_size=6),
+    max_leaves=60)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(route=st.sampled_from([r for r in ROUTES if r[0] == "POST"]), payload=JSON_VALUES)
+def test_generated_json_never_gives_a_5xx(server, route, payload):
+    port, _ = server
+    assert_clean(*post_json(port, route[1], payload))
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(route=st.sampled_from(ROUTES), body=st.binary(max_size=2000))
+def test_random_bytes_never_give_a_5xx(server, route, body):
+    port, _ = server
+    assert_clean(*request(port, route[0], route[1], body if route[0] == "POST" else None))
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(filename=st.sampled_from(["x.csv", "x.json", "x.txt"]),
+       content=st.text(alphabet=st.sampled_from(list("0123456789.,;-+eE\n\"[]{}:nNaI wavelngth_m#")),
+                       min_size=1, max_size=3000))
+def test_generated_uploads_never_give_a_5xx(server, filename, content):
+    port, _ = server
+    assert_clean(*post_json(port, "/api/import", {"filename": filename, "content": content}))
