@@ -1,0 +1,172 @@
+"""CIE S 026 α-opic quantities: irradiances, efficacies, equivalent daylight illuminances, DER.
+
+For each of the five photoreceptor types α (S-cone-opic, M-cone-opic, L-cone-opic, rhodopic,
+melanopic), with the action spectra s_α(λ) of CIE S 026 Table 2 (peak 1):
+
+* α-opic irradiance E_α = Σ E(λ) s_α(λ) Δλ, W/m², from a spectral irradiance in
+  W·m⁻²·nm⁻¹ (any other radiometric quantity gives the matching α-opic quantity);
+* α-opic efficacy of luminous radiation (ELR) K_α,v = E_α / E_v, W/lm, with E_v the
+  illuminance (:func:`~spectrocolor.lighting.photometry.luminous_quantity`);
+* α-opic equivalent daylight (D65) illuminance (EDI) E_v,α^D65 = E_α / K_α,v^D65, lx: the
+  illuminance of D65 that gives the same α-opic irradiance (melanopic EDI is the quantity
+  recommended for reporting light exposure);
+* α-opic daylight (D65) efficacy ratio (DER) γ_α,v^D65 = K_α,v / K_α,v^D65 (scale-free).
+
+The D65 efficacies K_α,v^D65 are computed here from the same tables (D65 interpolated linearly
+to 1 nm); they reproduce the values CIE S 026 publishes (0.8173, 1.4558, 1.6289, 1.4497,
+1.3262 mW/lm) to the digits printed, which the tests check.
+
+The action spectra are tabulated at 1 nm from 380 to 780 nm (blank cells of the table are 0),
+interpolated linearly at the spectrum's samples and zero outside (as V'(λ) in
+:mod:`~spectrocolor.lighting.photometry`).
+
+References
+----------
+CIE S 026/E:2018 *CIE system for metrology of optical radiation for ipRGC-influenced responses
+to light*, §3, Table 2 (action spectra), and its D65 efficacies. DOI 10.25039/S026.2018.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache, lru_cache
+
+import numpy as np
+
+from ..data_tables import load_table
+from ..illuminants import illuminant
+from ..sampling import interval_weights_nm
+from ..spectrum import wavelength_grid
+from .photometry import luminous_quantity, spectral_values, weighting_on
+
+#: The five α-opic quantities, in the order of every (..., 5) array here.
+ALPHA_OPIC = ("s-cone-opic", "m-cone-opic", "l-cone-opic", "rhodopic", "melanopic")
+_COLUMNS = ("s_sc", "s_mc", "s_lc", "s_rh", "s_mel")
+
+
+@dataclass(frozen=True)
+class AlphaOpic:
+    """α-opic quantities of spectra; arrays ``(..., 5)`` in the order of :data:`ALPHA_OPIC`.
+
+    Attributes
+    ----------
+    irradiance_W_m2 : ndarray
+        α-opic irradiances E_α (W/m² for a spectral irradiance in W·m⁻²·nm⁻¹).
+    efficacy_W_lm : ndarray
+        α-opic efficacies of luminous radiation K_α,v = E_α / E_v (W/lm).
+    edi_lx : ndarray
+        α-opic equivalent daylight (D65) illuminances (lx).
+    der : ndarray
+        α-opic daylight (D65) efficacy ratios (1 for D65).
+    illuminance_lx : ndarray
+        Photopic illuminance E_v (lx), shape ``(...)``.
+    """
+
+    irradiance_W_m2: np.ndarray
+    efficacy_W_lm: np.ndarray
+    edi_lx: np.ndarray
+    der: np.ndarray
+    illuminance_lx: np.ndarray
+
+    @property
+    def melanopic_edi_lx(self) -> np.ndarray:
+        """Melanopic equivalent daylight (D65) illuminance, lx."""
+        return self.edi_lx[..., 4]
+
+    @property
+    def melanopic_der(self) -> np.ndarray:
+        """Melanopic daylight (D65) efficacy ratio."""
+        return self.der[..., 4]
+
+
+@cache
+def _action_table() -> tuple[np.ndarray, np.ndarray]:
+    header, table = load_table("lighting/cie_s026_alpha_opic.csv")
+    return table[:, 0], table[:, [header.index(c) for c in _COLUMNS]]
+
+
+def action_spectra(wavelengths_nm) -> np.ndarray:
+    """CIE S 026 action spectra s_α at ``wavelengths_nm``, shape (K, 5); 0 outside 380–780 nm.
+
+    Examples
+    --------
+    >>> float(action_spectra([490.0])[0, 4])  # melanopic peak
+    1.0
+    """
+    grid, table = _action_table()
+    return np.stack([weighting_on(wavelengths_nm, grid, column) for column in table.T], axis=-1)
+
+
+@lru_cache(maxsize=32)
+def _weights(grid_key: bytes) -> np.ndarray:
+    grid = np.frombuffer(grid_key, dtype=float)
+    result = action_spectra(grid) * interval_weights_nm(grid)[:, None]
+    result.setflags(write=False)
+    return result
+
+
+def alpha_opic_irradiance(spd) -> np.ndarray:
+    """α-opic irradiances ``(..., 5)``, W/m², of spectral irradiances (W·m⁻²·nm⁻¹).
+
+    Examples
+    --------
+    >>> from spectrocolor import Spectrum
+    >>> flat = Spectrum.constant(0.01, wavelength_grid(380, 780, 1))
+    >>> round(float(alpha_opic_irradiance(flat)[4]), 4)  # 0.01 × Σ s_mel Δλ
+    0.8768
+    """
+    values = spectral_values(spd)
+    return values @ _weights(np.ascontiguousarray(spd.wavelengths_nm).tobytes())
+
+
+@cache
+def d65_efficacies_W_per_lm() -> np.ndarray:
+    """α-opic efficacies of luminous radiation of D65, K_α,v^D65 (W/lm), shape (5,).
+
+    Examples
+    --------
+    >>> (d65_efficacies_W_per_lm() * 1000).round(4).tolist()  # CIE S 026, mW/lm
+    [0.8173, 1.4558, 1.6289, 1.4497, 1.3262]
+    """
+    d65 = illuminant("D65", wavelength_grid(380, 780, 1))
+    result = alpha_opic_irradiance(d65) / luminous_quantity(d65)
+    result.setflags(write=False)
+    return result
+
+
+def alpha_opic(spd) -> AlphaOpic:
+    """All CIE S 026 α-opic quantities of spectral irradiances ``(..., K)`` in W·m⁻²·nm⁻¹.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral irradiance, W·m⁻²·nm⁻¹ (relative spectra give relative irradiances and EDIs,
+        and correct efficacies and DERs).
+
+    Returns
+    -------
+    AlphaOpic
+
+    References
+    ----------
+    CIE S 026/E:2018, §3.
+
+    Examples
+    --------
+    >>> from spectrocolor import illuminant
+    >>> result = alpha_opic(illuminant("A", wavelength_grid(380, 780, 5)))
+    >>> round(float(result.melanopic_der), 3)  # illuminant A: half as melanopic per lux as D65
+    0.496
+    """
+    irradiance = alpha_opic_irradiance(spd)
+    illuminance = luminous_quantity(spd)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        efficacy = irradiance / illuminance[..., None]
+    reference = d65_efficacies_W_per_lm()
+    return AlphaOpic(
+        irradiance_W_m2=irradiance,
+        efficacy_W_lm=efficacy,
+        edi_lx=irradiance / reference,
+        der=efficacy / reference,
+        illuminance_lx=illuminance,
+    )

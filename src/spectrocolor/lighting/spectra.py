@@ -1,0 +1,121 @@
+"""Light spectra for the lighting metrics: checked grids, and the sample reflectances on them.
+
+Every metric of :mod:`spectrocolor.lighting` takes a :class:`~spectrocolor.Spectrum` of
+spectral power distributions ``(..., K)`` (any scale: W·nm⁻¹, W·m⁻²·nm⁻¹ or relative) and
+sums at the spectrum's own samples. This module checks the grid once, in one place, and gives
+the sample reflectances (CIE 13.3 test colour samples, CIE 224 colour evaluation samples) on it.
+
+References
+----------
+CIE 13.3-1995 *Method of measuring and specifying colour rendering properties of light
+sources* (test colour samples TCS01–TCS14, 5 nm). CIE 224:2017 *CIE 2017 colour fidelity
+index for accurate scientific use* (99 colour evaluation samples, 1 nm, 380–780 nm).
+CIE 167:2005 (Sprague interpolation of uniformly spaced data).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ..data_tables import load_table
+from ..errors import SpectrumError
+from ..interpolation import interpolation_matrix
+from ..spectrum import Spectrum
+
+#: Sampling intervals (nm) the metrics accept: those of CIE 224:2017 §3 and of measured data.
+INTERVALS_NM = (1.0, 5.0)
+
+
+def light_grid(spd, start_nm: float, stop_nm: float, argument: str = "spd") -> tuple[np.ndarray, np.ndarray]:
+    """Grid and values ``(N, K)`` of the samples of ``spd`` in ``[start_nm, stop_nm]``.
+
+    ``spd`` must be a :class:`Spectrum` with a uniform 1 or 5 nm grid containing ``start_nm``
+    and ``stop_nm`` (so no interpolation or extrapolation happens), with finite values.
+    The values are flattened to ``(N, K)``; the caller restores ``spd.batch_shape``.
+
+    Examples
+    --------
+    >>> from spectrocolor import Spectrum, wavelength_grid
+    >>> grid, values = light_grid(Spectrum.constant(1.0, wavelength_grid(360, 830, 5)), 380, 780)
+    >>> grid[[0, -1]].tolist(), values.shape
+    ([380.0, 780.0], (1, 81))
+    """
+    if not isinstance(spd, Spectrum):
+        raise SpectrumError(
+            f"{argument}: expected a spectrocolor.Spectrum of spectral power distributions, got "
+            f"{type(spd).__name__}; wrap arrays as Spectrum(wavelengths_nm, values)"
+        )
+    step = spd.interval_nm
+    grid = spd.wavelengths_nm
+    if step is None or not any(np.isclose(step, s, rtol=0, atol=1e-9) for s in INTERVALS_NM):
+        raise SpectrumError(
+            f"{argument}: needs a uniform 1 nm or 5 nm grid, got "
+            f"{'an irregular grid' if step is None else f'{step:g} nm steps'}; resample it, e.g. "
+            f"spd.resample(wavelength_grid({start_nm:g}, {stop_nm:g}, 1), 'sprague')"
+        )
+    inside = (grid >= start_nm - 1e-9) & (grid <= stop_nm + 1e-9)
+    if grid[0] > start_nm + 1e-9 or grid[-1] < stop_nm - 1e-9 or not np.isclose(grid[inside][0], start_nm):
+        raise SpectrumError(
+            f"{argument}: must have samples from {start_nm:g} to {stop_nm:g} nm, got "
+            f"{grid[0]:g}–{grid[-1]:g} nm; the metrics never extrapolate"
+        )
+    values = np.asarray(spd.values, dtype=np.float64)[..., inside]
+    if not np.all(np.isfinite(values)):
+        raise SpectrumError(f"{argument}: values must be finite (no NaN or infinity)")
+    return grid[inside].copy(), values.reshape(-1, values.shape[-1])
+
+
+@lru_cache(maxsize=16)
+def _tcs_on(grid_key: bytes) -> np.ndarray:
+    grid = np.frombuffer(grid_key, dtype=float)
+    header, table = load_table("reflectances_cie_tcs.csv")
+    result = table[:, 1:].T @ interpolation_matrix(table[:, 0], grid, "sprague").T
+    result.setflags(write=False)
+    return result
+
+
+def tcs_reflectances(wavelengths_nm) -> np.ndarray:
+    """CIE 13.3 test colour samples TCS01–TCS14 at ``wavelengths_nm``, shape (14, K), 0–1.
+
+    The 5 nm table is used as published at multiples of 5 nm and Sprague-interpolated
+    (CIE 167) in between; ``wavelengths_nm`` must lie within 360–830 nm.
+
+    Examples
+    --------
+    >>> tcs_reflectances([450.0, 451.0]).shape
+    (14, 2)
+    """
+    grid = np.ascontiguousarray(wavelengths_nm, dtype=float)
+    return _tcs_on(grid.tobytes())
+
+
+@lru_cache(maxsize=16)
+def _ces_on(grid_key: bytes) -> np.ndarray:
+    grid = np.frombuffer(grid_key, dtype=float)
+    header, table = load_table("lighting/ces_cie224_1nm.csv")
+    rows = np.rint(grid - table[0, 0]).astype(int)
+    if np.any(rows < 0) or np.any(rows >= len(table)) or not np.allclose(table[rows, 0], grid):
+        raise SpectrumError(
+            f"wavelengths_nm: the colour evaluation samples are tabulated at whole nanometres "
+            f"380–780 nm, got {grid[0]:g}–{grid[-1]:g} nm"
+        )
+    result = np.ascontiguousarray(table[rows, 1:].T)
+    result.setflags(write=False)
+    return result
+
+
+def ces_reflectances(wavelengths_nm) -> np.ndarray:
+    """The 99 CIE 224:2017 / TM-30 colour evaluation samples at ``wavelengths_nm``, shape (99, K).
+
+    Tabulated at 1 nm (380–780 nm); a 5 nm grid takes every fifth row, as the standard's
+    5 nm table does.
+
+    Examples
+    --------
+    >>> ces_reflectances([380.0, 385.0]).shape
+    (99, 2)
+    """
+    grid = np.ascontiguousarray(wavelengths_nm, dtype=float)
+    return _ces_on(grid.tobytes())
