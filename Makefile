@@ -1,28 +1,54 @@
 # spectrocolor: two commands from a fresh clone.
-#   make run   starts the SPECTRA explorer (the main job)
-#   make test  builds its own virtual environment and runs every test
+#   make run          starts the SPECTRA explorer (the main job)
+#   make test         builds its own virtual environment from the committed lock and runs every test
+# More:
+#   make docs         builds the API reference and guides offline (warnings are errors)
+#   make lock         regenerates constraints.txt from the newest versions the registry serves
+#   make test-latest  runs every test against the newest versions, in .venv-latest
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+EXTRAS := all,test,docs
 
-.PHONY: run test lint bench clean
+.PHONY: run test lint docs lock test-latest bench clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -e ".[all,test]"
+	$(BIN)/pip install --quiet -c constraints.txt -e ".[$(EXTRAS)]"
 	touch $(STAMP)
 
 run: $(STAMP)
 	$(BIN)/spectrocolor app
 
 test: $(STAMP)
-	$(BIN)/ruff check src tests bench
+	$(BIN)/ruff check src tests bench docs
 	$(BIN)/python -m pytest -q --doctest-modules src tests
+	$(MAKE) --no-print-directory docs
+
+docs: $(STAMP)
+	$(BIN)/sphinx-build -q -W --keep-going -b html docs/api docs/api/_build/html
+	@echo "API reference and guides: docs/api/_build/html/index.html"
+
+lock:
+	rm -rf .venv-lock
+	$(PYTHON) -m venv .venv-lock
+	.venv-lock/bin/pip install --quiet --upgrade pip
+	.venv-lock/bin/pip install --quiet -e ".[$(EXTRAS)]"
+	( echo "# Exact versions that 'make test' installs (pip constraints). Regenerate with 'make lock'."; \
+	  .venv-lock/bin/pip freeze --exclude-editable | LC_ALL=C sort ) > constraints.txt
+	rm -rf .venv-lock
+
+test-latest:
+	rm -rf .venv-latest
+	$(PYTHON) -m venv .venv-latest
+	.venv-latest/bin/pip install --quiet --upgrade pip
+	.venv-latest/bin/pip install --quiet --upgrade -e ".[$(EXTRAS)]"
+	.venv-latest/bin/python -m pytest -q --doctest-modules src tests
 
 bench: $(STAMP)
 	for f in bench/bench_*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
 
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis artifacts
+	rm -rf $(VENV) .venv-latest .venv-lock .pytest_cache .hypothesis artifacts docs/api/_build docs/api/reference docs/api/guides
