@@ -148,7 +148,7 @@ def cam02ucs_jab(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
     Examples
     --------
     >>> cam02ucs_jab([19.31, 23.93, 10.14], [98.88, 90.0, 32.03], 200.0, 18.0).round(3).tolist()
-    [60.277, -26.981, -5.192]
+    [61.122, -27.426, -5.769]
     """
     _check_conditions(surround, L_A, Y_b)
     XYZ = colour_array(XYZ100, "XYZ100", 3, "tristimulus values")

@@ -29,6 +29,7 @@ import numpy as np
 
 from ..coordinates import uv_1960
 from ..sampling import cmfs_on
+from ..spectrum import Spectrum
 from ..temperature import cct
 from .reference import cri_reference
 from .spectra import light_grid, tcs_reflectances
@@ -84,7 +85,7 @@ def _sample_XYZ100(S: np.ndarray, products: np.ndarray, V_delta: np.ndarray) -> 
     XYZ = S @ products.transpose(1, 0, 2).reshape(products.shape[1], -1)
     with np.errstate(divide="ignore", invalid="ignore"):
         k = 100.0 / (S @ V_delta)
-    return XYZ.reshape(len(S), count, 3) * k[:, None, None]
+        return XYZ.reshape(len(S), count, 3) * k[:, None, None]
 
 
 def colour_rendering_index(spd) -> CRI:
@@ -112,8 +113,9 @@ def colour_rendering_index(spd) -> CRI:
     >>> round(float(result.Ra))  # CIE 015:2018 Table 10 lists Ra = 64 for FL2
     64
     """
-    first = max(360.0, float(getattr(spd, "wavelengths_nm", [380.0])[0]))
-    grid, S = light_grid(spd, min(first, 380.0), 780.0)
+    # from 360 nm, or from the spectrum's first sample if that lies between 360 and 380 nm
+    start = min(max(360.0, float(spd.wavelengths_nm[0])), 380.0) if isinstance(spd, Spectrum) else 380.0
+    grid, S = light_grid(spd, start, 780.0)
     cmfs = cmfs_on(grid, "1931")
     delta = grid[1] - grid[0]
     W = cmfs * delta
