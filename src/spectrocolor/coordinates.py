@@ -45,10 +45,13 @@ def colour_array(values, name: str, size: int, what: str) -> np.ndarray:
     ``what`` says what the ``size`` components are (e.g. "tristimulus values X, Y, Z").
     """
     try:
-        array = np.asarray(values, dtype=np.float64)
+        array = np.asarray(values)
+        if array.dtype.kind not in "biuf":  # complex parts are never dropped silently
+            raise TypeError(f"dtype {array.dtype}")
+        array = array.astype(np.float64, copy=False)
     except (TypeError, ValueError) as exc:
         raise ColorimetryError(
-            f"{name} must be numeric {what} with shape (..., {size}); got {values!r:.80}"
+            f"{name} must be real numeric {what} with shape (..., {size}); got {values!r:.80}"
         ) from exc
     if array.ndim == 0 or array.shape[-1] != size:
         raise ColorimetryError(
@@ -236,9 +239,9 @@ def xy_from_uv_1976(uv) -> np.ndarray:
 
 def _white(white_XYZ, name: str) -> np.ndarray:
     white = colour_array(white_XYZ, name, 3, "the white's tristimulus values Xn, Yn, Zn")
-    if not np.all(white > 0):
+    if not np.all((white > 0) & np.isfinite(white)):
         raise ColorimetryError(
-            f"{name} must be positive tristimulus values of the reference white (e.g. "
+            f"{name} must be positive, finite tristimulus values of the reference white (e.g. "
             f"sc.white_point('D65')); got {white_XYZ!r:.80}"
         )
     return white
@@ -319,3 +322,32 @@ def lch(lab) -> np.ndarray:
     hue = np.degrees(np.arctan2(b, a)) % 360.0
     hue = np.where(hue >= 360.0, 0.0, hue)  # a tiny negative angle rounds up to 360.0
     return np.stack([lab[..., 0], np.hypot(a, b), hue], axis=-1)
+
+
+def lab_from_lch(lch) -> np.ndarray:
+    """CIELAB from CIELCh: the inverse of :func:`lch`.
+
+    Parameters
+    ----------
+    lch : array_like, shape (..., 3)
+        (L*, C*ab, h_ab) with the hue angle in degrees (any real angle; 360 wraps).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        (L*, a*, b*) with a* = C*ab cos h_ab and b* = C*ab sin h_ab.
+
+    References
+    ----------
+    CIE 015:2018, section 8.2.2.
+
+    Examples
+    --------
+    >>> lab_from_lch([50.0, 10.0, 90.0]).round(12).tolist()
+    [50.0, 0.0, 10.0]
+    """
+    lch = colour_array(lch, "lch", 3, "CIELCh L*, C*ab, h_ab (degrees)")
+    if np.any(lch[..., 1] < 0):
+        raise ColorimetryError("lch: chroma C*ab must be >= 0")
+    hue = np.radians(lch[..., 2])
+    return np.stack([lch[..., 0], lch[..., 1] * np.cos(hue), lch[..., 1] * np.sin(hue)], axis=-1)

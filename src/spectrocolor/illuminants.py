@@ -197,8 +197,24 @@ def blackbody(
     if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
         raise ColorimetryError(f"temperature_K: expected a positive temperature in kelvin, got {temperature_K!r}")
     grid = _grid_or_default(wavelengths_nm, (360.0, 830.0, 1.0))
-    values = 100.0 * planck(grid, temperature_K, c2_m_K) / planck(np.array(normalise_at_nm), temperature_K, c2_m_K)
+    # the ratio in logarithms: at a few tens of kelvin both radiances underflow to 0 (0/0 = NaN)
+    log_ratio = _log_planck(grid, temperature_K, c2_m_K) - _log_planck(
+        np.array(normalise_at_nm, dtype=float), temperature_K, c2_m_K)
+    with np.errstate(over="ignore"):
+        values = 100.0 * np.exp(log_ratio)
+    if not np.all(np.isfinite(values)):
+        raise ColorimetryError(
+            f"temperature_K: a blackbody at {temperature_K:g} K relative to {normalise_at_nm:g} nm "
+            "exceeds the floating-point range on this grid; use a higher temperature or "
+            "normalise at a longer wavelength")
     return Spectrum(grid, values, ("blackbody",))
+
+
+def _log_planck(wavelengths_nm, temperature_K, c2_m_K: float) -> np.ndarray:
+    """Natural logarithm of :func:`planck`, finite where the radiance itself under/overflows."""
+    wavelength_m = np.asarray(wavelengths_nm, dtype=float) * 1e-9
+    x = c2_m_K / (wavelength_m * temperature_K)
+    return -5.0 * np.log(wavelength_m) - (x + np.log(-np.expm1(-x)))  # log(e^x - 1), stable
 
 
 def _illuminant_A(grid: np.ndarray) -> np.ndarray:

@@ -23,6 +23,13 @@ from .errors import SpectrumError
 
 METHODS = ("linear", "sprague", "cubic")
 
+#: Most entries of a dense resampling matrix built (2**25 float64 = 256 MiB). Linear resampling
+#: of data (:func:`resample_linear`, used by ``Spectrum.resample`` and the colorimetric weights)
+#: never builds one, so any grid a spectrum can have is resampled linearly; the Sprague and
+#: cubic matrices are dense and beyond this size raise a SpectrumError instead of exhausting
+#: the memory.
+MAX_MATRIX_ENTRIES = 2**25
+
 # Sprague's fifth-degree polynomial, coefficients of (y[-2], ..., y[3]) for a0..a5, divided by 24.
 _SPRAGUE_A = (
     np.array(
@@ -109,6 +116,37 @@ def _cubic_matrix(source_nm: np.ndarray, target_nm: np.ndarray) -> np.ndarray:
     return spline(target_nm)
 
 
+def resample_linear(source_nm, values, target_nm) -> np.ndarray:
+    """``values`` (..., K) on ``source_nm`` linearly interpolated at ``target_nm``: (..., M).
+
+    The same numbers as ``values @ interpolation_matrix(source_nm, target_nm).T``, computed from
+    the two neighbours of each target sample (memory of the result only, never M x K), so a
+    NaN affects only the targets next to it. Keeps a floating ``values`` dtype.
+
+    Examples
+    --------
+    >>> resample_linear([400.0, 500.0, 600.0], [[0.0, 1.0, 3.0]], [400.0, 450.0, 575.0])
+    array([[0. , 0.5, 2.5]])
+    """
+    source_nm = np.asarray(source_nm, dtype=float)
+    target_nm = np.asarray(target_nm, dtype=float)
+    values = np.asarray(values)
+    if not np.issubdtype(values.dtype, np.floating):
+        values = values.astype(float)
+    _check_inside(source_nm, target_nm)
+    K = source_nm.size
+    if K == 1:
+        return np.repeat(values[..., :1], target_nm.size, axis=-1)
+    index = np.clip(np.searchsorted(source_nm, target_nm, side="right") - 1, 0, K - 2)
+    left, right = source_nm[index], source_nm[index + 1]
+    t = np.clip((target_nm - left) / (right - left), 0.0, 1.0).astype(values.dtype)
+    result = values[..., index] * (1 - t) + values[..., index + 1] * t
+    hit = np.clip(np.searchsorted(source_nm, target_nm), 0, K - 1)
+    same = np.isclose(source_nm[hit], target_nm, rtol=0, atol=1e-9)
+    result[..., same] = values[..., hit[same]]  # exact at coinciding samples
+    return result
+
+
 def interpolation_matrix(source_nm: np.ndarray, target_nm: np.ndarray, method: str = "linear") -> np.ndarray:
     """Matrix ``P`` (M, K) with ``values_on_target = values_on_source @ P.T``.
 
@@ -127,6 +165,13 @@ def interpolation_matrix(source_nm: np.ndarray, target_nm: np.ndarray, method: s
     if method not in METHODS:
         raise SpectrumError(f"method: {method!r} is not a resampling method; choose one of {METHODS}")
     _check_inside(source_nm, target_nm)
+    entries = max(target_nm.size, source_nm.size + 4) * source_nm.size
+    if entries > MAX_MATRIX_ENTRIES:
+        raise SpectrumError(
+            f"wavelengths_nm: resampling {source_nm.size} samples to {target_nm.size} with "
+            f"method={method!r} needs a dense matrix of {entries * 8 / 2**30:.3g} GiB (at most "
+            f"{MAX_MATRIX_ENTRIES * 8 / 2**20:.0f} MiB are built); use method='linear' or "
+            "coarser grids")
     if method == "linear":
         matrix = _linear_matrix(source_nm, target_nm)
     elif method == "sprague":

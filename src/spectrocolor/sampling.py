@@ -11,7 +11,7 @@ import numpy as np
 from .errors import ColorimetryError, SpectrumError
 from .illuminants import canonical_illuminant
 from .illuminants import illuminant as named_illuminant
-from .interpolation import interpolation_matrix
+from .interpolation import resample_linear
 from .observers import canonical_observer_name
 from .observers import observer as named_observer
 from .spectrum import Spectrum
@@ -46,14 +46,14 @@ def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
     """The observer's x̄, ȳ, z̄ interpolated linearly at ``grid`` (nm), shape (K, 3); never extrapolated."""
     observer_name, cmfs = resolve_observer(observer)
     try:
-        matrix = interpolation_matrix(cmfs.wavelengths_nm, grid, "linear")
+        table = resample_linear(cmfs.wavelengths_nm, cmfs.values, grid)  # (3, K), banded
     except SpectrumError:
         lo, hi = cmfs.wavelengths_nm[[0, -1]]
         raise ColorimetryError(
             f"wavelengths_nm: {grid[0]:g}–{grid[-1]:g} nm reaches outside the {observer_name} "
             f"observer's {lo:g}–{hi:g} nm; restrict the spectrum (Spectrum.restrict({lo:g}, {hi:g}))"
         ) from None
-    return matrix @ cmfs.values.T  # (K, 3)
+    return table.T  # (K, 3)
 
 
 def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:

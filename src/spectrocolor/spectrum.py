@@ -15,7 +15,7 @@ from types import MappingProxyType
 import numpy as np
 
 from .errors import SpectrumError
-from .interpolation import METHODS, interpolation_matrix
+from .interpolation import METHODS, interpolation_matrix, resample_linear
 
 ArrayLike = np.ndarray | Sequence[float] | float
 
@@ -44,8 +44,11 @@ def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarr
     31
     """
     for name, value in (("start_nm", start_nm), ("stop_nm", stop_nm), ("step_nm", step_nm)):
-        if not isinstance(value, Real) or not np.isfinite(value):
+        if not isinstance(value, Real) or isinstance(value, bool) or not np.isfinite(value):
             raise SpectrumError(f"{name}: expected a finite number of nanometres, got {value!r}")
+    # in float64: float16/float32 arithmetic would round the count and pass a step that does
+    # not divide the range (np.float16(0.1) is 0.09998 nm)
+    start_nm, stop_nm, step_nm = float(start_nm), float(stop_nm), float(step_nm)
     if step_nm <= 0:
         raise SpectrumError(f"step_nm: must be positive, got {step_nm!r}")
     if stop_nm <= start_nm:
@@ -273,8 +276,11 @@ class Spectrum:
         target = validate_wavelengths(wavelengths_nm)
         if target.shape == self._wavelengths_nm.shape and np.array_equal(target, self._wavelengths_nm):
             return self
-        matrix = interpolation_matrix(self._wavelengths_nm, target, method)
-        values = self._values @ matrix.T.astype(self._values.dtype, copy=False)
+        if method == "linear":  # banded: memory of the result only, for any grid size
+            values = resample_linear(self._wavelengths_nm, self._values, target)
+        else:
+            matrix = interpolation_matrix(self._wavelengths_nm, target, method)
+            values = self._values @ matrix.T.astype(self._values.dtype, copy=False)
         return Spectrum(target, values, self._names, self._metadata)
 
     def restrict(self, start_nm: float, stop_nm: float) -> Spectrum:

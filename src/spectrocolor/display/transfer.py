@@ -262,6 +262,14 @@ def transfer(spec) -> Transfer:
     return TRANSFERS.get(spec)
 
 
+def _check_bit_depth(bit_depth) -> None:
+    """Refuse anything but a whole number of bits 1-32 (NaN, inf, 8.5, "8", True)."""
+    ok = isinstance(bit_depth, int | float | np.integer | np.floating) and not isinstance(
+        bit_depth, bool) and np.isfinite(bit_depth) and int(bit_depth) == bit_depth
+    if not (ok and 1 <= bit_depth <= 32):
+        raise ColorimetryError(f"bit_depth must be an integer from 1 to 32, got {bit_depth!r}")
+
+
 def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
     """Encoded 0-1 values to integer codes ``round(encoded * (2**bit_depth - 1))``.
 
@@ -279,8 +287,7 @@ def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
     -------
     ndarray of int64
     """
-    if int(bit_depth) != bit_depth or not 1 <= bit_depth <= 32:
-        raise ColorimetryError(f"bit_depth must be an integer from 1 to 32, got {bit_depth!r}")
+    _check_bit_depth(bit_depth)
     v = _check_unit_range(rgb_encoded, "rgb_encoded")
     if np.any(np.isnan(v)):
         raise ColorimetryError("rgb_encoded contains NaN, which has no integer code")
@@ -289,8 +296,7 @@ def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
 
 def from_codes(codes, bit_depth: int = 8) -> np.ndarray:
     """Integer codes to encoded 0-1 values, ``codes / (2**bit_depth - 1)``."""
-    if int(bit_depth) != bit_depth or not 1 <= bit_depth <= 32:
-        raise ColorimetryError(f"bit_depth must be an integer from 1 to 32, got {bit_depth!r}")
+    _check_bit_depth(bit_depth)
     codes = np.asarray(codes)
     top = 2 ** int(bit_depth) - 1
     if np.any(codes < 0) or np.any(codes > top):
