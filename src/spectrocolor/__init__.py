@@ -49,6 +49,7 @@ _PUBLIC: dict[str, str] = {
     "lab": "coordinates",
     "XYZ_from_lab": "coordinates",
     "lch": "coordinates",
+    "lab_from_lch": "coordinates",
     "delta_e_76": "differences",
     "delta_e_2000": "differences",
     # chromaticity
