@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..registry import Registry
 from .table import GREY, UpsamplingTable
 
 __all__ = ["OUT_OF_RANGE_STRATEGIES", "Lookup", "Upsampled", "lookup", "upsample",
@@ -48,19 +49,21 @@ def _toward_grey(t: np.ndarray) -> np.ndarray:
 #: Strategies for queries the table cannot reproduce exactly (outside the cube ``[0, 1]^3``, or
 #: in a tetrahedron with a moved node). Each maps points outside the cube into it; ``"nan"``
 #: additionally returns NaN spectra for every inexact query.
-OUT_OF_RANGE_STRATEGIES = {
-    "toward-grey": _toward_grey,
-    "clip": lambda t: np.clip(t, 0.0, 1.0),
-    "nan": lambda t: np.clip(t, 0.0, 1.0),
-}
+OUT_OF_RANGE_STRATEGIES = Registry("out_of_range", "an out-of-range strategy")
+OUT_OF_RANGE_STRATEGIES.add(
+    "toward-grey", _toward_grey,
+    "move the colour along the segment to grey (0.5, 0.5, 0.5) onto the cube's surface; blend "
+    "moved nodes where the table has them")
+OUT_OF_RANGE_STRATEGIES.add(
+    "clip", lambda t: np.clip(t, 0.0, 1.0),
+    "clip each channel to [0, 1]; blend moved nodes where the table has them")
+OUT_OF_RANGE_STRATEGIES.add(
+    "nan", lambda t: np.clip(t, 0.0, 1.0),
+    "NaN spectra for every colour that is not reproduced exactly")
 
 
-def _strategy(name: str):
-    if not isinstance(name, str) or name not in OUT_OF_RANGE_STRATEGIES:
-        raise ColorimetryError(
-            f"out_of_range: expected one of {', '.join(OUT_OF_RANGE_STRATEGIES)}, got {name!r}"
-        )
-    return OUT_OF_RANGE_STRATEGIES[name]
+def _strategy(name: str) -> str:
+    return OUT_OF_RANGE_STRATEGIES.canonical(name)
 
 
 def _coordinates(t, argument: str = "rgb_linear") -> np.ndarray:
@@ -112,7 +115,7 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     -------
     Lookup
     """
-    move = _strategy(out_of_range)
+    move = OUT_OF_RANGE_STRATEGIES.get(out_of_range)
     t = _coordinates(rgb_linear)
     outside = np.any((t < 0.0) | (t > 1.0), axis=-1)
     if outside.any():
@@ -209,6 +212,7 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
     >>> bool(abs(XYZ - table.matrix @ [0.2, 0.5, 0.7]).max() < 1e-9 * XYZ.max())
     True
     """
+    out_of_range = _strategy(out_of_range)
     found = lookup(table, rgb_linear, out_of_range)
     rho = _blend(table.flat_reflectance, found)
     np.minimum(rho, 1.0, out=rho)
@@ -220,6 +224,7 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
 def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey",
                      out: np.ndarray | None = None) -> np.ndarray:
     """Only the spectra of :func:`upsample` (``(..., K)`` float64), optionally into ``out``."""
+    out_of_range = _strategy(out_of_range)
     found = lookup(table, rgb_linear, out_of_range)
     flat_out = None if out is None else out.reshape(-1, table.wavelengths_nm.size)
     rho = _blend(table.flat_reflectance, found, flat_out)
@@ -258,6 +263,7 @@ def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str
     XYZ : ndarray (..., 3)
     exact : ndarray of bool (...)
     """
+    out_of_range = _strategy(out_of_range)
     found = lookup(table, rgb_linear, out_of_range)
     XYZ = _blend(node_colours(table, weights), found)
     if out_of_range == "nan":
