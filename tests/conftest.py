@@ -20,6 +20,24 @@ def artifacts_dir() -> Path:
     return ARTIFACTS
 
 
+@pytest.fixture(scope="session")
+def base_url():
+    """The explorer's server on a free loopback port, for every browser test of the session."""
+    from appbrowser import serve
+
+    with serve() as url:
+        yield url
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """One headless Debian Chromium shared by the browser tests (each test opens its own pages)."""
+    from appbrowser import chromium
+
+    with chromium() as b:
+        yield b
+
+
 def pytest_collection_modifyitems(config, items):
     """Browser tests need Debian's Chromium; skip them loudly here, fail in CI."""
     if CHROMIUM.exists():

@@ -47,9 +47,10 @@ export function fixedScale(W, M) {
   return Math.max(...top);
 }
 
+/** Y of each primary at full drive: row Y of the display's own RGB → XYZ matrix, the inverse
+ * of its XYZ → RGB matrix (before any adaptation). */
 function luminanceRow(model) {
-  if (model.luminance_row) return model.luminance_row;
-  const M = model.matrix_from_XYZ;  // row Y of the inverse matrix: Y of each primary at full drive
+  const M = model.display_matrix_from_XYZ;
   const det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
     + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
   return [-(M[1][0] * M[2][2] - M[1][2] * M[2][0]) / det, (M[0][0] * M[2][2] - M[0][2] * M[2][0]) / det,
@@ -119,6 +120,14 @@ export function localColour(levels, model, opts) {
   return {XYZ: [X, Y, Z], xy: sum > 0 ? [X / sum, Y / sum] : [null, null], rgb_unmapped: unmapped,
     rgb_linear: lin, rgb_encoded: enc, codes, in_gamut: inGamut, scale,
     negative: CHANNELS.filter((c, i) => negative[i]), over: CHANNELS.filter((c, i) => over[i])};
+}
+
+/** SPECTRA's step 4: the light the display emits for these codes, in levels (0–30 scale of the
+ * page's distributions): C(λ) = scale · Σ γ(code)·primary(λ), as /api/evaluate's emitted_levels. */
+export function emitted(colour, model) {
+  const gamma = model.excitation.emission, P = model.emission.levels_per_drive;
+  const drive = colour.codes.map((c) => gamma[c]);
+  return P[0].map((_, k) => colour.scale * (drive[0] * P[0][k] + drive[1] * P[1][k] + drive[2] * P[2][k]));
 }
 
 /** Codes as a hex colour (#rrggbb on 8-bit displays; 6-bit codes are scaled to 0–255 first). */

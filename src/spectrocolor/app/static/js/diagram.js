@@ -37,7 +37,7 @@ export function drawDiagram() {
     svgEl("circle", {class: "white", r: 0.009, cx: m.white_xy[0], cy: -m.white_xy[1]}),
     svgEl("g", {id: "pts"}));
   fill(svg, parts);
-  const dw = m.display_white_xy, cct = m.display_white_cct_K ?? m.cct_K;
+  const dw = m.display_white_xy, cct = m.display_white ? m.display_white.cct_K : null;
   $("white-note").textContent = `${m.display}: white point x ${dw[0].toFixed(4)}, y ${dw[1].toFixed(4)}`
     + (cct ? `, CCT ${Math.round(cct)} K` : "") + ". Triangle: the colours this display can show.";
 }

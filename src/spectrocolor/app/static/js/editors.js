@@ -150,14 +150,16 @@ export function drawEditors() {
 }
 
 /** Step 4 of SPECTRA: the light the display emits for a colour, C(λ) = Σ γ(code)·primary(λ),
- * drawn over the distribution it matches (both scaled to their peaks). */
+ * drawn with the distribution it matches, both in levels on one scale (the top of the graph is
+ * the larger peak). */
 export function drawEmitted(cv, emitted, target) {
   const [g, w, h] = plotArea(cv);
   const hh = h - PAD_TOP - PAD_BOTTOM;
-  grid(g, w, hh);
-  labels(g, w, h, hh);
+  const top = Math.max(...emitted, ...target);
+  g.font = "10px system-ui, sans-serif"; g.fillStyle = "#cfd4de";
+  g.fillText(`peak ${top.toFixed(0)} levels`, 2, 10);
+  g.fillText("400", 2, h - 3); g.fillText("700 nm", w - 38, h - 3);
   const line = (values, colour, dash) => {
-    const top = Math.max(...values);
     if (!(top > 0)) return;
     g.strokeStyle = colour; g.lineWidth = 1.5; g.setLineDash(dash); g.beginPath();
     values.forEach((v, k) => {

@@ -6,8 +6,8 @@ import {$, el, fill} from "./dom.js";
 import {apiJSON, api} from "./api.js";
 import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stateURL, readURLOptions,
   readURLDistributions, persist, readPersisted} from "./state.js";
-import {localColour, weightsUnder, fixedScale, whiteOf} from "./colour.js";
-import {buildPatches, buildCards, paint, evalSpec, markStale, GAMUT_TEXT} from "./view.js";
+import {localColour, weightsUnder, fixedScale, whiteOf, emitted} from "./colour.js";
+import {buildPatches, buildCards, paint, evalSpec, markStale, GAMUT_TEXT, NORMALISE_TEXT, ADAPTATION_TEXT} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, drawPoints} from "./diagram.js";
 import {applyPreset, presetButtons} from "./presets.js";
@@ -41,7 +41,9 @@ function localWeights(e) {
   if (!e.illuminant) return {W: m.weights, scale: m.fixed_scale};
   if (!e.illuminant.some((v) => v > 0)) return null;  // nothing lit: the server says why
   const W = weightsUnder(e.illuminant, m);
-  return {W, scale: fixedScale(W, m.matrix_from_XYZ)};
+  // A depends on the weights (the brightest object colour under this illuminant); SPECTRA's
+  // own A and B do not
+  return {W, scale: S.normalise === "fixed" ? fixedScale(W, m.matrix_from_XYZ) : m.fixed_scale};
 }
 
 let urlTimer = null;
@@ -56,6 +58,7 @@ function update(final = true) {
     S.local = e.spectra.map((s) => localColour(s, S.model, {W: lw.W, scale: lw.scale, normalise: S.normalise, gamut: S.gamut}));
     paint(S.local, null);
     drawPoints(S.local, e.labels, null);
+    if (S.setting === 1 && S.model.emission) drawEmittedLight(emitted(S.local[0], S.model));
   }
   S.dirty = true;
   pump();
@@ -71,7 +74,7 @@ async function pump() {
     const r = await apiJSON("/api/evaluate", requestBody());
     if (!S.dirty && seq === S.seq) {
       S.server = r; S.localWhite = r.white_XYZ;
-      paint(r.colours, r); drawPoints(r.colours, evalSpec().labels, r); drawEmittedLight(r);
+      paint(r.colours, r); drawPoints(r.colours, evalSpec().labels, r); drawEmittedLight(r.colours[0].emitted_levels);
       markStale(null);
       S.settled = true;
     }
@@ -86,12 +89,11 @@ async function pump() {
   if (S.dirty) pump();
 }
 
-function drawEmittedLight(r) {
+/** Setting 1: the light the screen emits for the colour (SPECTRA's step 4) beside the bars. */
+function drawEmittedLight(levels) {
   const box = $("emitted-box");
-  const c = r.colours[0];
-  const emitted = S.setting === 1 ? c.emitted_levels ?? c.emitted : null;
-  box.hidden = !emitted;
-  if (emitted) drawEmitted($("emitted"), Array.isArray(emitted) ? emitted : emitted.values, S.dists[1][0]);
+  box.hidden = S.setting !== 1 || !levels;
+  if (!box.hidden) drawEmitted($("emitted"), levels, S.dists[1][0]);
 }
 
 // ---------------------------------------------------------------- history and the URL
@@ -134,7 +136,7 @@ function actionButtons() {
 }
 
 async function loadModel() {
-  const body = {step_nm: S.step, observer: S.observer, display: S.display};
+  const body = {step_nm: S.step, observer: S.observer, display: S.display, normalise: S.normalise};
   if (S.adaptation) body.adaptation = S.adaptation;
   S.model = await apiJSON("/api/model", body);
   S.wl = S.model.wavelengths_nm;
@@ -145,7 +147,8 @@ async function loadModel() {
 async function option(name, value) {
   S[name] = value;
   try {
-    if (name === "display" || name === "observer" || name === "adaptation") await loadModel();
+    if (name !== "gamut") await loadModel();
+    if (name === "normalise" && value !== "per-colour") S.normaliseA = value;
     update();
   } catch (err) { fail(`Could not switch ${name}`, err); }
   focusBars();
@@ -172,14 +175,13 @@ async function changeStep(step) {
   focusBars();
 }
 
-function toggleNorm() {
-  S.normalise = S.normalise === "fixed" ? "per-colour" : "fixed";
-  normButton(); update();
-}
-function normButton() {
-  const b = $("norm"), fixed = S.normalise === "fixed";
-  b.textContent = fixed ? "A · fixed scale" : "B · per colour";
-  b.classList.toggle("b", !fixed); b.setAttribute("aria-pressed", String(!fixed));
+/** Key X: SPECTRA's switch between alternative A (in the variant last chosen) and B. */
+async function toggleNorm() {
+  const value = S.normalise === "per-colour" ? S.normaliseA : "per-colour";
+  $("normalise").value = value;
+  S.normalise = value;
+  try { await loadModel(); } catch (err) { fail("Could not switch the normalisation", err); }
+  update();
 }
 
 // ---------------------------------------------------------------- save, recall, pair
@@ -232,7 +234,7 @@ const COMMANDS = {
   up: () => stepLevel(levelStep(false)), down: () => stepLevel(-levelStep(false)),
   next: nextDistribution, save: saveSlot, recall: () => recall(S.setting),
   pair: () => (S.setting === 1 ? say("key 9 loads a pair: use it in settings 2–5") : recall(pairSource())),
-  undo: () => doUndo(true), redo: () => doUndo(false), norm: toggleNorm,
+  undo: () => doUndo(true), redo: () => doUndo(false),
 };
 
 function onKey(ev) {
@@ -347,22 +349,24 @@ function fromURL(search) {
   if (o.observer && o.observer in opts.observers) S.observer = o.observer;
   if (o.display && opts.displays.includes(o.display)) S.display = o.display;
   if (o.gamut && opts.gamuts.includes(o.gamut)) S.gamut = o.gamut;
-  if (o.adaptation && (opts.adaptations || []).some((a) => (a[0] ?? a) === o.adaptation)) S.adaptation = o.adaptation;
-  if (o.normalise) S.normalise = o.normalise;
+  if (o.adaptation && o.adaptation in (opts.adaptations || {})) S.adaptation = o.adaptation;
+  if (o.normalise && opts.normalisations.includes(o.normalise)) S.normalise = o.normalise;
+  if (S.normalise !== "per-colour") S.normaliseA = S.normalise;
   return o.setting;
 }
 function syncControls() {
   $("display").value = S.display; $("observer").value = S.observer; $("gamut").value = S.gamut;
-  $("step").value = String(S.step); normButton();
+  $("step").value = String(S.step); $("normalise").value = S.normalise;
   if (S.adaptation) $("adaptation").value = S.adaptation;
 }
 
 async function onPopState() {
-  const step = S.step, display = S.display, observer = S.observer, adaptation = S.adaptation;
+  const step = S.step, display = S.display, observer = S.observer, adaptation = S.adaptation, normalise = S.normalise;
   const setting = fromURL(location.search) || 1;
   try {
     if (step !== S.step) S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
-    if (step !== S.step || display !== S.display || observer !== S.observer || adaptation !== S.adaptation) await loadModel();
+    if (step !== S.step || display !== S.display || observer !== S.observer || adaptation !== S.adaptation
+      || normalise !== S.normalise) await loadModel();
   } catch (err) { fail("Could not go back", err); return; }
   if (step !== S.step) defaults();
   const d = readURLDistributions(location.search, setting, S.wl.length);
@@ -373,22 +377,24 @@ async function onPopState() {
 
 async function init() {
   const o = S.options = await apiJSON("/api/options");
-  S.gamut = o.default_gamut || o.gamuts[0];
-  S.display = o.default_display || o.displays[0];
-  if (o.adaptations) S.adaptation = o.default_adaptation || (o.adaptations[0][0] ?? o.adaptations[0]);
+  const defaults_ = o.defaults || {};
+  S.gamut = defaults_.gamut || o.gamuts[0];
+  S.normalise = S.normaliseA = defaults_.normalise || "fixed";
+  S.display = o.displays[0];
+  if (o.adaptations) S.adaptation = defaults_.adaptation || Object.keys(o.adaptations)[0];
   const setting = fromURL(location.search) || 1;
-  fillSelect("display", o.displays.map((d) => [d, d, (o.display_notes || {})[d]]), S.display);
+  fillSelect("display", o.displays.map((d) => [d, d]), S.display);
   fillSelect("observer", Object.entries(o.observers), S.observer);
   fillSelect("gamut", o.gamuts.map((g) => [g, (GAMUT_TEXT[g] || [g])[0], (GAMUT_TEXT[g] || [])[1]]), S.gamut);
+  fillSelect("normalise", o.normalisations.map((n) => [n, ...(NORMALISE_TEXT[n] || [n, ""])]), S.normalise);
   if (o.adaptations) {
-    fillSelect("adaptation", o.adaptations.map((a) => (Array.isArray(a) ? a : [a, a, ""])), S.adaptation);
+    fillSelect("adaptation", Object.entries(o.adaptations).map(([v, text]) => [v, text, ADAPTATION_TEXT[v]]), S.adaptation);
     $("adaptation-label").hidden = false;
   }
-  for (const name of ["display", "observer", "gamut", "adaptation"]) {
+  for (const name of ["display", "observer", "gamut", "adaptation", "normalise"]) {
     $(name).addEventListener("change", (e) => option(name, e.target.value));
   }
   $("step").addEventListener("change", (e) => changeStep(Number(e.target.value)));
-  $("norm").addEventListener("click", toggleNorm);
   $("save-csv").addEventListener("click", () => saveFile("csv"));
   $("save-json").addEventListener("click", () => saveFile("json"));
   $("load-file").addEventListener("click", () => $("file").click());

@@ -13,6 +13,16 @@ export const GAMUT_TEXT = {
   "preserve-luminance": ["negative channels zeroed, luminance kept", "Negative channels are set to 0 and the others scaled so Y stays the same (Zawischa eqs. 20–21)."],
   "desaturate": ["desaturated at constant luminance", "Mixed with the grey of the same luminance, just enough to enter the display's gamut: hue angle and Y are kept."],
 };
+export const NORMALISE_TEXT = {
+  "fixed": ["A · fixed scale", "One scale for all colours: the largest channel any distribution can drive (lightness relations kept)."],
+  "per-colour": ["B · per colour (Optimised!)", "Every colour as bright as the display allows: only its chromaticity is kept."],
+  "spectra-exact": ["A · as SPECTRA computed it", "The program's own numbers: 1.32 × the white's largest channel, one factor k per channel from its step 1."],
+};
+export const ADAPTATION_TEXT = {
+  "bradford": "The reference white E is shown as the display's white (Bradford adaptation): neutral looks neutral.",
+  "display rgb": "E is shown as the display's white by scaling its R, G, B (SPECTRA's equal-energy matrix, matris.equ).",
+  "none": "Unadapted: E's own chromaticity is shown, slightly pink on a D65 display.",
+};
 export const gamutLabel = (g) => (GAMUT_TEXT[g] || [g])[0];
 
 /** What each setting evaluates: the spectra sent to the library, their labels, the pairs. */
@@ -107,7 +117,7 @@ function statusOf(c, gamut) {
 /** Repaint patches and numbers from `colours` (local fast path, or the server's answer). */
 export function paint(colours, server) {
   const e = evalSpec(), m = S.model;
-  const gamut = server ? server.gamut : S.gamut;
+  const gamut = server ? server.gamut : S.gamut;  // what was applied (local: what was asked)
   const local = S.localWhite;
   colours.forEach((c, i) => {
     const css = cssColour(c), hex = hexOf(c.codes, m);
@@ -129,20 +139,23 @@ export function paint(colours, server) {
     cell("codes").textContent = c.codes.join("  ");
     cell("hex").textContent = hex;
     const dom = server ? server.colours[i] : null;
-    cell("dom").textContent = !dom ? "…" : dom.dominant_nm === null ? "— (undefined for this light)"
+    cell("dom").textContent = !dom ? "…" : dom.dominant_nm === null ? (dom.dominant_note ? "— (undefined: see the tooltip)" : "— (the white itself)")
       : `${dom.complementary ? "λc" : "λd"} ${fmt(dom.dominant_nm, 1)} nm${dom.complementary ? " (compl.)" : ""}, p ${fmt(dom.purity, 3)}`;
+    cell("dom").title = dom && dom.dominant_note ? dom.dominant_note : "";
     const st = card.querySelector(".status");
     st.textContent = status; st.className = `status ${cls}`;
     const badge = card.querySelector(".badge");
     badge.hidden = c.in_gamut || !(c.XYZ[1] > 0);
     if (!badge.hidden) {
       const channels = [...c.negative.map((ch) => `${ch} negative`), ...c.over.map((ch) => `${ch} above 1`)].join(", ");
-      badge.querySelector(".badge-text").textContent = `${gamutLabel(gamut)} · ${channels}`;
-      badge.title = (GAMUT_TEXT[gamut] || ["", ""])[1];
+      const applied = dom ? dom.gamut_applied || gamut : gamut;
+      badge.querySelector(".badge-text").textContent = `${gamutLabel(applied)} · ${channels}`;
+      badge.title = dom && dom.explanation ? dom.explanation : (GAMUT_TEXT[applied] || ["", ""])[1];
       const strict = gamut === "flag";
       const sw = badge.querySelector(".badge-switch");
       sw.textContent = strict ? "show the nearest colour" : "strict: cannot be reproduced";
-      sw.dataset.gamut = strict ? (S.options.default_gamut !== "flag" && S.options.default_gamut) || "desaturate" : "flag";
+      const preferred = (S.options.defaults || {}).gamut;
+      sw.dataset.gamut = strict ? (preferred && preferred !== "flag" ? preferred : "desaturate") : "flag";
     }
     const p = document.querySelector(`#patches .patch[data-i='${i}']`);
     if (p) p.title = `${e.labels[i]}: ${hex}${status ? ", " + status : ""}`;
