@@ -260,7 +260,7 @@ def _conditions(report: MeasurementReport) -> dict:
         "white_XYZ": [round(float(v), 4) for v in report.white_XYZ],
         "white_xy": [round(float(v), 5) for v in report.white_xy],
         "swatch": "sRGB (IEC 61966-2-1), Bradford-adapted from the illuminant's white to D65, "
-                  "clipped where out of gamut",
+                  "desaturated toward the white at constant Y where out of gamut",
     }
 
 
@@ -366,7 +366,7 @@ def _table_rows(report: MeasurementReport, count: int) -> str:
             dominant_text = f"{dominant:.1f}" + (" c" if report.complementary[i] else "")
         else:
             dominant_text = "–"
-        flag = "" if report.in_gamut[i] else ' title="outside sRGB: clipped"'
+        flag = "" if report.in_gamut[i] else ' title="outside sRGB: desaturated at constant Y"'
         mark = "" if report.in_gamut[i] else "*"
         cells = [
             html.escape(report.names[i]),

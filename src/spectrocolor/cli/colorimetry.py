@@ -12,6 +12,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from ..errors import ColorimetryError, SpectrumError
+from ..illuminants import DEFAULT_ILLUMINANT
 from ..spectrum import Spectrum
 from . import UserError
 
@@ -19,13 +20,28 @@ from . import UserError
 _PERCENT_SUSPICION = 1.5
 
 
-def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: str | None = "D65") -> None:
+#: What the spectral file argument accepts (every format :func:`spectrocolor.read_spectra` detects).
+FILE_HELP = (
+    "spectral file: CSV/TSV (long or wide, ';' with decimal commas), CGATS.17/i1Profiler, "
+    "Argyll .ti3/.sp, IES TM-27 XML or JSON (told by content)"
+)
+#: The --percent help, one wording for every command.
+PERCENT_HELP = (
+    "the file's values are percentages (0-100); files that declare their scale (Argyll .ti3/.sp, "
+    "SPECTRAL_NORM, SPECTRAL_PCT) are read as declared without it"
+)
+
+
+def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: str | None = DEFAULT_ILLUMINANT) -> None:
     """Options shared by commands that compute colour from a spectral file."""
-    parser.add_argument("file", help="CSV or JSON: a wavelength_nm column and one column per spectrum")
+    from ..colorimetry import SUMMATION_METHODS
+
+    parser.add_argument("file", help=FILE_HELP)
     parser.add_argument(
         "--illuminant",
         default=None,
-        help=f"CIE illuminant lighting the reflectance/transmittance samples (default {default_illuminant})",
+        help=f"CIE illuminant lighting the reflectance/transmittance samples (default {default_illuminant}, "
+        "the default of every spectrocolor command that takes one; seed 001's examples use C)",
     )
     parser.set_defaults(default_illuminant=default_illuminant)
     parser.add_argument(
@@ -37,12 +53,21 @@ def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: st
         help="sum only at multiples of this interval in nm (e.g. 10 or 20; the file must hold those samples)",
     )
     parser.add_argument(
-        "--method", choices=("sum", "1nm"), default="sum", help="summation method (default %(default)s)"
+        "--method",
+        choices=SUMMATION_METHODS.names(),
+        default="sum",
+        help="summation: sum at the file's samples, 1nm (linear to 1 nm), astm-e308 (ASTM E308/E2022 "
+        "weights; 1, 5, 10 or 20 nm data) (default %(default)s)",
     )
     parser.add_argument("--range", nargs=2, type=float, metavar=("START", "STOP"), help="use only START–STOP nm")
-    parser.add_argument("--percent", action="store_true", help="the file's values are percentages (0–100)")
+    parser.add_argument("--percent", action="store_true", help=PERCENT_HELP)
     parser.add_argument("--light", action="store_true", help="the spectra are lights (no illuminant; relative XYZ)")
-    parser.add_argument("--format", choices=("table", "csv", "json"), default="table", help="output format")
+    parser.add_argument(
+        "--format",
+        choices=("table", "csv", "json", "cgats"),
+        default="table",
+        help="output: aligned table, CSV, JSON or CGATS.17 (for i1Profiler, ArgyllCMS …) (default %(default)s)",
+    )
 
 
 def load_samples(args: argparse.Namespace) -> Spectrum:
@@ -53,7 +78,7 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
         raise UserError("--illuminant: lights are not lit by an illuminant; drop --illuminant or --light")
     if not args.light and args.illuminant is None:
         args.illuminant = args.default_illuminant
-    spectra = read_spectra(args.file)
+    spectra = read_spectra(args.file, percent=True if args.percent else None)
     if spectra.names is None:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
     if args.range:
@@ -75,14 +100,13 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
         spectra = Spectrum(grid[on_step], spectra.values[..., on_step], spectra.names)
     if args.light:
         return spectra
-    return reflectance_factors(spectra, args.file, args.percent)
+    return reflectance_factors(spectra, args.file)
 
 
-def reflectance_factors(spectra: Spectrum, source: str, percent: bool) -> Spectrum:
-    """Reflectance factors on the 0–1 scale: divided by 100 with ``percent``; negative values and
-    values that look like percentages (above 1.5) are refused with a message saying what to pass."""
-    if percent:
-        spectra = Spectrum(spectra.wavelengths_nm, spectra.values / 100.0, spectra.names)
+def reflectance_factors(spectra: Spectrum, source: str) -> Spectrum:
+    """The spectra, checked as reflectance factors on the 0–1 scale (read with ``--percent`` where
+    the file holds undeclared percentages): negative values and values that look like percentages
+    (above 1.5) are refused with a message saying what to pass."""
     values = np.atleast_2d(spectra.values)
     if np.any(values < 0):
         row, k = np.argwhere(values < 0)[0]
@@ -114,12 +138,27 @@ def compute_XYZ(spectra: Spectrum, args: argparse.Namespace) -> np.ndarray:
 
     illuminant = None if args.light else args.illuminant
     with command_line_hints():
-        return np.atleast_2d(tristimulus(spectra, args.observer, illuminant, args.method))
+        return np.atleast_2d(tristimulus(spectra, observer=args.observer, illuminant=illuminant, method=args.method))
 
 
-def emit(rows: list[dict], fmt: str, stream=None) -> None:
-    """Print rows as an aligned table, CSV or JSON."""
+def conditions(args: argparse.Namespace) -> dict[str, str]:
+    """CGATS keywords saying how the rows were computed (file, illuminant, observer, method)."""
+    return {
+        "DESCRIPTOR": f"spectrocolor {args.command} of {args.file}",
+        "ILLUMINANT": "none (lights)" if getattr(args, "light", False) else str(args.illuminant),
+        "OBSERVER": str(args.observer),
+        "SUMMATION_METHOD": str(args.method),
+    }
+
+
+def emit(rows: list[dict], fmt: str, stream=None, keywords: dict[str, str] | None = None) -> None:
+    """Print rows as an aligned table, CSV, JSON or CGATS.17 (with ``keywords``)."""
     stream = stream or sys.stdout
+    if fmt == "cgats":
+        from ..io.writers import table_to_cgats
+
+        stream.write(table_to_cgats(rows, keywords).replace("\r\n", "\n"))
+        return
     if fmt == "json":
         json.dump(rows, stream, indent=1)
         stream.write("\n")
@@ -158,7 +197,8 @@ def _numeric(text: str) -> bool:
 
 
 def _xyz_command(args: argparse.Namespace) -> int:
-    from ..coordinates import xy
+    from ..colorimetry import white_point
+    from ..coordinates import lab, xy
 
     spectra = load_samples(args)
     XYZ = compute_XYZ(spectra, args)
@@ -167,7 +207,14 @@ def _xyz_command(args: argparse.Namespace) -> int:
         {"name": name, "X": float(X[0]), "Y": float(X[1]), "Z": float(X[2]), "x": float(c[0]), "y": float(c[1])}
         for name, X, c in zip(spectra.names, XYZ, chromaticity, strict=True)
     ]
-    emit(rows, args.format)
+    if not args.light:  # CIELAB relative to the perfect white summed the same way
+        with command_line_hints():
+            white = white_point(
+                args.illuminant, observer=args.observer, wavelengths_nm=spectra.wavelengths_nm, method=args.method
+            )
+        for row, values in zip(rows, lab(XYZ, white), strict=True):
+            row.update({"L*": float(values[0]), "a*": float(values[1]), "b*": float(values[2])})
+    emit(rows, args.format, keywords=conditions(args))
     return 0
 
 
@@ -192,6 +239,9 @@ def describe_rows(spectra: Spectrum, illuminant: str, observer: str, method: str
                 "Z": float(report.XYZ[i, 2]),
                 "x": float(report.xy[i, 0]),
                 "y": float(report.xy[i, 1]),
+                "L*": float(report.lab[i, 0]),
+                "a*": float(report.lab[i, 1]),
+                "b*": float(report.lab[i, 2]),
                 "wavelength_nm": wavelength,
                 "kind": "neutral"
                 if np.isnan(wavelength)
@@ -213,7 +263,7 @@ def _describe_command(args: argparse.Namespace) -> int:
     spectra = load_samples(args)
     with command_line_hints():
         rows = describe_rows(spectra, args.illuminant, args.observer, args.method)
-    emit(rows, args.format)
+    emit(rows, args.format, keywords=conditions(args))
     return 0
 
 
@@ -235,5 +285,5 @@ def register(subparsers) -> None:
             "and an sRGB hex swatch (Bradford-adapted to D65, desaturated at constant Y if out of gamut)."
         ),
     )
-    add_spectral_options(describe, default_illuminant="C")
+    add_spectral_options(describe)
     describe.set_defaults(handler=_describe_command)

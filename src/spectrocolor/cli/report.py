@@ -5,8 +5,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..illuminants import DEFAULT_ILLUMINANT
 from . import UserError
-from .colorimetry import reflectance_factors
+from .colorimetry import FILE_HELP, PERCENT_HELP, reflectance_factors
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files
 
 
@@ -14,7 +15,7 @@ def register(subparsers) -> None:
     """Add the ``report`` sub-command."""
     p = subparsers.add_parser(
         "report",
-        help="colour measurement report of reflectance samples (HTML, CSV or JSON)",
+        help="colour measurement report of reflectance samples (HTML, CSV, JSON or CGATS.17)",
         description=(
             "For every reflectance sample in FILE: X, Y, Z, x, y, dominant or complementary "
             "wavelength, excitation purity, luminance factor, CIELAB and an sRGB swatch under "
@@ -22,16 +23,17 @@ def register(subparsers) -> None:
             "in one self-contained file."
         ),
     )
-    p.add_argument("file", metavar="FILE", help="reflectance spectra as CSV or JSON (0-1)")
-    p.add_argument("--illuminant", required=True, help="illuminant, e.g. C (seed 001), D65, A")
+    p.add_argument("file", metavar="FILE", help=FILE_HELP)
+    p.add_argument("--illuminant", default=DEFAULT_ILLUMINANT,
+                   help=f"illuminant, e.g. C (seed 001), D65, A (default {DEFAULT_ILLUMINANT}, as in "
+                   "every spectrocolor command)")
     p.add_argument("--observer", default="1931", help="observer (default 1931)")
-    p.add_argument("--method", choices=("sum", "1nm"), default="sum",
-                   help="summation method (default sum)")
-    p.add_argument("--percent", action="store_true",
-                   help="FILE holds reflectance in percent (0-100): divide by 100")
-    p.add_argument("--out", required=True, help="output file (.html, .csv or .json)")
+    p.add_argument("--method", choices=_methods(), default="sum",
+                   help="summation method: sum, 1nm or astm-e308 (default sum)")
+    p.add_argument("--percent", action="store_true", help=PERCENT_HELP)
+    p.add_argument("--out", required=True, help="output file (.html, .csv, .json or .cgats)")
     add_force(p)
-    p.add_argument("--format", choices=("html", "csv", "json"), default=None,
+    p.add_argument("--format", choices=_FORMATS, default=None,
                    help="output format (default: from the --out suffix)")
     p.add_argument("--title", default=None, help="HTML title")
     p.add_argument("--page-rows", type=int, default=500,
@@ -40,23 +42,40 @@ def register(subparsers) -> None:
     p.set_defaults(handler=_report)
 
 
+_FORMATS = ("html", "csv", "json", "cgats")
+
+
+def _methods() -> tuple[str, ...]:
+    from ..colorimetry import SUMMATION_METHODS
+
+    return SUMMATION_METHODS.names()
+
+
 def _report(args: argparse.Namespace) -> int:
     from ..report import measurement_report, write_report
     from ..spectrum_io import read_spectra
 
     check_files(args, ("out",), ("file",), MAX_SPECTRAL_FILE_BYTES)
-    spectra = reflectance_factors(read_spectra(args.file), args.file, args.percent)
+    spectra = reflectance_factors(read_spectra(args.file, percent=True if args.percent else None), args.file)
     if args.page_rows < 1:
         raise UserError(f"--page-rows must be at least 1; got {args.page_rows}")
     suffix = Path(args.out).suffix.lstrip(".").lower()
     suffix = {"htm": "html"}.get(suffix, suffix)
     fmt = args.format or suffix
-    if fmt not in ("html", "csv", "json"):
-        raise UserError(f"--out {args.out!r}: give a .html, .csv or .json file, or --format")
-    if args.format and suffix in ("html", "csv", "json") and suffix != args.format:
+    if fmt not in _FORMATS:
+        raise UserError(f"--out {args.out!r}: give a .html, .csv, .json or .cgats file, or --format")
+    if args.format and suffix in _FORMATS and suffix != args.format:
         raise UserError(f"--format {args.format} would write {args.format.upper()} into {args.out!r}; make them agree")
     report = measurement_report(spectra, args.illuminant, args.observer, args.method)
-    write_report(report, args.out, fmt, title=args.title, page_rows=args.page_rows)
+    if fmt == "cgats":
+        from ..io.writers import table_to_cgats
+        from ..safe_write import write_text
+
+        keywords = {"DESCRIPTOR": f"spectrocolor report of {args.file}", "ILLUMINANT": report.illuminant,
+                    "OBSERVER": report.observer, "SUMMATION_METHOD": report.method}
+        write_text(args.out, table_to_cgats(report.records(), keywords))
+    else:
+        write_report(report, args.out, fmt, title=args.title, page_rows=args.page_rows)
     print(f"wrote {args.out}: {len(report)} samples, illuminant {report.illuminant}, observer "
           f"{report.observer}")
     return 0

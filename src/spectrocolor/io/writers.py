@@ -45,6 +45,8 @@ def _quoted(text: str) -> str:
 
 
 def _cell(value) -> str:
+    if value is None:  # a missing number (records() writes NaN as None)
+        return "NaN"
     if isinstance(value, bool):
         return _quoted("true" if value else "false")
     if isinstance(value, (float, np.floating)):
