@@ -128,6 +128,18 @@ _PUBLIC: dict[str, str] = {
     "zawischa_strip": "thinfilm.zawischa",
     # ASTM E308 / E2022 weights
     "astm_e308_weights": "astm_e308",
+    # light sources: colour rendering, fidelity, photometry, α-opic (matplotlib only for graphics)
+    "colour_rendering_index": "lighting.cri",
+    "CRI": "lighting.cri",
+    "colour_fidelity": "lighting.fidelity",
+    "Fidelity": "lighting.fidelity",
+    "luminous_quantity": "lighting.photometry",
+    "luminous_efficacy_of_radiation": "lighting.photometry",
+    "alpha_opic": "lighting.alpha_opic",
+    "AlphaOpic": "lighting.alpha_opic",
+    "light_report": "lighting.report",
+    "LightReport": "lighting.report",
+    "write_light_report": "lighting.report",
 }
 
 

@@ -19,18 +19,26 @@ from .alpha_opic import ALPHA_OPIC, AlphaOpic, alpha_opic, alpha_opic_irradiance
 from .cri import CRI, colour_rendering_index
 from .fidelity import Fidelity, colour_fidelity
 from .photometry import luminous_efficacy_of_radiation, luminous_quantity, radiant_quantity
+from .report import LightReport, light_report, summary, write_light_report
+from .vector_graphic import vector_graphic, write_vector_graphic
 
 __all__ = [
     "ALPHA_OPIC",
     "AlphaOpic",
     "CRI",
     "Fidelity",
+    "LightReport",
     "alpha_opic",
     "alpha_opic_irradiance",
     "colour_fidelity",
     "colour_rendering_index",
     "d65_efficacies_W_per_lm",
+    "light_report",
     "luminous_efficacy_of_radiation",
     "luminous_quantity",
     "radiant_quantity",
+    "summary",
+    "vector_graphic",
+    "write_light_report",
+    "write_vector_graphic",
 ]
