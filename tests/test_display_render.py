@@ -130,7 +130,7 @@ def test_bad_input():
 
 
 def test_bad_types_are_colorimetry_errors():
-    with pytest.raises(sc.ColorimetryError, match="XYZ100 must be numbers"):
+    with pytest.raises(sc.ColorimetryError, match="XYZ100 must be real numeric tristimulus values"):
         sc.render("abc")
     with pytest.raises(sc.ColorimetryError, match="needs scale, a positive number"):
         sc.render([10.0, 10.0, 10.0], normalise="fixed", scale="2")

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..coordinates import colour_array
 from ..errors import ColorimetryError
 from ..registry import Registry
 from .spaces import rgb_space
@@ -132,8 +133,6 @@ def adapt(
     >>> [round(float(v), 3) for v in a]
     [95.047, 100.0, 108.883]
     """
-    xyz = np.asarray(XYZ, dtype=float)
-    if xyz.ndim == 0 or xyz.shape[-1] != 3:
-        raise ColorimetryError(f"XYZ must have shape (..., 3), got {np.shape(XYZ)}")
+    xyz = colour_array(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
     a = adaptation_matrix(source_white_XYZ, target_white_XYZ, method, space)
     return xyz @ a.T

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ColorimetryError
+from ..coordinates import colour_array
 from ..registry import Registry
 
 __all__ = [
@@ -36,12 +36,7 @@ DEFAULT_TOLERANCE = 1e-9
 
 
 def _rgb(rgb_linear) -> np.ndarray:
-    rgb = np.asarray(rgb_linear, dtype=float)
-    if rgb.ndim == 0 or rgb.shape[-1] != 3:
-        raise ColorimetryError(
-            f"rgb_linear must have shape (..., 3), got {np.shape(rgb_linear)}"
-        )
-    return rgb
+    return colour_array(rgb_linear, "rgb_linear", 3, "linear R, G, B")
 
 
 def gamut_flags(rgb_linear, tolerance: float = DEFAULT_TOLERANCE):

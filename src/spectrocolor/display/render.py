@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..coordinates import colour_array
 from ..errors import ColorimetryError
 from .gamut import DEFAULT_TOLERANCE, GAMUT_STRATEGIES, apply_gamut, gamut_flags
 from .normalise import normalise as _normalise
@@ -119,14 +120,7 @@ def render(
     to ``space.white_XYZ`` (:func:`~spectrocolor.display.adaptation.adapt`) or use a tolerance.
     """
     sp = rgb_space(space)
-    try:
-        XYZ = np.asarray(XYZ100, dtype=float)
-    except (TypeError, ValueError):
-        raise ColorimetryError(
-            f"XYZ100 must be numbers of shape (..., 3), got {type(XYZ100).__name__} {XYZ100!r:.60}"
-        ) from None
-    if XYZ.ndim == 0 or XYZ.shape[-1] != 3:
-        raise ColorimetryError(f"XYZ100 must have shape (..., 3), got {np.shape(XYZ100)}")
+    XYZ = colour_array(XYZ100, "XYZ100", 3, "tristimulus values X, Y, Z")
     if not np.all(np.isfinite(XYZ)):
         raise ColorimetryError("XYZ100 contains NaN or infinite values; nothing can be displayed")
     gamut = GAMUT_STRATEGIES.canonical(gamut)
