@@ -143,9 +143,9 @@ def test_a_failed_check_keeps_the_previous_file(tmp_path):
 def test_an_encoder_error_keeps_the_previous_file(tmp_path):
     target = tmp_path / "d.txt"
     target.write_text("old")
-    with pytest.raises(ZeroDivisionError), atomic_path(target) as temporary:
+    with pytest.raises(RuntimeError, match="encoder"), atomic_path(target) as temporary:
         temporary.write_text("half")
-        1 / 0
+        raise RuntimeError("encoder failed half way")
     assert target.read_text() == "old" and len(list(tmp_path.iterdir())) == 1
 
 
