@@ -40,8 +40,32 @@ def _finite_number(name: str, value) -> float:
 def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarray:
     """Uniform grid ``start_nm, start_nm + step_nm, …, stop_nm`` (both ends included), in nm.
 
-    >>> wavelength_grid(400, 700, 10).size
-    31
+    Parameters
+    ----------
+    start_nm : float
+        First wavelength, nm.
+    stop_nm : float
+        Last wavelength, nm; must exceed ``start_nm``.
+    step_nm : float
+        Sampling interval, nm; positive, and it must divide ``stop_nm - start_nm`` into whole
+        steps (to 1e-9 relative): the grid is never silently shortened.
+
+    Returns
+    -------
+    numpy.ndarray
+        Float64 wavelengths, shape ``(K,)`` with ``K = (stop_nm - start_nm) / step_nm + 1``, nm.
+
+    Raises
+    ------
+    SpectrumError
+        For a non-finite number, a step that is not positive or does not divide the range,
+        ``stop_nm <= start_nm``, or more than 10 000 000 samples.
+
+    Examples
+    --------
+    >>> grid = wavelength_grid(400, 700, 10)
+    >>> grid.size, float(grid[0]), float(grid[-1])
+    (31, 400.0, 700.0)
     """
     for name, value in (("start_nm", start_nm), ("stop_nm", stop_nm), ("step_nm", step_nm)):
         if not isinstance(value, Real) or isinstance(value, bool) or not np.isfinite(value):
@@ -112,19 +136,33 @@ class Spectrum:
 
     Parameters
     ----------
-    wavelengths_nm
-        Strictly increasing wavelengths, shape ``(K,)``, in nanometres.
-    values
-        Array of shape ``(..., K)``: a single spectrum ``(K,)``, a batch ``(N, K)`` or an image
-        ``(H, W, K)``. Reflectances and transmittances are factors on the 0–1 scale. Float32
+    wavelengths_nm : array_like, shape (K,)
+        Strictly increasing, finite, positive wavelengths in nanometres (a largest value below
+        100 is refused as probably micrometres).
+    values : array_like, shape (..., K)
+        A single spectrum ``(K,)``, a batch ``(N, K)`` or an image ``(H, W, K)``. Reflectances and
+        transmittances are factors on the 0–1 scale; lights are in the units of the data. Float32
         values stay float32 (useful for large cubes); integers become float64.
-    names
+    names : sequence of str, optional
         Optional names, one per spectrum of a ``(N, K)`` batch (or one for a single spectrum).
-    metadata
+    metadata : mapping of str to object, optional
         Optional facts about where the data came from (file format, instrument, illuminant,
         geometry, date …) as a mapping with string keys; key ``"sample_fields"`` maps field names
         to one value per sample of a batch. Kept read-only, carried by :meth:`resample`,
         :meth:`restrict` and indexing (which selects the per-sample fields too), dropped by arithmetic.
+
+    Raises
+    ------
+    SpectrumError
+        For a grid that is not strictly increasing, finite and in nm, values whose last axis does
+        not have one entry per wavelength or that are not real numbers, names of the wrong count,
+        or metadata that is not a mapping with string keys.
+
+    Notes
+    -----
+    Arithmetic (``+ - * /`` with a number, an array that broadcasts against ``values`` or a
+    Spectrum on the same grid) returns a new Spectrum; spectra on different grids are never
+    combined silently (resample one first), and division by zero raises instead of making inf.
 
     Examples
     --------
@@ -208,7 +246,30 @@ class Spectrum:
     # ------------------------------------------------------------------ constructors
     @classmethod
     def constant(cls, value: float, wavelengths_nm: ArrayLike) -> Spectrum:
-        """The same ``value`` at every wavelength (e.g. 1 for the perfect reflector)."""
+        """The same ``value`` at every wavelength (e.g. 1 for the perfect reflector).
+
+        Parameters
+        ----------
+        value : float
+            The value at every wavelength (a reflectance factor 0–1, or a light in its units).
+        wavelengths_nm : array_like, shape (K,)
+            The grid, nm.
+
+        Returns
+        -------
+        Spectrum
+            One spectrum, values shape ``(K,)``.
+
+        Raises
+        ------
+        SpectrumError
+            For a non-finite ``value`` or an invalid grid.
+
+        Examples
+        --------
+        >>> Spectrum.constant(1.0, [400, 550, 700]).values.tolist()
+        [1.0, 1.0, 1.0]
+        """
         grid = validate_wavelengths(wavelengths_nm)
         return cls(grid, np.full(grid.size, _finite_number("value", value)))
 
@@ -225,6 +286,34 @@ class Spectrum:
 
         ``start_nm > stop_nm`` gives the band-stop complement (``inside`` outside the gap), as for
         the purple optimal colours.
+
+        Parameters
+        ----------
+        start_nm, stop_nm : float
+            Band edges, nm (both included).
+        wavelengths_nm : array_like, shape (K,)
+            The grid, nm.
+        inside : float, default 1.0
+            Value inside the band (a reflectance factor 0–1 for optimal colours).
+        outside : float, default 0.0
+            Value outside the band.
+
+        Returns
+        -------
+        Spectrum
+            One spectrum, values shape ``(K,)``.
+
+        Raises
+        ------
+        SpectrumError
+            For a non-finite edge or value, or an invalid grid.
+
+        Examples
+        --------
+        >>> Spectrum.block(450, 550, [400, 450, 500, 550, 600]).values.tolist()
+        [0.0, 1.0, 1.0, 1.0, 0.0]
+        >>> Spectrum.block(550, 450, [400, 450, 500, 550, 600]).values.tolist()  # band-stop
+        [1.0, 1.0, 0.0, 1.0, 1.0]
         """
         grid = validate_wavelengths(wavelengths_nm)
         start_nm, stop_nm = _finite_number("start_nm", start_nm), _finite_number("stop_nm", stop_nm)
@@ -237,7 +326,34 @@ class Spectrum:
 
     @classmethod
     def gaussian(cls, peak_nm: float, fwhm_nm: float, wavelengths_nm: ArrayLike, peak: float = 1.0) -> Spectrum:
-        """Gaussian band of full width at half maximum ``fwhm_nm`` centred on ``peak_nm``."""
+        """Gaussian band of full width at half maximum ``fwhm_nm`` centred on ``peak_nm``.
+
+        Parameters
+        ----------
+        peak_nm : float
+            Centre wavelength, nm.
+        fwhm_nm : float
+            Full width at half maximum, nm (positive).
+        wavelengths_nm : array_like, shape (K,)
+            The grid, nm.
+        peak : float, default 1.0
+            Value at ``peak_nm``.
+
+        Returns
+        -------
+        Spectrum
+            One spectrum, ``peak · exp(-(λ - peak_nm)² / 2σ²)`` with ``σ = fwhm_nm / (2√(2 ln 2))``.
+
+        Raises
+        ------
+        SpectrumError
+            For a non-finite number, a width that is not positive, or an invalid grid.
+
+        Examples
+        --------
+        >>> Spectrum.gaussian(550, 20, [530, 540, 550, 560]).values.round(6).tolist()
+        [0.0625, 0.5, 1.0, 0.5]
+        """
         peak_nm, peak = _finite_number("peak_nm", peak_nm), _finite_number("peak", peak)
         if not _finite_number("fwhm_nm", fwhm_nm) > 0:
             raise SpectrumError(f"fwhm_nm: must be positive, got {fwhm_nm!r}")
@@ -252,7 +368,35 @@ class Spectrum:
         """Spectrum from bin levels at ``start_nm, start_nm + step_nm, …`` (bin centres, nm).
 
         SPECTRA's editor has 31 bins of 10 nm at 400–700 nm with integer levels 0–30; pass
-        ``full_scale=30`` to get values on the 0–1 scale.
+        ``full_scale=30`` to get values on the 0–1 scale (seed 002).
+
+        Parameters
+        ----------
+        levels : array_like, shape (..., N)
+            Bin levels, one per bin along the last axis (a batch of level sets is allowed).
+        start_nm : float, default 400.0
+            Centre of the first bin, nm.
+        step_nm : float, default 10.0
+            Bin width (the distance between centres), nm.
+        full_scale : float, optional
+            The level that means 1 (e.g. 30 for SPECTRA); default ``None`` keeps the levels as
+            they are.
+
+        Returns
+        -------
+        Spectrum
+            Values ``levels / full_scale`` (or ``levels``) at the bin centres.
+
+        Raises
+        ------
+        SpectrumError
+            For no levels or a ``full_scale`` that is not positive.
+
+        Examples
+        --------
+        >>> s = Spectrum.bins([0, 15, 30], start_nm=400, step_nm=10, full_scale=30)
+        >>> s.wavelengths_nm.tolist(), s.values.tolist()
+        ([400.0, 410.0, 420.0], [0.0, 0.5, 1.0])
         """
         level_array = np.asarray(levels, dtype=float)
         if level_array.ndim < 1 or level_array.shape[-1] < 1:
@@ -270,6 +414,31 @@ class Spectrum:
         """Values on another grid inside this one's range (``"linear"``, ``"sprague"``, ``"cubic"``).
 
         Never extrapolates: a target outside ``wavelengths_nm``'s range raises ``SpectrumError``.
+
+        Parameters
+        ----------
+        wavelengths_nm : array_like, shape (M,)
+            The target grid, nm, within this spectrum's range.
+        method : str, default "linear"
+            ``"linear"``, ``"sprague"`` (CIE 167:2005 Sprague interpolation, uniform source grids
+            only) or ``"cubic"`` (natural cubic spline); see :mod:`spectrocolor.interpolation`.
+
+        Returns
+        -------
+        Spectrum
+            Values of shape ``batch_shape + (M,)``, with the same names and metadata (``self`` when
+            the grid is already the target).
+
+        Raises
+        ------
+        SpectrumError
+            For an unknown method, an invalid target grid or one that reaches outside this range.
+
+        Examples
+        --------
+        >>> s = Spectrum([400, 500, 600], [0.0, 1.0, 0.0])
+        >>> s.resample([450, 500, 550]).values.tolist()
+        [0.5, 1.0, 0.5]
         """
         if method not in METHODS:
             raise SpectrumError(f"method: {method!r} is not a resampling method; choose one of {METHODS}")
@@ -284,7 +453,28 @@ class Spectrum:
         return Spectrum(target, values, self._names, self._metadata)
 
     def restrict(self, start_nm: float, stop_nm: float) -> Spectrum:
-        """The samples with ``start_nm ≤ λ ≤ stop_nm`` (no interpolation)."""
+        """The samples with ``start_nm ≤ λ ≤ stop_nm`` (no interpolation).
+
+        Parameters
+        ----------
+        start_nm, stop_nm : float
+            The range kept, nm (both ends included, to 1e-9 nm).
+
+        Returns
+        -------
+        Spectrum
+            The samples inside the range, with the same names and metadata.
+
+        Raises
+        ------
+        SpectrumError
+            For a non-finite bound or a range that holds none of the samples.
+
+        Examples
+        --------
+        >>> Spectrum([400, 500, 600, 700], [1, 2, 3, 4]).restrict(450, 700).values.tolist()
+        [2.0, 3.0, 4.0]
+        """
         grid = self._wavelengths_nm
         start_nm, stop_nm = _finite_number("start_nm", start_nm), _finite_number("stop_nm", stop_nm)
         keep = (grid >= start_nm - 1e-9) & (grid <= stop_nm + 1e-9)
@@ -296,7 +486,24 @@ class Spectrum:
         return Spectrum(grid[keep], self._values[..., keep], self._names, self._metadata)
 
     def same_grid(self, other: Spectrum) -> bool:
-        """True if ``other`` is sampled at exactly the same wavelengths."""
+        """True if ``other`` is sampled at exactly the same wavelengths.
+
+        Parameters
+        ----------
+        other : Spectrum
+            The spectrum to compare grids with.
+
+        Returns
+        -------
+        bool
+            Whether both grids have the same size and agree to 1e-9 nm.
+
+        Examples
+        --------
+        >>> a = Spectrum([400, 500], [1, 1])
+        >>> a.same_grid(Spectrum([400.0, 500.0], [0, 2])), a.same_grid(Spectrum([400, 510], [1, 1]))
+        (True, False)
+        """
         a, b = self._wavelengths_nm, other.wavelengths_nm
         return a.shape == b.shape and bool(np.allclose(a, b, rtol=0, atol=1e-9))
 
@@ -384,7 +591,24 @@ class Spectrum:
 
     # ------------------------------------------------------------------ conversion
     def to_dict(self) -> dict:
-        """JSON-ready dict ``{"wavelengths_nm": [...], "spectra": {name: [...]}}`` (1-D or 2-D only)."""
+        """JSON-ready dict ``{"wavelengths_nm": [...], "spectra": {name: [...]}}`` (1-D or 2-D only).
+
+        Returns
+        -------
+        dict
+            ``{"wavelengths_nm": list of float, "spectra": {name: list of float}}``; unnamed
+            spectra are called ``spectrum_1``, ``spectrum_2``, …. Metadata is not included.
+
+        Raises
+        ------
+        SpectrumError
+            For values with more than two dimensions (an image cube).
+
+        Examples
+        --------
+        >>> Spectrum([400, 500], [0.25, 0.5], names=["tile"]).to_dict()
+        {'wavelengths_nm': [400.0, 500.0], 'spectra': {'tile': [0.25, 0.5]}}
+        """
         if self._values.ndim > 2:
             raise SpectrumError(f"values: only single spectra or (N, K) batches go to JSON, got {self._values.shape}")
         rows = np.atleast_2d(self._values)
@@ -396,7 +620,31 @@ class Spectrum:
 
     @classmethod
     def from_dict(cls, data: dict) -> Spectrum:
-        """Inverse of :meth:`to_dict`; also accepts ``{"wavelengths_nm", "values", "names"}``."""
+        """Inverse of :meth:`to_dict`; also accepts ``{"wavelengths_nm", "values", "names"}``.
+
+        Parameters
+        ----------
+        data : dict
+            ``{"wavelengths_nm": [...], "spectra": {name: [...]}}`` (as written by :meth:`to_dict`)
+            or ``{"wavelengths_nm": [...], "values": [...] or [[...], ...], "names": [...]}``;
+            wavelengths in nm.
+
+        Returns
+        -------
+        Spectrum
+            One spectrum for a single entry, else an ``(N, K)`` batch with names.
+
+        Raises
+        ------
+        SpectrumError
+            For a missing key, non-numeric entries or rows of different lengths.
+
+        Examples
+        --------
+        >>> s = Spectrum.from_dict({"wavelengths_nm": [400, 500], "spectra": {"a": [0, 1], "b": [1, 0]}})
+        >>> s.names, s.values.tolist()
+        (('a', 'b'), [[0.0, 1.0], [1.0, 0.0]])
+        """
         if not isinstance(data, dict) or "wavelengths_nm" not in data:
             raise SpectrumError("JSON: expected an object with a 'wavelengths_nm' list")
         if "spectra" in data:
