@@ -69,9 +69,13 @@ def _readonly(a: np.ndarray) -> np.ndarray:
 class RGBSpace:
     """A linear-light RGB space with a transfer function.
 
+    Use :meth:`from_chromaticities` or :meth:`from_primaries_XYZ` to build one, or
+    :func:`rgb_space` for a built-in one.
+
     Attributes
     ----------
     name : str
+        The space's name, shown in reports and the app.
     matrix_to_XYZ : ndarray (3, 3)
         Columns are the XYZ of the red, green and blue primaries at full drive;
         ``XYZ = matrix_to_XYZ @ rgb_linear``.
@@ -81,9 +85,6 @@ class RGBSpace:
         XYZ of R = G = B = 1, the sum of the primaries' columns.
     transfer : transfer object
         See :mod:`spectrocolor.display.transfer`.
-
-    Use :meth:`from_chromaticities` or :meth:`from_primaries_XYZ` to build one, or
-    :func:`rgb_space` for a built-in one.
     """
 
     name: str
