@@ -152,13 +152,34 @@ def interpolation_matrix(source_nm: np.ndarray, target_nm: np.ndarray, method: s
 
     Parameters
     ----------
-    source_nm, target_nm
-        Strictly increasing wavelengths in nm; ``target_nm`` must lie inside ``source_nm``'s range.
-    method
+    source_nm : array_like, shape (K,)
+        Strictly increasing source wavelengths, nm.
+    target_nm : array_like, shape (M,)
+        Strictly increasing target wavelengths, nm, inside ``source_nm``'s range.
+    method : str, default "linear"
         ``"linear"``; ``"sprague"`` (CIE 167 recommended for uniformly spaced data, e.g.
-        5 nm → 1 nm); ``"cubic"`` (not-a-knot cubic spline, any spacing).
+        5 nm → 1 nm; at least 6 samples); ``"cubic"`` (not-a-knot cubic spline, any spacing).
 
-    Target wavelengths that coincide with source samples reproduce them exactly in every method.
+    Returns
+    -------
+    numpy.ndarray
+        ``P``, float64, shape ``(M, K)``. Target wavelengths that coincide with source samples
+        reproduce them exactly in every method.
+
+    Raises
+    ------
+    SpectrumError
+        For an unknown method, a target outside the source range, a grid the method cannot use,
+        or a matrix larger than the built-in memory limit.
+
+    References
+    ----------
+    CIE 167:2005 (Sprague interpolation); see the module docstring.
+
+    Examples
+    --------
+    >>> interpolation_matrix([400.0, 500.0, 600.0], [450.0, 500.0]).tolist()
+    [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0]]
     """
     source_nm = np.asarray(source_nm, dtype=float)
     target_nm = np.asarray(target_nm, dtype=float)

@@ -420,8 +420,9 @@ class Spectrum:
         wavelengths_nm : array_like, shape (M,)
             The target grid, nm, within this spectrum's range.
         method : str, default "linear"
-            ``"linear"``, ``"sprague"`` (CIE 167:2005 Sprague interpolation, uniform source grids
-            only) or ``"cubic"`` (natural cubic spline); see :mod:`spectrocolor.interpolation`.
+            ``"linear"``, ``"sprague"`` (CIE 167:2005 Sprague interpolation; at least 6 uniformly
+            spaced source samples) or ``"cubic"`` (not-a-knot cubic spline, any spacing); see
+            :mod:`spectrocolor.interpolation`.
 
         Returns
         -------
