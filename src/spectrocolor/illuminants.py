@@ -43,7 +43,20 @@ MIN_TEMPERATURE_K, MAX_TEMPERATURE_K = 100.0, 1.0e6
 
 
 def illuminant_names() -> tuple[str, ...]:
-    """Names accepted by :func:`illuminant`."""
+    """Names of the CIE illuminants accepted by :func:`illuminant`.
+
+    Returns
+    -------
+    tuple of str
+        Canonical names: A, B, C, D50–D75, E, FL1–FL12, LED-B1–B5. Blackbodies (``"blackbody:T"``)
+        and daylights of any temperature (``"D:T"``) are accepted too but not listed.
+
+    Examples
+    --------
+    >>> names = illuminant_names()
+    >>> names[:8], len(names)
+    (('A', 'B', 'C', 'D50', 'D55', 'D65', 'D75', 'E'), 25)
+    """
     return _NAMES
 
 
@@ -152,6 +165,24 @@ def _temperature(value, argument: str) -> float:
 def illuminant_label(illuminant) -> str:
     """A short human-readable name of an illuminant given in any accepted form.
 
+    Parameters
+    ----------
+    illuminant : None, str, int, float or Spectrum
+        Any form :func:`canonical_illuminant` accepts.
+
+    Returns
+    -------
+    str
+        The canonical CIE name, ``"blackbody T K"``, ``"CIE daylight T K"``, the Spectrum's name
+        (``"user illuminant"`` when it has none), or ``"none (lights)"`` for ``None``.
+
+    Raises
+    ------
+    ColorimetryError
+        As :func:`canonical_illuminant`.
+
+    Examples
+    --------
     >>> illuminant_label("d50"), illuminant_label(3000), illuminant_label(None)
     ('D50', 'blackbody 3000 K', 'none (lights)')
     """
@@ -193,6 +224,38 @@ def blackbody(
     the Planckian locus for correlated colour temperature with c₂ = 1.4388e-2 m·K (pass
     ``c2_m_K=C2_CIE_LOCUS_M_K`` to match it; the two differ by 1.6e-5 in temperature). Seed 000
     (Zawischa) lights its soap films with ``blackbody(6504)``.
+
+    Parameters
+    ----------
+    temperature_K : float
+        Temperature of the radiator, K (positive).
+    wavelengths_nm : array_like, shape (K,), optional
+        The grid, nm; default 360–830 nm at 1 nm.
+    normalise_at_nm : float, default 560.0
+        Wavelength at which the SPD is 100, nm.
+    c2_m_K : float, default C2_CODATA_M_K
+        Second radiation constant c₂, m·K (1.438776877e-2, CODATA 2018).
+
+    Returns
+    -------
+    Spectrum
+        Relative spectral power ``100 · M(λ, T) / M(normalise_at_nm, T)`` (Planck's law),
+        dimensionless, named ``"blackbody"``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a temperature that is not a positive number, or one so low that the ratio
+        overflows on the grid.
+
+    References
+    ----------
+    CIE 015:2018 §4.1 (Planckian radiators; illuminant A); CODATA 2018 for c₂.
+
+    Examples
+    --------
+    >>> blackbody(6504, [400, 560, 700]).values.round(3).tolist()
+    [109.067, 100.0, 73.951]
     """
     if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
         raise ColorimetryError(f"temperature_K: expected a positive temperature in kelvin, got {temperature_K!r}")
@@ -245,13 +308,22 @@ def illuminant(name, wavelengths_nm=None, method: str = "linear") -> Spectrum:
         blackbody 360–830 nm at 1 nm; daylight 300–830 nm at 5 nm). Tabulated illuminants are
         interpolated with ``method`` (default linear, as CIE 015 recommends for the daylight
         series) and never extrapolated.
-    method : str
+    method : str, default "linear"
         Interpolation for tabulated illuminants (see :meth:`Spectrum.resample`).
 
     Returns
     -------
     Spectrum
         Relative SPD (arbitrary units; the CIE tables are 100 at 560 nm).
+
+    Raises
+    ------
+    ColorimetryError
+        For ``None``, an unknown name, or a grid outside the table's range (never extrapolated).
+
+    References
+    ----------
+    CIE 015:2018 §4.1 and Tables 5–10 (see the module docstring).
 
     Examples
     --------
@@ -294,6 +366,30 @@ def daylight_xy(cct_K: float) -> np.ndarray:
     """Chromaticity (xD, yD) of the CIE daylight illuminant of correlated colour temperature ``cct_K``.
 
     CIE 015:2018 eqs. (4.7)–(4.9); valid for 4000 K ≤ T ≤ 25 000 K.
+
+    Parameters
+    ----------
+    cct_K : float
+        Correlated colour temperature, K, 4000–25000.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``[xD, yD]``, CIE 1931 chromaticity, shape (2,).
+
+    Raises
+    ------
+    ColorimetryError
+        For a non-number or a temperature outside 4000–25000 K.
+
+    References
+    ----------
+    CIE 015:2018 §4.1.2, eqs. (4.7)–(4.9).
+
+    Examples
+    --------
+    >>> daylight_xy(6504).round(5).tolist()
+    [0.31271, 0.32912]
     """
     if not isinstance(cct_K, int | float | np.number) or isinstance(cct_K, bool):
         raise ColorimetryError(f"cct_K: expected a temperature in kelvin (4000–25000), got {cct_K!r}")
@@ -315,6 +411,37 @@ def daylight(cct_K: float, wavelengths_nm=None, round_coefficients: bool = True)
     With ``round_coefficients`` (default) M1 and M2 are rounded to three decimals, as the CIE
     did for the tabulated D50–D75; so ``daylight(6500 * 1.4388 / 1.4380)`` reproduces the D65
     table. The basis is tabulated at 5 nm (300–830 nm) and interpolated linearly.
+
+    Parameters
+    ----------
+    cct_K : float
+        Correlated colour temperature, K, 4000–25000.
+    wavelengths_nm : array_like, shape (K,), optional
+        The grid, nm, within 300–830 nm; default the basis's own 5 nm grid, 300–830 nm.
+    round_coefficients : bool, default True
+        Round M1 and M2 to three decimals (CIE practice for the tabulated D illuminants).
+
+    Returns
+    -------
+    Spectrum
+        Relative SPD (100 near 560 nm, like the CIE tables), named ``"D<cct_K>K"``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a temperature outside 4000–25000 K or a grid outside 300–830 nm.
+
+    References
+    ----------
+    CIE 015:2018 §4.1.2, eqs. (4.7)–(4.10) and Table 6 (S0, S1, S2).
+
+    Examples
+    --------
+    >>> d65 = daylight(6500 * 1.4388 / 1.4380, [400, 560, 700])
+    >>> d65.values.round(3).tolist()
+    [82.755, 100.0, 71.609]
+    >>> illuminant("D65", [400, 560, 700]).values.tolist()
+    [82.7549, 100.0, 71.6091]
     """
     x, y = daylight_xy(cct_K)
     m = 0.0241 + 0.2562 * x - 0.7341 * y

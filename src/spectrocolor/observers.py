@@ -55,7 +55,18 @@ _ALIASES = {
 
 
 def observer_names() -> tuple[str, ...]:
-    """Canonical names of the shipped observers."""
+    """Canonical names of the shipped observers.
+
+    Returns
+    -------
+    tuple of str
+        The names :func:`observer` accepts as they are (aliases such as ``"1931"`` also work).
+
+    Examples
+    --------
+    >>> observer_names()
+    ('CIE 1931 2°', 'CIE 1964 10°', 'CIE 2015 2°', 'CIE 2015 10°')
+    """
     return tuple(_FILES)
 
 
@@ -86,7 +97,7 @@ def observer(name: str = "1931") -> Spectrum:
 
     Parameters
     ----------
-    name
+    name : str, default "1931"
         ``"CIE 1931 2°"`` (aliases ``"1931"``, ``"2deg"``), ``"CIE 1964 10°"`` (``"1964"``,
         ``"10deg"``), ``"CIE 2015 2°"`` (``"2015-2"``), ``"CIE 2015 10°"`` (``"2015-10"``).
 
@@ -94,10 +105,25 @@ def observer(name: str = "1931") -> Spectrum:
     -------
     Spectrum
         Values of shape ``(3, K)``: x̄, ȳ, z̄ at 1 nm (360–830 nm for 1931/1964, 390–830 nm
-        for the 2015 observers), names ``("x_bar", "y_bar", "z_bar")``.
+        for the 2015 observers), names ``("x_bar", "y_bar", "z_bar")``. The values are read-only
+        and shared between calls.
 
+    Raises
+    ------
+    ColorimetryError
+        For a name that is not a string or not a known observer or alias.
+
+    References
+    ----------
+    CIE 015:2018, Tables 1 and 2; CIE 170-2:2015 (see the module docstring).
+
+    Examples
+    --------
     >>> observer("1931").values.shape
     (3, 471)
+    >>> cmfs = observer("10deg")
+    >>> cmfs.names, float(cmfs.wavelengths_nm[0]), float(cmfs.wavelengths_nm[-1])
+    (('x_bar', 'y_bar', 'z_bar'), 360.0, 830.0)
     """
     result = _observer(canonical_observer_name(name))
     result.values.setflags(write=False)
