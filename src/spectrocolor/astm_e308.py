@@ -191,13 +191,13 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
 
     Parameters
     ----------
-    wavelengths_nm
+    wavelengths_nm : array_like, shape (K,)
         The measured wavelengths, nm: uniform with an interval of 1, 5, 10 or 20 nm, starting and
         ending on whole nanometres, within the observer's and illuminant's range.
-    observer
+    observer : str or Spectrum
         Observer name or alias (see :func:`spectrocolor.observer`) or a (3, K) :class:`Spectrum`
         of colour-matching functions (used at 1 nm, interpolated linearly if needed).
-    illuminant
+    illuminant : str or Spectrum
         CIE illuminant name (evaluated at 1 nm by :func:`illuminant_at_1nm`: A from its formula,
         D65 linearly as CIE's 1 nm table, the other 5 nm tables by E2022's Lagrange scheme) or a :class:`Spectrum` that
         includes every whole nanometre of the reference range (normally 360–780 nm; a Spectrum

@@ -182,8 +182,12 @@ def tristimulus(
         Spectra ``(..., K)``. With an illuminant: reflectance/transmittance factors (0–1) and the
         result is on the XYZ100 scale (perfect white Y = 100; Y is the luminance factor in %).
         Without (``illuminant=None``, the default): lights, summed as ``k Σ S x̄ Δλ``.
-    observer, illuminant, method : keyword-only
-        As in :func:`weights`.
+    observer : str or Spectrum, keyword-only
+        As in :func:`weights` (default CIE 1931 2°).
+    illuminant : None, str, float or Spectrum, keyword-only
+        As in :func:`weights`; default ``None`` (the spectra are lights).
+    method : str, keyword-only
+        As in :func:`weights` (default ``"sum"``).
     k : None, float or "absolute", keyword-only
         Lights only: ``None`` or a number (default 1: relative units of the light) or
         ``"absolute"`` for 683 lm/W (spectral radiance in W·sr⁻¹·m⁻²·nm⁻¹ gives Y in cd/m²).
@@ -198,6 +202,10 @@ def tristimulus(
     ------
     ColorimetryError
         For a non-Spectrum input, ``k`` with an illuminant, and as :func:`weights`.
+
+    References
+    ----------
+    CIE 015:2018 §7.1 (tristimulus values by summation); seed 001 §1.8, seed 003.
 
     Examples
     --------
@@ -248,6 +256,15 @@ def white_point(
     -------
     numpy.ndarray
         XYZ100 of the white, shape (3,).
+
+    Raises
+    ------
+    ColorimetryError
+        For ``illuminant=None`` (lights have no perfect white) and as :func:`weights`.
+
+    References
+    ----------
+    CIE 015:2018 §7.2 (white points of the CIE illuminants).
 
     Examples
     --------
