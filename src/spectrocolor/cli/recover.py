@@ -41,7 +41,7 @@ def register(subparsers) -> None:
 
 
 def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.ndarray:
-    from .. import rgb_space, wavelength_grid, white_point
+    from .. import adapt, rgb_space, wavelength_grid, white_point
 
     rgb8 = []
     for code in codes:
@@ -51,10 +51,11 @@ def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.nd
         rgb8.append([int(text[i:i + 2], 16) for i in (0, 2, 4)])
     space = rgb_space("sRGB")
     rgb_linear = space.transfer.decode(np.array(rgb8) / 255.0)
-    XYZ = space.XYZ_from_rgb_linear(rgb_linear) * 100.0
-    # the display's white is mapped to the perfect reflector under the chosen illuminant
+    XYZ100 = space.XYZ_from_rgb_linear(rgb_linear)  # the display's white has Y = 100
+    # the display's white becomes the perfect reflector under the chosen illuminant by the same
+    # Bradford adaptation that `describe` applies the other way, so recover → describe returns the hex
     white = white_point(illuminant, observer=observer, wavelengths_nm=wavelength_grid(*grid))
-    return XYZ * (white / (np.asarray(space.matrix_to_XYZ).sum(axis=1) * 100.0))
+    return adapt(XYZ100, space.white_XYZ, white, method="bradford")
 
 
 def _read_csv(path: Path) -> np.ndarray:
