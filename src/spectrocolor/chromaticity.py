@@ -84,7 +84,23 @@ _EQUAL_ENERGY_XY = np.array([1.0 / 3.0, 1.0 / 3.0])
 
 
 class SpectralLocus(NamedTuple):
-    """Chromaticities of monochromatic stimuli: ``wavelengths_nm`` (K,) and ``xy`` (K, 2)."""
+    """Chromaticities of monochromatic stimuli: ``wavelengths_nm`` (K,) and ``xy`` (K, 2).
+
+    Returned by :func:`spectral_locus`; a named tuple, so ``wavelengths_nm, xy = locus`` works.
+
+    Attributes
+    ----------
+    wavelengths_nm : numpy.ndarray, shape (K,)
+        Wavelengths of the monochromatic stimuli, nm, increasing (read-only).
+    xy : numpy.ndarray, shape (K, 2)
+        Their CIE chromaticity coordinates x, y (read-only).
+
+    Examples
+    --------
+    >>> wavelengths_nm, xy = spectral_locus("1931")
+    >>> xy[wavelengths_nm == 520].round(4).tolist()
+    [[0.0743, 0.8338]]
+    """
 
     wavelengths_nm: np.ndarray
     xy: np.ndarray
@@ -102,6 +118,14 @@ class DominantWavelength(NamedTuple):
         True where the colour lies toward the purple line.
     excitation_purity : ndarray of float
         ``|S - W| / |B - W|``: 0 at the white, 1 on the gamut boundary, > 1 outside it.
+
+    Examples
+    --------
+    >>> result = dominant_wavelength([[0.5437, 0.3211], [0.30, 0.20]], "D65")
+    >>> result.wavelength_nm.round(1).tolist(), result.complementary.tolist()
+    ([616.4, 556.0], [False, True])
+    >>> result.excitation_purity.round(3).tolist(), result.outside_locus.tolist()
+    ([0.623, 0.474], [False, False])
     """
 
     wavelength_nm: np.ndarray
@@ -149,7 +173,7 @@ def spectral_locus(observer=DEFAULT_OBSERVER, *, full: bool = False) -> Spectral
 
     Parameters
     ----------
-    observer : str
+    observer : str, default DEFAULT_OBSERVER
         Observer name or alias (``"1931"``, ``"1964"``, ``"2015-2"``, ``"2015-10"``, …).
     full : bool, keyword-only
         False (default): only the monotonic part of the locus, from its bluest to its
@@ -161,6 +185,15 @@ def spectral_locus(observer=DEFAULT_OBSERVER, *, full: bool = False) -> Spectral
     -------
     SpectralLocus
         ``(wavelengths_nm, xy)``: read-only arrays of shape (K,) and (K, 2).
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown observer.
+
+    References
+    ----------
+    CIE 015:2018 §9 (the chromaticity diagram and the spectral locus).
 
     Examples
     --------
@@ -334,17 +367,32 @@ def colorimetric_purity(xy, white, observer=DEFAULT_OBSERVER) -> np.ndarray:
 
     Parameters
     ----------
-    xy, white, observer
-        As for :func:`dominant_wavelength`.
+    xy : array_like, shape (..., 2)
+        Chromaticities of the colours.
+    white : (x, y) or str
+        The reference white, as for :func:`dominant_wavelength`.
+    observer : str, default DEFAULT_OBSERVER
+        Observer whose spectral locus is used (CIE 1931 2°).
 
     Returns
     -------
-    ndarray, shape (...)
-        0 at the white, NaN for NaN input.
+    numpy.ndarray, shape (...)
+        Colorimetric purity, dimensionless: 0 at the white, 1 on the spectral locus, NaN for
+        NaN input.
+
+    Raises
+    ------
+    ColorimetryError
+        As :func:`dominant_wavelength`.
 
     References
     ----------
     CIE 015:2018 *Colorimetry*, §9.2 (colorimetric purity).
+
+    Examples
+    --------
+    >>> round(float(colorimetric_purity([0.54369557, 0.32107944], [0.3127, 0.3290])), 4)
+    0.6136
     """
     hit = _boundary(xy, white, observer)
     points = colour_array(xy, "xy", 2, "chromaticity coordinates x, y")
