@@ -78,6 +78,12 @@ def _coordinates(t, argument: str = "rgb_linear") -> np.ndarray:
     return a
 
 
+#: Axes by decreasing fraction (ties: lower axis first) for the comparison code
+#: ``4 [f0 >= f1] + 2 [f1 >= f2] + [f0 >= f2]``; codes 1 and 6 cannot occur.
+_ORDER_OF_CODE = np.array([(2, 1, 0), (0, 1, 2), (1, 2, 0), (1, 0, 2), (2, 0, 1), (0, 2, 1),
+                           (0, 1, 2), (0, 1, 2)], dtype=np.intp)
+
+
 @dataclass(frozen=True)
 class Lookup:
     """Where each query lands: four node indices and their barycentric weights.
@@ -125,7 +131,8 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     s = t * (n - 1)
     base = np.minimum(s.astype(np.intp), n - 2)  # t >= 0 here, so truncation is floor
     f = s - base
-    order = np.argsort(-f, axis=-1, kind="stable")  # axes by decreasing fraction
+    order = _ORDER_OF_CODE[(f[..., 0] >= f[..., 1]) * 4 + (f[..., 1] >= f[..., 2]) * 2
+                           + (f[..., 0] >= f[..., 2])]
     fs = np.take_along_axis(f, order, axis=-1)
     weights = np.empty((*t.shape[:-1], 4))
     weights[..., 0] = 1.0 - fs[..., 0]
