@@ -80,6 +80,15 @@ def xy(XYZ) -> np.ndarray:
     ndarray, shape (..., 2)
         (x, y); NaN where X + Y + Z = 0 (black has no chromaticity).
 
+    Raises
+    ------
+    ColorimetryError
+        For input whose last axis is not 3 or that is not numeric.
+
+    References
+    ----------
+    CIE 015:2018, section 7.3.
+
     Examples
     --------
     >>> xy([95.047, 100.0, 108.883]).round(4)
@@ -96,11 +105,22 @@ def xyY(XYZ) -> np.ndarray:
     Parameters
     ----------
     XYZ : array_like, shape (..., 3)
+        Tristimulus values on any scale (XYZ100 gives Y in percent).
 
     Returns
     -------
     ndarray, shape (..., 3)
         (x, y, Y); x and y are NaN for black (Y is then 0).
+
+    Raises
+    ------
+    ColorimetryError
+        For input whose last axis is not 3 or that is not numeric.
+
+    Examples
+    --------
+    >>> xyY([95.047, 100.0, 108.883]).round(4).tolist()
+    [0.3127, 0.329, 100.0]
     """
     XYZ = colour_array(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
     return np.concatenate([xy(XYZ), XYZ[..., 1:2]], axis=-1)
@@ -123,7 +143,14 @@ def XYZ_from_xyY(xyY) -> np.ndarray:
     Raises
     ------
     ColorimetryError
-        Where y = 0 but Y != 0 (an infinite X and Z).
+        Where y = 0 but Y != 0 (an infinite X and Z), or for malformed input.
+
+    Examples
+    --------
+    >>> XYZ_from_xyY([0.3127, 0.3290, 100.0]).round(3).tolist()
+    [95.046, 100.0, 108.906]
+    >>> XYZ_from_xyY([float("nan"), float("nan"), 0.0]).tolist()  # black round-trips
+    [0.0, 0.0, 0.0]
     """
     xyY = colour_array(xyY, "xyY", 3, "chromaticity x, y and luminance Y")
     x, y, Y = xyY[..., 0], xyY[..., 1], xyY[..., 2]
@@ -173,6 +200,20 @@ def uv_1960(XYZ=None, *, xy=None) -> np.ndarray:
     -------
     ndarray, shape (..., 2)
         (u, v); NaN for black.
+
+    Raises
+    ------
+    ColorimetryError
+        Unless exactly one of ``XYZ`` and ``xy`` is given, or for malformed input.
+
+    References
+    ----------
+    CIE 015:2018, section 9.5 (the CIE 1960 UCS diagram).
+
+    Examples
+    --------
+    >>> uv_1960([95.047, 100.0, 108.883]).round(5).tolist()
+    [0.19784, 0.31222]
     """
     four_x, six_y, denominator = _uv_from(XYZ, xy, "uv_1960")
     return np.stack([_safe_divide(four_x, denominator), _safe_divide(six_y, denominator)], -1)
@@ -184,10 +225,22 @@ def xy_from_uv_1960(uv) -> np.ndarray:
     Parameters
     ----------
     uv : array_like, shape (..., 2)
+        CIE 1960 UCS chromaticity (u, v).
 
     Returns
     -------
     ndarray, shape (..., 2)
+        CIE 1931 chromaticity (x, y); NaN where d = 0.
+
+    Raises
+    ------
+    ColorimetryError
+        For input whose last axis is not 2 or that is not numeric.
+
+    Examples
+    --------
+    >>> xy_from_uv_1960(uv_1960(xy=[0.3127, 0.3290])).round(6).tolist()
+    [0.3127, 0.329]
     """
     uv = colour_array(uv, "uv", 2, "CIE 1960 chromaticity u, v")
     u, v = uv[..., 0], uv[..., 1]
@@ -210,6 +263,15 @@ def uv_1976(XYZ=None, *, xy=None) -> np.ndarray:
     ndarray, shape (..., 2)
         (u', v'); NaN for black.
 
+    Raises
+    ------
+    ColorimetryError
+        Unless exactly one of ``XYZ`` and ``xy`` is given, or for malformed input.
+
+    References
+    ----------
+    CIE 015:2018, section 8.1 (the CIE 1976 UCS diagram).
+
     Examples
     --------
     >>> uv_1976(xy=[0.31272, 0.32903]).round(5)
@@ -226,10 +288,22 @@ def xy_from_uv_1976(uv) -> np.ndarray:
     Parameters
     ----------
     uv : array_like, shape (..., 2)
+        CIE 1976 UCS chromaticity (u', v').
 
     Returns
     -------
     ndarray, shape (..., 2)
+        CIE 1931 chromaticity (x, y); NaN where d = 0.
+
+    Raises
+    ------
+    ColorimetryError
+        For input whose last axis is not 2 or that is not numeric.
+
+    Examples
+    --------
+    >>> xy_from_uv_1976([0.19783, 0.46834]).round(4).tolist()
+    [0.3127, 0.329]
     """
     uv = colour_array(uv, "uv", 2, "CIE 1976 chromaticity u', v'")
     u, v = uv[..., 0], uv[..., 1]
@@ -263,9 +337,20 @@ def lab(XYZ, white_XYZ) -> np.ndarray:
         (L*, a*, b*); L* = 100 for the white itself. Uses the exact CIE constants
         ((6/29)^3 = 216/24389 as the break point), so the two branches join continuously.
 
+    Raises
+    ------
+    ColorimetryError
+        For malformed input or a white that is not positive and finite.
+
     References
     ----------
     CIE 015:2018, section 8.2.1.
+
+    Examples
+    --------
+    >>> from spectrocolor import white_point
+    >>> lab([41.24, 21.26, 1.93], white_point("D65")).round(2).tolist()
+    [53.23, 80.11, 67.22]
     """
     XYZ = colour_array(XYZ, "XYZ", 3, "tristimulus values X, Y, Z")
     ratio = XYZ / _white(white_XYZ, "white_XYZ")
@@ -292,6 +377,22 @@ def XYZ_from_lab(lab, white_XYZ) -> np.ndarray:
     Returns
     -------
     ndarray, shape (..., 3)
+        XYZ on the scale of ``white_XYZ`` (XYZ100 for ``white_point(...)``).
+
+    Raises
+    ------
+    ColorimetryError
+        For malformed input or a white that is not positive and finite.
+
+    References
+    ----------
+    CIE 015:2018, section 8.2.1.
+
+    Examples
+    --------
+    >>> from spectrocolor import white_point
+    >>> XYZ_from_lab([100.0, 0.0, 0.0], white_point("D65")).round(3).tolist()
+    [95.043, 100.0, 108.88]
     """
     lab = colour_array(lab, "lab", 3, "CIELAB L*, a*, b*")
     white = _white(white_XYZ, "white_XYZ")
@@ -307,15 +408,26 @@ def lch(lab) -> np.ndarray:
     Parameters
     ----------
     lab : array_like, shape (..., 3)
+        CIELAB (L*, a*, b*).
 
     Returns
     -------
     ndarray, shape (..., 3)
         (L*, C*ab, h_ab) with h_ab in [0, 360) degrees; h_ab = 0 for neutrals (a* = b* = 0).
 
+    Raises
+    ------
+    ColorimetryError
+        For input whose last axis is not 3 or that is not numeric.
+
     References
     ----------
     CIE 015:2018, section 8.2.2.
+
+    Examples
+    --------
+    >>> lch([50.0, 3.0, -4.0]).round(2).tolist()
+    [50.0, 5.0, 306.87]
     """
     lab = colour_array(lab, "lab", 3, "CIELAB L*, a*, b*")
     a, b = lab[..., 1], lab[..., 2]
@@ -336,6 +448,11 @@ def lab_from_lch(lch) -> np.ndarray:
     -------
     ndarray, shape (..., 3)
         (L*, a*, b*) with a* = C*ab cos h_ab and b* = C*ab sin h_ab.
+
+    Raises
+    ------
+    ColorimetryError
+        For a negative chroma or malformed input.
 
     References
     ----------

@@ -39,10 +39,21 @@ def delta_e_76(lab1, lab2) -> np.ndarray:
     Returns
     -------
     ndarray, shape (...)
+        ΔE*ab in CIELAB units, with the broadcast leading shape of the inputs.
+
+    Raises
+    ------
+    ColorimetryError
+        For malformed input or shapes that do not broadcast.
 
     References
     ----------
     CIE 015:2018, section 8.2.3.
+
+    Examples
+    --------
+    >>> round(float(delta_e_76([50.0, 2.0, -3.0], [52.0, 2.0, 1.0])), 6)  # √(2² + 4²)
+    4.472136
     """
     lab1, lab2 = _lab_pair(lab1, lab2)
     return np.sqrt(np.sum((lab1 - lab2) ** 2, axis=-1))
@@ -73,6 +84,13 @@ def delta_e_2000(lab1, lab2, *, k_L: float = 1.0, k_C: float = 1.0, k_H: float =
     Returns
     -------
     ndarray, shape (...)
+        ΔE00, with the broadcast leading shape of the inputs.
+
+    Raises
+    ------
+    ColorimetryError
+        For a weighting factor that is not positive and finite, malformed input or shapes
+        that do not broadcast.
 
     References
     ----------
@@ -80,6 +98,13 @@ def delta_e_2000(lab1, lab2, *, k_L: float = 1.0, k_C: float = 1.0, k_H: float =
     G. Sharma, W. Wu and E. N. Dalal, "The CIEDE2000 color-difference formula:
     implementation notes, supplementary test data, and mathematical observations",
     Color Res. Appl. 30 (1), 21-30 (2005), eqs. 1-22.
+
+    Examples
+    --------
+    Pair 1 of Sharma et al.'s test data (ΔE00 = 2.0425):
+
+    >>> round(float(delta_e_2000([50.0, 2.6772, -79.7751], [50.0, 0.0, -82.7485])), 4)
+    2.0425
     """
     for name, k in (("k_L", k_L), ("k_C", k_C), ("k_H", k_H)):
         if isinstance(k, bool) or not isinstance(k, int | float | np.floating | np.integer) or not (

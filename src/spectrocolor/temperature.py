@@ -55,7 +55,24 @@ _CHUNK = 4096
 
 
 class CCT(NamedTuple):
-    """Correlated colour temperature ``cct_K`` (K) and ``duv`` (CIE 1960 uv distance)."""
+    """Correlated colour temperature ``cct_K`` (K) and ``duv`` (CIE 1960 uv distance).
+
+    Returned by :func:`cct`; a named tuple, so ``T, duv = cct(xy)`` works.
+
+    Attributes
+    ----------
+    cct_K : numpy.ndarray, shape (...)
+        Correlated colour temperature, K; NaN outside 1 000–100 000 K and for NaN input.
+    duv : numpy.ndarray, shape (...)
+        Signed distance from the Planckian locus in the CIE 1960 (u, v) diagram, dimensionless;
+        positive above the locus (toward green), negative below it (toward magenta).
+
+    Examples
+    --------
+    >>> T, duv = cct([[0.31272, 0.32903], [0.44757, 0.40745]])  # D65, A
+    >>> T.round(0).tolist(), duv.round(4).tolist()
+    ([6503.0, 2856.0], [0.0032, 0.0])
+    """
 
     cct_K: np.ndarray
     duv: np.ndarray
@@ -122,7 +139,7 @@ def cct(xy=None, *, XYZ=None, observer=DEFAULT_OBSERVER) -> CCT:
         Chromaticities.
     XYZ : array_like, shape (..., 3), keyword-only, optional
         Tristimulus values instead of ``xy`` (any scale). Give exactly one of the two.
-    observer : str
+    observer : str, keyword-only
         Observer for the Planckian locus; it must be the observer the colour was computed
         with (default CIE 1931 2°, the one CCT is normally quoted for).
 
@@ -131,6 +148,12 @@ def cct(xy=None, *, XYZ=None, observer=DEFAULT_OBSERVER) -> CCT:
     CCT
         ``(cct_K, duv)`` with the leading shape of the input. Accurate to 0.001 K and 1e-9 in
         Duv (see the module documentation); NaN outside 1 000-100 000 K or for NaN input.
+
+    Raises
+    ------
+    ColorimetryError
+        Unless exactly one of ``xy`` and ``XYZ`` is given, for malformed input or an unknown
+        observer.
 
     References
     ----------
@@ -187,18 +210,27 @@ def xy_from_cct(cct_K, duv=0.0, observer=DEFAULT_OBSERVER) -> np.ndarray:
 
     Parameters
     ----------
-    cct_K : array_like
+    cct_K : array_like, shape (...)
         Temperatures in kelvin, 1 000-100 000 K.
-    duv : array_like
+    duv : array_like, default 0.0
         Signed distance from the locus in the CIE 1960 diagram (positive toward green),
         broadcast against ``cct_K``.
-    observer : str
+    observer : str, default DEFAULT_OBSERVER
         Observer for the Planckian locus (default CIE 1931 2°).
 
     Returns
     -------
     ndarray, shape (..., 2)
         (x, y) computed directly from Planck's law and the observer (no table).
+
+    Raises
+    ------
+    ColorimetryError
+        For a temperature that is not finite or outside 1 000–100 000 K, or an unknown observer.
+
+    References
+    ----------
+    CIE 015:2018 §9.5 (Planckian locus in the CIE 1960 UCS diagram, Duv).
 
     Examples
     --------
