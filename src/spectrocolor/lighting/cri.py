@@ -30,9 +30,8 @@ import numpy as np
 from ..coordinates import uv_1960
 from ..sampling import cmfs_on
 from ..spectrum import Spectrum
-from ..temperature import cct
 from .reference import cri_reference
-from .spectra import light_grid, tcs_reflectances
+from .spectra import light_cct, light_grid, tcs_reflectances
 
 #: CIE 13.3 §5.3: largest chromaticity distance ΔC between light and reference.
 DELTA_C_LIMIT = 5.4e-3
@@ -68,7 +67,7 @@ class CRI:
 
 def _cd(uv: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     u, v = uv[..., 0], uv[..., 1]
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         return (4.0 - u - 10.0 * v) / v, (1.708 * v + 0.404 - 1.481 * u) / v
 
 
@@ -83,7 +82,7 @@ def _sample_XYZ100(S: np.ndarray, products: np.ndarray, V_delta: np.ndarray) -> 
     """XYZ (N, samples, 3) of the samples under lights S (N, K), each light scaled to Y = 100."""
     count = products.shape[0]
     XYZ = S @ products.transpose(1, 0, 2).reshape(products.shape[1], -1)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         k = 100.0 / (S @ V_delta)
         return XYZ.reshape(len(S), count, 3) * k[:, None, None]
 
@@ -120,7 +119,7 @@ def colour_rendering_index(spd) -> CRI:
     delta = grid[1] - grid[0]
     W = cmfs * delta
     uv_test = uv_1960(S @ W)
-    temperature = cct(XYZ=S @ W)
+    temperature = light_cct(S, grid)
     R = cri_reference(temperature.cct_K, grid)
     uv_ref = uv_1960(R @ W)
 
@@ -134,7 +133,7 @@ def colour_rendering_index(spd) -> CRI:
     c_t, d_t = _cd(uv_test)
     c_r, d_r = _cd(uv_ref)
     c_i, d_i = _cd(uv_t)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         cc = (c_r / c_t)[:, None] * c_i
         dd = (d_r / d_t)[:, None] * d_i
         denominator = 16.518 + 1.481 * cc - dd

@@ -31,10 +31,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..sampling import cmfs_on
-from ..temperature import cct
 from .cam02ucs import cam02ucs_jab
 from .reference import fidelity_reference
-from .spectra import ces_reflectances, light_grid
+from .spectra import ces_reflectances, light_cct, light_grid
 
 #: Scaling factor of CIE 224:2017 eq. (8).
 CF = 6.73
@@ -87,7 +86,7 @@ def rf_from_delta_e(delta_E):
 
 def _jab(S: np.ndarray, products: np.ndarray, W10: np.ndarray) -> np.ndarray:
     """CAM02-UCS J'a'b' (N, 99, 3) of the samples under lights S (N, K)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         k = 100.0 / (S @ W10[:, 1])
         white = (S @ W10) * k[:, None]
         XYZ = (S @ products).reshape(len(S), -1, 3) * k[:, None, None]
@@ -114,7 +113,7 @@ def _bin_means(hue_deg, test_ab, reference_ab, delta_E):
         sums = np.bincount(index, weights=values[valid], minlength=N * HUE_BINS)
         return sums.reshape(N, HUE_BINS)
 
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         members = mean(np.ones_like(delta_E))
         members = np.where(members > 0, members, np.nan)
         test = np.stack([mean(test_ab[..., 0]), mean(test_ab[..., 1])], axis=-1) / members[..., None]
@@ -148,7 +147,7 @@ def colour_fidelity(spd) -> Fidelity:
     """
     grid, S = light_grid(spd, 380.0, 780.0)
     delta = grid[1] - grid[0]
-    temperature = cct(XYZ=S @ (cmfs_on(grid, "1931") * delta))
+    temperature = light_cct(S, grid)
     R = fidelity_reference(temperature.cct_K, grid)
     W10 = cmfs_on(grid, "1964") * delta
     ces = ces_reflectances(grid)
@@ -159,7 +158,7 @@ def colour_fidelity(spd) -> Fidelity:
 
     hue_ref = np.degrees(np.arctan2(jab_r[..., 2], jab_r[..., 1])) % 360.0
     test_ab, reference_ab, bin_delta_E = _bin_means(hue_ref, jab_t[..., 1:], jab_r[..., 1:], delta_E)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         Rg = 100.0 * _polygon_area(test_ab) / _polygon_area(reference_ab)
     theta = np.radians((np.arange(HUE_BINS) + 0.5) * 360.0 / HUE_BINS)
     shift = test_ab - reference_ab

@@ -22,7 +22,9 @@ import numpy as np
 from ..data_tables import load_table
 from ..errors import SpectrumError
 from ..interpolation import interpolation_matrix
+from ..sampling import cmfs_on
 from ..spectrum import Spectrum
+from ..temperature import CCT, cct
 
 #: Sampling intervals (nm) the metrics accept: those of CIE 224:2017 §3 and of measured data.
 INTERVALS_NM = (1.0, 5.0)
@@ -30,6 +32,9 @@ INTERVALS_NM = (1.0, 5.0)
 
 def light_grid(spd, start_nm: float, stop_nm: float, argument: str = "spd") -> tuple[np.ndarray, np.ndarray]:
     """Grid and values ``(N, K)`` of the samples of ``spd`` in ``[start_nm, stop_nm]``.
+
+    Each light is divided by its largest absolute value (the colour metrics are scale-free;
+    this keeps tiny or huge radiometric units away from underflow and overflow).
 
     ``spd`` must be a :class:`Spectrum` with a uniform 1 or 5 nm grid containing ``start_nm``
     and ``stop_nm`` (so no interpolation or extrapolation happens), with finite values.
@@ -64,7 +69,28 @@ def light_grid(spd, start_nm: float, stop_nm: float, argument: str = "spd") -> t
     values = np.asarray(spd.values, dtype=np.float64)[..., inside]
     if not np.all(np.isfinite(values)):
         raise SpectrumError(f"{argument}: values must be finite (no NaN or infinity)")
-    return grid[inside].copy(), values.reshape(-1, values.shape[-1])
+    values = values.reshape(-1, values.shape[-1])
+    peak = np.abs(values).max(axis=1, keepdims=True)
+    return grid[inside].copy(), values / np.where(peak > 0, peak, 1.0)
+
+
+def light_cct(S: np.ndarray, wavelengths_nm: np.ndarray) -> CCT:
+    """CCT (K) and Duv of lights ``S`` (N, K) on a uniform grid (CIE 1931 2°, exact projection).
+
+    A light whose luminance Σ S ȳ Δλ is not positive has no colour: its CCT and Duv are NaN,
+    and so is every metric computed from them.
+
+    Examples
+    --------
+    >>> from spectrocolor import illuminant
+    >>> grid = np.arange(380.0, 781.0, 5.0)
+    >>> round(float(light_cct(illuminant("D65", grid).values[None], grid).cct_K[0]), -1)
+    6500.0
+    """
+    XYZ = S @ (cmfs_on(wavelengths_nm, "1931") * (wavelengths_nm[1] - wavelengths_nm[0]))
+    result = cct(XYZ=XYZ)
+    lit = XYZ[:, 1] > 0
+    return CCT(np.where(lit, result.cct_K, np.nan), np.where(lit, result.duv, np.nan))
 
 
 @lru_cache(maxsize=16)
