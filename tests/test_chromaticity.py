@@ -151,7 +151,7 @@ def test_bad_whites_and_points_are_clear_errors():
         sc.dominant_wavelength([0.3, 0.3], [[0.3, 0.3], [0.31, 0.31]])
     with pytest.raises(ColorimetryError, match=r"xy must have shape \(\.\.\., 2\)"):
         sc.dominant_wavelength([0.3, 0.3, 0.4], D65_XY)
-    with pytest.raises(ColorimetryError, match="unknown observer"):
+    with pytest.raises(ColorimetryError, match="is not a shipped observer"):
         sc.dominant_wavelength([0.3, 0.3], D65_XY, "1940")
     # a white a hair inside the locus near a slight concavity: rays meet the locus twice
     near_locus = locus_point("1931", 445.0) + 2e-6 * (D65_XY - locus_point("1931", 445.0))

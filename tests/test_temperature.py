@@ -89,7 +89,7 @@ def test_bad_input_is_a_clear_error():
         sc.cct()
     with pytest.raises(ColorimetryError, match="between 1000 and 100000 K"):
         sc.xy_from_cct(500.0)
-    with pytest.raises(ColorimetryError, match="unknown observer"):
+    with pytest.raises(ColorimetryError, match="is not a shipped observer"):
         sc.cct([0.3, 0.3], observer="1900")
 
 

@@ -13,45 +13,31 @@ from functools import cache
 
 from .data_tables import load_table
 from .errors import ColorimetryError
+from .registry import Registry
 from .spectrum import Spectrum
 
-_FILES = {
-    "CIE 1931 2°": "cmf_cie1931_2deg.csv",
-    "CIE 1964 10°": "cmf_cie1964_10deg.csv",
-    "CIE 2015 2°": "cmf_cie2015_2deg.csv",
-    "CIE 2015 10°": "cmf_cie2015_10deg.csv",
-}
+#: The shipped observers: canonical name → data file, with their aliases and descriptions.
+OBSERVERS = Registry("observer", "a shipped observer")
+OBSERVERS.add(
+    "CIE 1931 2°", "cmf_cie1931_2deg.csv", "CIE 1931 standard colorimetric observer, 2° field (CIE 015 Table 1)",
+    aliases=("cie 1931 2", "cie1931", "1931", "2", "2deg", "2°"),
+)
+OBSERVERS.add(
+    "CIE 1964 10°", "cmf_cie1964_10deg.csv", "CIE 1964 supplementary observer, 10° field (CIE 015 Table 2)",
+    aliases=("cie 1964 10", "cie1964", "1964", "10", "10deg", "10°"),
+)
+OBSERVERS.add(
+    "CIE 2015 2°", "cmf_cie2015_2deg.csv", "CIE 170-2:2015 cone-fundamental-based XYZ functions, 2°",
+    aliases=("cie 2015 2", "2015-2", "2015 2deg", "2015-2deg"),
+)
+OBSERVERS.add(
+    "CIE 2015 10°", "cmf_cie2015_10deg.csv", "CIE 170-2:2015 cone-fundamental-based XYZ functions, 10°",
+    aliases=("cie 2015 10", "2015-10", "2015 10deg", "2015-10deg"),
+)
 
 #: The observer used wherever the caller gives none: the CIE 1931 2° standard colorimetric
 #: observer (CIE 015:2018 §3.1). Stated here once; every function, the CLI and the app use it.
 DEFAULT_OBSERVER = "CIE 1931 2°"
-
-_ALIASES = {
-    "cie 1931 2°": "CIE 1931 2°",
-    "cie 1931 2": "CIE 1931 2°",
-    "cie1931": "CIE 1931 2°",
-    "1931": "CIE 1931 2°",
-    "2": "CIE 1931 2°",
-    "2deg": "CIE 1931 2°",
-    "2°": "CIE 1931 2°",
-    "cie 1964 10°": "CIE 1964 10°",
-    "cie 1964 10": "CIE 1964 10°",
-    "cie1964": "CIE 1964 10°",
-    "1964": "CIE 1964 10°",
-    "10": "CIE 1964 10°",
-    "10deg": "CIE 1964 10°",
-    "10°": "CIE 1964 10°",
-    "cie 2015 2°": "CIE 2015 2°",
-    "cie 2015 2": "CIE 2015 2°",
-    "2015-2": "CIE 2015 2°",
-    "2015 2deg": "CIE 2015 2°",
-    "2015-2deg": "CIE 2015 2°",
-    "cie 2015 10°": "CIE 2015 10°",
-    "cie 2015 10": "CIE 2015 10°",
-    "2015-10": "CIE 2015 10°",
-    "2015 10deg": "CIE 2015 10°",
-    "2015-10deg": "CIE 2015 10°",
-}
 
 
 def observer_names() -> tuple[str, ...]:
@@ -67,28 +53,23 @@ def observer_names() -> tuple[str, ...]:
     >>> observer_names()
     ('CIE 1931 2°', 'CIE 1964 10°', 'CIE 2015 2°', 'CIE 2015 10°')
     """
-    return tuple(_FILES)
+    return OBSERVERS.names()
 
 
 def canonical_observer_name(name: str) -> str:
     """Canonical name for an observer name or alias (``"1931"``, ``"10deg"``, …), or raise."""
     if not isinstance(name, str):
         raise ColorimetryError(f"observer: expected a name such as '1931' or '1964', got {name!r}")
-    if name in _FILES:
-        return name
     key = " ".join(name.strip().lower().replace("_", " ").replace("degree", "deg").split())
-    canonical = _ALIASES.get(key) or _ALIASES.get(key.replace(" ", ""))
-    if canonical is None:
-        raise ColorimetryError(
-            f"observer: unknown observer {name!r}; choose one of {list(_FILES)} "
-            "or an alias such as '1931', '2deg', '1964', '10deg', '2015-2', '2015-10'"
-        )
-    return canonical
+    for candidate in (name, key, key.replace(" ", "")):
+        if candidate in OBSERVERS:
+            return OBSERVERS.canonical(candidate)
+    return OBSERVERS.canonical(name)  # raises, listing the observers
 
 
 @cache
 def _observer(canonical: str) -> Spectrum:
-    header, table = load_table(_FILES[canonical])
+    header, table = load_table(OBSERVERS.get(canonical))
     return Spectrum(table[:, 0], table[:, 1:].T.copy(), header[1:])
 
 
