@@ -85,6 +85,14 @@ class RGBSpace:
         XYZ of R = G = B = 1, the sum of the primaries' columns.
     transfer : transfer object
         See :mod:`spectrocolor.display.transfer`.
+
+    Examples
+    --------
+    >>> srgb = rgb_space("sRGB")
+    >>> srgb.primaries_xy.tolist(), srgb.white_xy.round(4).tolist()
+    ([[0.64, 0.33], [0.3, 0.6], [0.15, 0.06]], [0.3127, 0.329])
+    >>> srgb.luminance_row.round(4).tolist()  # Y of R, G, B at full drive (XYZ100)
+    [21.2639, 71.5169, 7.2192]
     """
 
     name: str
@@ -115,11 +123,47 @@ class RGBSpace:
         return self.matrix_to_XYZ[1]
 
     def rgb_linear_from_XYZ(self, XYZ) -> np.ndarray:
-        """``(..., 3)`` XYZ (this space's scale) -> ``(..., 3)`` linear RGB (may leave 0-1)."""
+        """``(..., 3)`` XYZ (this space's scale) -> ``(..., 3)`` linear RGB (may leave 0-1).
+
+        Parameters
+        ----------
+        XYZ : array_like, shape (..., 3)
+            Tristimulus values on this space's scale (XYZ100 for the built-in spaces, whose
+            white has Y = 100).
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., 3)
+            Linear RGB, 1 = full drive; values outside 0–1 are out of gamut and are kept.
+
+        Examples
+        --------
+        >>> srgb = rgb_space("sRGB")
+        >>> srgb.rgb_linear_from_XYZ(srgb.white_XYZ).round(6).tolist()
+        [1.0, 1.0, 1.0]
+        >>> srgb.rgb_linear_from_XYZ([18.0, 50.0, 10.0]).round(3).tolist()  # a green outside sRGB
+        [-0.235, 0.768, 0.014]
+        """
         return np.asarray(XYZ, dtype=float) @ self.matrix_from_XYZ.T
 
     def XYZ_from_rgb_linear(self, rgb_linear) -> np.ndarray:
-        """``(..., 3)`` linear RGB -> ``(..., 3)`` XYZ on this space's scale."""
+        """``(..., 3)`` linear RGB -> ``(..., 3)`` XYZ on this space's scale.
+
+        Parameters
+        ----------
+        rgb_linear : array_like, shape (..., 3)
+            Linear RGB, 1 = full drive.
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., 3)
+            XYZ on this space's scale (XYZ100 for the built-in spaces).
+
+        Examples
+        --------
+        >>> rgb_space("sRGB").XYZ_from_rgb_linear([1.0, 0.0, 0.0]).round(4).tolist()
+        [41.2391, 21.2639, 1.9331]
+        """
         return np.asarray(rgb_linear, dtype=float) @ self.matrix_to_XYZ.T
 
     @classmethod
@@ -129,6 +173,31 @@ class RGBSpace:
         """A space from the measured XYZ of its primaries at full drive (seed 002, STEP 2).
 
         The white is their sum; the scale of the XYZ values is kept as given.
+
+        Parameters
+        ----------
+        red_XYZ, green_XYZ, blue_XYZ : array_like, shape (3,)
+            XYZ of each primary at full drive, on the scale wanted for the space (seed 002's
+            phosphor measurements are in cd/m²-like units with the white near Y = 107).
+        transfer : str, float or transfer object, default "srgb"
+            A name in :data:`~spectrocolor.display.transfer.TRANSFERS`, a gamma number or a transfer
+            object (see :func:`spectrocolor.transfer`).
+        name : str, default "custom"
+            The space's name.
+
+        Returns
+        -------
+        RGBSpace
+            ``matrix_to_XYZ`` has the three XYZ as columns.
+
+        Raises
+        ------
+        ColorimetryError
+            For malformed XYZ, linearly dependent primaries or an unknown transfer.
+
+        References
+        ----------
+        Seed 002 (Sällström, SPECTRA), STEP 2: the monitor matrix from phosphor XYZ.
 
         Examples
         --------
@@ -174,11 +243,37 @@ class RGBSpace:
 
         Parameters
         ----------
-        red_xy, green_xy, blue_xy, white_xy : (2,) chromaticities
-        transfer : transfer name, gamma number or transfer object
-        name : str
-        white_Y : float
+        red_xy, green_xy, blue_xy : array_like, shape (2,)
+            CIE 1931 chromaticities (x, y) of the primaries.
+        white_xy : array_like, shape (2,)
+            Chromaticity of the white (R = G = B = 1), inside the primaries' triangle.
+        transfer : str, float or transfer object, default "srgb"
+            A transfer name, a gamma number or a transfer object (see :func:`spectrocolor.transfer`).
+        name : str, default "custom"
+            The space's name.
+        white_Y : float, default 100.0
             Luminance of the white; 100 gives the ``XYZ100`` scale.
+
+        Returns
+        -------
+        RGBSpace
+            The space; its white has XYZ ``white_Y * (x_w/y_w, 1, z_w/y_w)``.
+
+        Raises
+        ------
+        ColorimetryError
+            For malformed chromaticities, collinear primaries, a white outside their triangle,
+            a ``white_Y`` that is not positive, or an unknown transfer.
+
+        References
+        ----------
+        Seed 000 (Zawischa), eqs. 13–19; IEC 61966-2-1 for the sRGB primaries used below.
+
+        Examples
+        --------
+        >>> mine = RGBSpace.from_chromaticities((0.64, 0.33), (0.30, 0.60), (0.15, 0.06), (0.3127, 0.3290))
+        >>> mine.matrix_to_XYZ.round(4).tolist()
+        [[41.2391, 35.7584, 18.0481], [21.2639, 71.5169, 7.2192], [1.9331, 11.9195, 95.0532]]
         """
         prim = np.array(
             [
@@ -270,7 +365,18 @@ RGB_SPACES.add(
 
 
 def rgb_space_names() -> tuple[str, ...]:
-    """Canonical names of the built-in RGB spaces (the names of :data:`RGB_SPACES`)."""
+    """Canonical names of the built-in RGB spaces (the names of :data:`RGB_SPACES`).
+
+    Returns
+    -------
+    tuple of str
+        The names :func:`rgb_space` accepts (aliases such as ``"p3"`` are accepted too).
+
+    Examples
+    --------
+    >>> rgb_space_names()[:4]
+    ('sRGB', 'Display P3', 'Adobe RGB (1998)', 'Rec. 2020')
+    """
     return RGB_SPACES.names()
 
 
@@ -289,6 +395,26 @@ def rgb_space(name) -> RGBSpace:
         ``"SPECTRA 7000K"`` (seed 002's measured monitor, transfer = its 64-level ``c.dat``),
         ``"SPECTRA equal-energy"`` (``matris.equ``: the same phosphor chromaticities with the
         equal-energy white x = y = 1/3 at Y = 100, so X = Y = Z = 100 drives R = G = B = 1).
+
+    Returns
+    -------
+    RGBSpace
+        The space (built once and cached; its matrices are read-only).
+
+    Raises
+    ------
+    ColorimetryError
+        For a name that is not a built-in space or alias.
+
+    References
+    ----------
+    IEC 61966-2-1:1999 (sRGB); SMPTE EG 432-1 (Display P3); Adobe RGB (1998) Color Image
+    Encoding; ITU-R BT.2020; seed 002 (SPECTRA's ``matris.d`` and ``matris.equ``).
+
+    Examples
+    --------
+    >>> rgb_space("display p3")
+    RGBSpace('Display P3', white_xy=[0.3127, 0.329])
     """
     if isinstance(name, RGBSpace):
         return name
