@@ -227,7 +227,7 @@ def test_envi_header_parser(tmp_path, cube):
     fields = read_envi_header(hdr)
     assert fields["description"] == "{synthetic cube, written by the tests}"
     assert fields["interleave"] == "bsq"
-    assert read_cube(hdr).metadata["reflectance scale factor"] == 10000.0
+    assert read_cube(hdr, raw=True).metadata["reflectance scale factor"] == 10000.0
 
 
 @pytest.mark.parametrize(

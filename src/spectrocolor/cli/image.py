@@ -44,8 +44,9 @@ def register(subparsers) -> None:
                    help="units of wavelengths the file gives without units (nm or um)")
     p.add_argument("--variable", default=None, help="netCDF/HDF5 variable to read")
     p.add_argument("--scale", type=float, default=None,
-                   help="factor from stored values to reflectance (e.g. 0.0001); default: 1, or "
-                   "1/'reflectance scale factor' of an ENVI header")
+                   help="factor from the values read to reflectance (e.g. 0.0001; default 1); an ENVI "
+                   "header's reflectance scale factor, data ignore value and bbl are applied on "
+                   "reading, as read_cube does")
     p.add_argument("--space", default="sRGB", help="display RGB space (default sRGB)")
     p.add_argument("--gamut", choices=("flag", "clip", "preserve-luminance", "desaturate"),
                    default="clip", help="out-of-gamut strategy (default clip)")
@@ -124,13 +125,9 @@ def _image(args: argparse.Namespace) -> int:
     wavelengths = parse_wavelengths(args.wavelengths) if args.wavelengths else None
     cube = read_cube(args.cube, wavelengths_nm=wavelengths,
                      wavelength_units=args.wavelength_units, variable=args.variable)
-    scale = args.scale
-    if scale is None:
-        factor = cube.metadata.get("reflectance scale factor")
-        scale = 1.0 / factor if factor else 1.0
-        if factor:
-            print(f"using the header's reflectance scale factor {factor:g} (scale {scale:g})",
-                  file=sys.stderr)
+    for note in cube.metadata.get("applied", ()):  # the header's reading fields (ENVI), as the API applies them
+        print(f"{args.cube}: {note}", file=sys.stderr)
+    scale = 1.0 if args.scale is None else args.scale
     illuminant = None if args.illuminant.lower() == "none" else args.illuminant
     output = "codes" if suffix == "png" else "rgb_linear"
     plan = plan_conversion(
@@ -171,7 +168,7 @@ def _on_cluster(cube, plan, args) -> np.ndarray:
                              chunks=(*source.chunks[:2], (3,)))
     try:
         client = Client(args.scheduler, timeout="10s")
-    except OSError as exc:
+    except (OSError, ValueError, TypeError) as exc:  # unreachable, or not an address at all
         raise UserError(f"--scheduler: cannot reach {args.scheduler!r} ({exc})") from exc
     with client:
         if args.progress:

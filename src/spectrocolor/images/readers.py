@@ -10,7 +10,16 @@ Formats (chosen by the path):
   ``wavelengths`` plus ``wavelength_units``), or given. Uncompressed files are read lazily.
 * ENVI — ``.hdr`` plus the raw file (or the raw file with a ``.hdr`` beside it). The header is
   parsed here: samples, lines, bands, header offset, data type, interleave (bsq/bil/bip), byte
-  order, wavelength and wavelength units. Read lazily (memory-mapped).
+  order, wavelength and wavelength units, and the fields that say how to read the numbers:
+  ``reflectance scale factor`` (values are divided by it), ``data ignore value`` (those values
+  become NaN: masked), ``bbl`` (bad bands, 0 in the list, are dropped) and ``fwhm`` (kept as
+  ``metadata["fwhm_nm"]``; no bandpass correction is applied). ``raw=True`` skips the first three
+  and returns the stored numbers, with the fields in ``metadata``. Read lazily; the file's size is
+  checked against the header before anything is read.
+* MATLAB ``.mat`` — v5 (scipy.io) and v7.3 (HDF5, h5py; read lazily), as the CAVE, ICVL and
+  Harvard collections distribute their cubes: the one 3-D numeric variable (or ``variable=``),
+  MATLAB's (rows, columns, bands) order; wavelengths from a variable named ``wavelengths_nm``
+  (nm), or ``wavelengths``/``wavelength``/``bands``/``wl`` with ``wavelength_units=``, or given.
 * ``.nc`` / ``.h5`` / ``.hdf5`` / ``.nc4`` — netCDF-4/HDF5 through xarray (h5netcdf engine): a
   variable with a ``wavelength`` dimension whose coordinate has a ``units`` attribute.
 * a folder of one-band PNG or TIFF images with the wavelength in each file name
@@ -23,6 +32,7 @@ anything else (or no unit) is an error unless ``wavelength_units=`` says what th
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -30,7 +40,15 @@ import numpy as np
 from ..errors import SpectrumError
 from .cube import MappedArray, SpectralCube, wavelengths_to_nm
 
-__all__ = ["read_cube", "read_envi_header"]
+__all__ = ["read_cube", "read_envi_header", "CorrectedArray", "MatlabH5Array"]
+
+#: Largest cube a reader loads into memory at once (formats that cannot be read lazily), bytes.
+MAX_IN_MEMORY_BYTES = 4 * 1024**3
+_MAT_WAVELENGTH_NAMES = ("wavelengths_nm", "wavelengths", "wavelength", "bands", "wl", "lambda")
+_MAT_CLASS_BYTES = {
+    "double": 8, "single": 4, "int8": 1, "uint8": 1, "int16": 2, "uint16": 2,
+    "int32": 4, "uint32": 4, "int64": 8, "uint64": 8,
+}
 
 _ENVI_DTYPES = {
     1: "u1", 2: "i2", 3: "i4", 4: "f4", 5: "f8", 12: "u2", 13: "u4", 14: "i8", 15: "u8",
@@ -47,6 +65,7 @@ def read_cube(
     wavelengths_nm=None,
     wavelength_units: str | None = None,
     variable: str | None = None,
+    raw: bool = False,
 ) -> SpectralCube:
     """Read a spectral cube from a file or a folder of one-band images.
 
@@ -62,13 +81,17 @@ def read_cube(
         Units of the wavelengths stored in the file when the file does not say ("nm" or "um");
         for a folder, the units of the numbers in the file names.
     variable : str, optional
-        netCDF/HDF5 only: which variable to read when there is more than one with a
-        ``wavelength`` dimension.
+        netCDF/HDF5 and MATLAB: which variable to read when more than one could be the cube.
+    raw : bool
+        ENVI only: return the stored numbers without applying the header's reflectance scale
+        factor, data ignore value and bad-band list (they are then in ``metadata``). Default
+        False: applied, and ``metadata["applied"]`` says what was done.
 
     Returns
     -------
     SpectralCube
-        ``values`` (H, W, K) in the stored dtype (no scaling) and ``wavelengths_nm`` (K,).
+        ``values`` (H, W, K) in the stored dtype (ENVI with corrections: float32, NaN where
+        masked) and ``wavelengths_nm`` (K,).
 
     Raises
     ------
@@ -92,16 +115,19 @@ def read_cube(
             cube = _read_npz(path, wavelengths_nm, wavelength_units)
         elif suffix in _TIFF_SUFFIXES:
             cube = _read_tiff(path, wavelengths_nm, wavelength_units)
+        elif suffix == ".mat":
+            cube = _read_mat(path, wavelengths_nm, wavelength_units, variable)
         elif suffix in _NETCDF_SUFFIXES:
             cube = _read_netcdf(path, wavelength_units, variable, wavelengths_nm)
         elif suffix == ".hdr" or _envi_header_for(path) is not None:
-            cube = _read_envi(path, wavelengths_nm, wavelength_units)
+            cube = _read_envi(path, wavelengths_nm, wavelength_units, raw)
         else:
             raise SpectrumError(
                 f"{path}: unknown cube format {suffix!r}; accepted: .npy, .npz, .tif/.tiff, ENVI"
-                " (.hdr + raw), .nc/.h5/.hdf5, or a folder of one-band .png/.tif images"
+                " (.hdr + raw), .mat (MATLAB v5 or v7.3), .nc/.h5/.hdf5, or a folder of one-band"
+                " .png/.tif images"
             )
-    if wavelengths_nm is not None and path.suffix.lower() != ".npy":
+    if wavelengths_nm is not None and path.is_dir():  # the file readers apply them themselves
         cube = SpectralCube(cube.values, _given_wavelengths(wavelengths_nm, path), str(path),
                             cube.metadata)
     return cube
@@ -109,6 +135,16 @@ def read_cube(
 
 def _given_wavelengths(wavelengths_nm, path) -> np.ndarray:
     return wavelengths_to_nm(wavelengths_nm, "nm", f"{path} (wavelengths_nm argument)")
+
+
+def _check_claimed_size(path: Path, claimed_bytes: int, what: str) -> None:
+    """Refuse a header that claims more bytes than the file holds, before anything is allocated."""
+    size = path.stat().st_size
+    if claimed_bytes > size:
+        raise SpectrumError(
+            f"{path}: the header claims {what}, {claimed_bytes} bytes of data, but the file holds "
+            f"{size} bytes; the file is damaged or cut short"
+        )
 
 
 # --- NumPy -------------------------------------------------------------------------------
@@ -136,6 +172,7 @@ def _read_npy(path: Path, wavelengths_nm) -> SpectralCube:
         except ValueError as exc:
             raise SpectrumError(f"{path}: damaged .npy header ({exc})") from None
         offset = handle.tell()
+    _check_claimed_size(path, offset + int(np.prod(shape, dtype=object)) * dtype.itemsize, f"shape {shape}")
     if dtype.kind not in "biuf":
         raise SpectrumError(f"{path}: values must be numbers; the array holds dtype {dtype}")
     if len(shape) != 3:
@@ -191,9 +228,12 @@ def _read_tiff(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
     except tifffile.TiffFileError as exc:
         raise SpectrumError(f"{path}: not a TIFF file ({exc})") from None
     with tif:
-        series = tif.series[0]
-        shape, axes = tuple(series.shape), series.axes
-        metadata = dict(tif.shaped_metadata[0]) if tif.shaped_metadata else {}
+        try:
+            series = tif.series[0]
+            shape, axes = tuple(series.shape), series.axes
+            metadata = dict(tif.shaped_metadata[0]) if tif.shaped_metadata else {}
+        except (IndexError, ValueError, KeyError, TypeError, tifffile.TiffFileError) as exc:
+            raise SpectrumError(f"{path}: a damaged TIFF or one without image data ({exc!r:.80})") from None
         if len(shape) != 3:
             raise SpectrumError(
                 f"{path}: a spectral TIFF must hold a 3-D stack (one page per band); got shape "
@@ -201,9 +241,16 @@ def _read_tiff(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
             )
         order = (0, 1, 2) if axes.endswith("S") else (1, 2, 0)
         offset = series.dataoffset
+        claimed = int(np.prod(shape, dtype=object)) * np.dtype(series.dtype).itemsize
         if offset is not None:
+            _check_claimed_size(path, int(offset) + claimed, f"pages of shape {shape}")
             dtype = np.dtype(series.dtype).newbyteorder(tif.byteorder)
             values = MappedArray(str(path), dtype.str, shape, int(offset), order)
+        elif claimed > MAX_IN_MEMORY_BYTES:
+            raise SpectrumError(
+                f"{path}: compressed pages of shape {shape} would take {claimed} bytes in memory; "
+                f"compressed TIFFs are read whole, up to {MAX_IN_MEMORY_BYTES} bytes (write it uncompressed)"
+            )
         else:  # compressed or scattered: read it
             values = np.transpose(series.asarray(), order)
     if wavelengths_nm is not None:
@@ -286,22 +333,22 @@ def _envi_list(text: str) -> list[str]:
     return [item.strip() for item in text.strip().strip("{}").split(",") if item.strip()]
 
 
-def _read_envi(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
+def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) -> SpectralCube:
     if path.suffix.lower() == ".hdr":
         header = path
         fields = read_envi_header(header)
         stem = path.with_suffix("")
-        raw = next(
+        raw_file = next(
             (Path(str(stem) + s) for s in _ENVI_RAW_SUFFIXES if Path(str(stem) + s).is_file()),
             None,
         )
-        if raw is None:
+        if raw_file is None:
             raise SpectrumError(
                 f"{header}: no raw data file beside the header (looked for {stem.name} with "
                 f"suffixes {', '.join(repr(s) for s in _ENVI_RAW_SUFFIXES)})"
             )
     else:
-        raw, header = path, _envi_header_for(path)
+        raw_file, header = path, _envi_header_for(path)
         fields = read_envi_header(header)
     samples = _envi_int(fields, "samples", header)
     lines = _envi_int(fields, "lines", header)
@@ -331,10 +378,10 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
         )
     file_shape, axes = layouts[interleave]
     expected = offset + samples * lines * bands * dtype.itemsize
-    size = raw.stat().st_size
+    size = raw_file.stat().st_size
     if size != expected:
         raise SpectrumError(
-            f"{raw}: the file has {size} bytes but the header ({samples} samples x {lines} lines x"
+            f"{raw_file}: the file has {size} bytes but the header ({samples} samples x {lines} lines x"
             f" {bands} bands of {dtype.name} + {offset} header bytes) describes {expected}"
         )
     if wavelengths_nm is not None:
@@ -357,11 +404,258 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
             raise SpectrumError(f"{header}: 'wavelength' values must be numbers") from exc
         units = fields.get("wavelength units", wavelength_units)
         wavelengths = wavelengths_to_nm(numbers, units, str(header))
-    metadata = {}
-    if "reflectance scale factor" in fields:
-        metadata["reflectance scale factor"] = float(fields["reflectance scale factor"])
-    values = MappedArray(str(raw), dtype.str, file_shape, offset, axes)
-    return SpectralCube(values, wavelengths, str(header), metadata)
+    values = MappedArray(str(raw_file), dtype.str, file_shape, offset, axes)
+    corrections = _envi_corrections(fields, header, bands, wavelength_units)
+    if raw:
+        return SpectralCube(values, wavelengths, str(header), corrections)
+    keep, divisor, ignore = corrections.get("bbl"), corrections.get("reflectance scale factor"), None
+    ignore = corrections.get("data ignore value")
+    applied = []
+    metadata = {key: corrections[key] for key in ("fwhm_nm",) if key in corrections}
+    if keep is not None and not all(keep):
+        kept = tuple(int(i) for i in np.flatnonzero(keep))
+        if not kept:
+            raise SpectrumError(f"{header}: 'bbl' marks every band bad; nothing to read")
+        wavelengths = wavelengths[list(kept)]
+        if "fwhm_nm" in metadata:
+            metadata["fwhm_nm"] = metadata["fwhm_nm"][list(kept)]
+        applied.append(f"dropped {bands - len(kept)} bad band(s) listed in 'bbl'")
+    else:
+        kept = tuple(range(bands))
+    if divisor is not None:
+        applied.append(f"divided by the reflectance scale factor {divisor:g}")
+    if ignore is not None:
+        applied.append(f"values equal to the data ignore value {ignore:g} are NaN (masked)")
+    if not applied:
+        return SpectralCube(values, wavelengths, str(header), metadata)
+    metadata["applied"] = tuple(applied)
+    corrected = CorrectedArray(values, kept, 1.0 if divisor is None else divisor, ignore)
+    return SpectralCube(corrected, wavelengths, str(header), metadata)
+
+
+def _envi_corrections(fields: dict, header: Path, bands: int, wavelength_units) -> dict:
+    """The header fields that say how to read the numbers, parsed and checked."""
+    found: dict[str, object] = {}
+    for key in ("reflectance scale factor", "data ignore value"):
+        if key in fields:
+            try:
+                value = float(fields[key])
+            except ValueError:
+                raise SpectrumError(f"{header}: {key!r} must be a number; got {fields[key]!r}") from None
+            if not np.isfinite(value) or (key == "reflectance scale factor" and value <= 0):
+                raise SpectrumError(f"{header}: {key!r} must be a finite (positive) number; got {fields[key]!r}")
+            found[key] = value
+    for key in ("bbl", "fwhm"):
+        if key not in fields:
+            continue
+        listed = _envi_list(fields[key])
+        if len(listed) != bands:
+            raise SpectrumError(f"{header}: {key!r} lists {len(listed)} values but 'bands' = {bands}; they must match")
+        try:
+            numbers = np.array([float(item) for item in listed])
+        except ValueError:
+            raise SpectrumError(f"{header}: {key!r} values must be numbers") from None
+        if key == "bbl":
+            if not np.all(np.isin(numbers, (0.0, 1.0))):
+                raise SpectrumError(f"{header}: 'bbl' values must be 1 (good band) or 0 (bad band)")
+            found["bbl"] = numbers.astype(bool)
+        else:
+            units = fields.get("wavelength units", wavelength_units)
+            scale = wavelengths_to_nm([1.0], units, f"{header} ('fwhm', in the wavelength units)")[0]
+            found["fwhm_nm"] = numbers * scale
+    return found
+
+
+@dataclass(frozen=True)
+class CorrectedArray:
+    """Stored cube values read with an ENVI header's corrections applied on every access.
+
+    Bad bands (``bands`` lists those kept) are dropped, values are divided by ``divisor`` (the
+    reflectance scale factor) and values equal to ``ignore`` (the data ignore value) become NaN.
+    Reads return float32 (float64 when stored as float64). Like :class:`MappedArray`, it reads
+    only what is indexed and pickles as its layout.
+    """
+
+    stored: object
+    bands: tuple[int, ...]
+    divisor: float = 1.0
+    ignore: float | None = None
+
+    @property
+    def dtype(self) -> np.dtype:
+        return np.dtype(np.float64 if np.dtype(self.stored.dtype) == np.float64 else np.float32)
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        rows, columns, _ = self.stored.shape
+        return (rows, columns, len(self.bands))
+
+    @property
+    def ndim(self) -> int:
+        return 3
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def __getitem__(self, key) -> np.ndarray:
+        key = key if isinstance(key, tuple) else (key,)
+        if any(k is Ellipsis for k in key) or len(key) > 3:
+            return np.asarray(self)[key]
+        block = np.asarray(self.stored[key[:2]])[..., list(self.bands)]
+        out = block.astype(self.dtype)
+        if self.divisor != 1.0:
+            out /= self.divisor
+        if self.ignore is not None:
+            out[block == self.ignore] = np.nan
+        return out[..., key[2]] if len(key) == 3 else out
+
+    def __array__(self, dtype=None, copy=None) -> np.ndarray:
+        values = self[:, :]
+        return values if dtype is None else values.astype(dtype)
+
+
+# --- MATLAB --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class MatlabH5Array:
+    """A MATLAB v7.3 (HDF5) array read lazily in MATLAB's order (rows, columns, bands).
+
+    MATLAB writes column-major arrays, so HDF5 sees the axes reversed: an (H, W, K) cube is
+    stored as (K, W, H). Indexing reverses the key, reads only that part with h5py and
+    transposes it back. It pickles as the path and the dataset name.
+    """
+
+    path: str
+    name: str
+    stored_shape: tuple[int, ...]
+    stored_dtype: str
+
+    @property
+    def dtype(self) -> np.dtype:
+        return np.dtype(self.stored_dtype)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(reversed(self.stored_shape))
+
+    @property
+    def ndim(self) -> int:
+        return len(self.stored_shape)
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def __getitem__(self, key) -> np.ndarray:
+        import h5py
+
+        key = key if isinstance(key, tuple) else (key,)
+        if any(k is Ellipsis for k in key) or len(key) > self.ndim:
+            return np.asarray(self)[key]
+        key = key + (slice(None),) * (self.ndim - len(key))
+        with h5py.File(self.path, "r") as handle:
+            block = np.asarray(handle[self.name][tuple(reversed(key))])
+        return block.transpose(tuple(reversed(range(block.ndim))))
+
+    def __array__(self, dtype=None, copy=None) -> np.ndarray:
+        values = self[:, :, :]
+        return values if dtype is None else values.astype(dtype)
+
+
+def _read_mat(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+    with open(path, "rb") as handle:
+        head = handle.read(128)
+    if head.startswith(b"MATLAB 7.3"):
+        return _read_mat73(path, wavelengths_nm, wavelength_units, variable)
+    return _read_mat5(path, wavelengths_nm, wavelength_units, variable)
+
+
+def _mat_choice(path: Path, shapes: dict[str, tuple], numeric: set[str], variable) -> str:
+    """The cube variable: ``variable`` if given, else the only 3-D numeric one."""
+    if variable is not None:
+        if variable not in shapes:
+            raise SpectrumError(f"{path}: no variable {variable!r}; variables: {sorted(shapes)}")
+        if variable not in numeric or len(shapes[variable]) != 3:
+            raise SpectrumError(f"{path}: variable {variable!r} is not a 3-D numeric array ({shapes[variable]})")
+        return variable
+    cubes = sorted(name for name, shape in shapes.items() if len(shape) == 3 and name in numeric)
+    if len(cubes) != 1:
+        found = "none" if not cubes else ", ".join(cubes)
+        raise SpectrumError(
+            f"{path}: expected one 3-D numeric variable (rows, columns, bands), found {found}; "
+            f"choose one with variable=... (variables: {sorted(shapes)})"
+        )
+    return cubes[0]
+
+
+def _mat_wavelengths(path: Path, load, shapes, bands: int, wavelengths_nm, wavelength_units) -> np.ndarray:
+    if wavelengths_nm is not None:
+        return _given_wavelengths(wavelengths_nm, path)
+    for name in _MAT_WAVELENGTH_NAMES:
+        if name in shapes and int(np.prod(shapes[name])) == bands:
+            units = "nm" if name == "wavelengths_nm" else wavelength_units
+            return wavelengths_to_nm(np.ravel(load(name)), units, f"{path} (variable {name!r})")
+    raise SpectrumError(
+        f"{path}: missing wavelengths: no variable {' / '.join(_MAT_WAVELENGTH_NAMES)} with {bands} "
+        "values; give them with wavelengths_nm=... (--wavelengths on the command line)"
+    )
+
+
+def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+    import zlib
+
+    import scipy.io
+
+    errors = (ValueError, TypeError, OSError, NotImplementedError, zlib.error, scipy.io.matlab.MatReadError)
+    try:
+        listing = scipy.io.whosmat(str(path))
+    except errors as exc:
+        raise SpectrumError(f"{path}: not a MATLAB .mat file scipy can read (v4/v5) ({exc})") from None
+    shapes = {name: tuple(shape) for name, shape, _ in listing}
+    numeric = {name for name, _, kind in listing if kind in _MAT_CLASS_BYTES}
+    name = _mat_choice(path, shapes, numeric, variable)
+    kind = next(kind for n, _, kind in listing if n == name)
+    claimed = int(np.prod(shapes[name], dtype=object)) * _MAT_CLASS_BYTES[kind]
+    if claimed > MAX_IN_MEMORY_BYTES:
+        raise SpectrumError(
+            f"{path}: variable {name!r} {shapes[name]} would take {claimed} bytes in memory; MATLAB v5 "
+            f"files are read whole, up to {MAX_IN_MEMORY_BYTES} bytes (save it as v7.3 or ENVI to read lazily)"
+        )
+
+    def load(variable_name):
+        try:
+            return scipy.io.loadmat(str(path), variable_names=[variable_name])[variable_name]
+        except errors as exc:
+            raise SpectrumError(f"{path}: variable {variable_name!r} cannot be read ({exc})") from None
+
+    values = load(name)
+    wavelengths = _mat_wavelengths(path, load, shapes, values.shape[2], wavelengths_nm, wavelength_units)
+    return SpectralCube(np.ascontiguousarray(values), wavelengths, str(path), {"variable": name, "mat": "v5"})
+
+
+def _read_mat73(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+    import h5py
+
+    try:
+        handle = h5py.File(path, "r")
+    except OSError as exc:
+        raise SpectrumError(f"{path}: says MATLAB 7.3 but is not a readable HDF5 file ({exc})") from None
+    with handle:
+        datasets = {name: item for name, item in handle.items() if isinstance(item, h5py.Dataset)}
+        shapes = {name: tuple(reversed(item.shape)) for name, item in datasets.items()}
+        numeric = {name for name, item in datasets.items() if item.dtype.kind in "biuf"}
+        name = _mat_choice(path, shapes, numeric, variable)
+        dataset = datasets[name]
+        if dataset.chunks is None:  # contiguous: its bytes must be in the file
+            offset = dataset.id.get_offset() or 0
+            _check_claimed_size(path, offset + dataset.size * dataset.dtype.itemsize, f"{name} {shapes[name]}")
+        values = MatlabH5Array(str(path), name, tuple(dataset.shape), dataset.dtype.str)
+
+        def load(variable_name):
+            return np.asarray(datasets[variable_name])
+
+        wavelengths = _mat_wavelengths(path, load, shapes, values.shape[2], wavelengths_nm, wavelength_units)
+    return SpectralCube(values, wavelengths, str(path), {"variable": name, "mat": "v7.3"})
 
 
 # --- netCDF / HDF5 -------------------------------------------------------------------------

@@ -42,8 +42,13 @@ def _rows(text: str, source: str) -> tuple[list[tuple[int, list[str]]], str]:
         raise SpectrumError(f"{source}: no data (only comments or blank lines)")
     header = content[0][1]
     delimiter = "\t" if "\t" in header else (";" if ";" in header else ",")
-    reader = csv.reader((line for _, line in content), delimiter=delimiter)
-    rows = [(n, [cell.strip() for cell in row]) for (n, _), row in zip(content, reader, strict=True)]
+    rows = []
+    for n, line in content:
+        try:
+            (cells,) = csv.reader([line], delimiter=delimiter)
+        except (csv.Error, ValueError) as exc:  # a cell over csv's field limit, NUL bytes, …
+            raise SpectrumError(f"{source}, line {n}: not readable as delimited text ({exc})") from None
+        rows.append((n, [cell.strip() for cell in cells]))
     return rows, delimiter
 
 
