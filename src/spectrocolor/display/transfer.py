@@ -218,6 +218,33 @@ def spectra_excitation_table(gamma: float = 2.204, n_levels: int = 64) -> LevelT
     """SPECTRA's ``c.dat``: ``(level / (N-1)) ** gamma`` for N levels (seed 002, Appendix).
 
     With the defaults, 50 % excitation is nearest to level 46 of 63.
+
+    Parameters
+    ----------
+    gamma : float, default 2.204
+        Exponent of the excitation function (SPECTRA's fit to its monitor).
+    n_levels : int, default 64
+        Number of signal levels N (SPECTRA's 6-bit DAC: 64).
+
+    Returns
+    -------
+    LevelTable
+        Emission at each level as a fraction of full emission (0 at level 0, 1 at N - 1).
+
+    Raises
+    ------
+    ColorimetryError
+        For ``n_levels`` that is not an integer >= 2.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999), Appendix: ``c.dat`` and gamma 2.204.
+
+    Examples
+    --------
+    >>> table = spectra_excitation_table()
+    >>> table.n_levels, int(table.index(0.5)), round(float(table.levels[46]), 4)
+    (64, 46, 0.5)
     """
     if int(n_levels) != n_levels or n_levels < 2:
         raise ColorimetryError(f"n_levels must be an integer >= 2, got {n_levels!r}")
@@ -242,7 +269,18 @@ TRANSFERS.add("spectra c.dat", spectra_excitation_table(), "SPECTRA's 64-level e
 
 
 def transfer_names() -> tuple[str, ...]:
-    """Names accepted by :func:`transfer` (the names of :data:`TRANSFERS`)."""
+    """Names accepted by :func:`transfer` (the names of :data:`TRANSFERS`).
+
+    Returns
+    -------
+    tuple of str
+        The registered transfer names, in registration order.
+
+    Examples
+    --------
+    >>> transfer_names()[:3]
+    ('srgb', 'srgb-1996', 'linear')
+    """
     return TRANSFERS.names()
 
 
@@ -254,6 +292,28 @@ def transfer(spec) -> Transfer:
     spec : str, float or transfer object
         ``"srgb"``, ``"srgb-1996"``, ``"linear"``, ``"gamma 2.2"``, ``"gamma 2.204"``,
         ``"adobe rgb"``, ``"bt.2020"``, ``"spectra c.dat"``; a number is a power-law gamma.
+
+    Returns
+    -------
+    SRGBCurve, PowerLaw, BT2020Curve or LevelTable
+        An object with ``encode(rgb_linear)`` and ``decode(rgb_encoded)`` on 0–1 values; a
+        transfer object is returned unchanged.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown name.
+
+    References
+    ----------
+    IEC 61966-2-1:1999; ITU-R BT.2020-2; Adobe RGB (1998); seed 002 (see the module docstring).
+
+    Examples
+    --------
+    >>> transfer("srgb").encode([0.0, 0.0031308, 0.5, 1.0]).round(4).tolist()
+    [0.0, 0.0404, 0.7354, 1.0]
+    >>> transfer(2.2)
+    PowerLaw(gamma=2.2, name='gamma 2.2')
     """
     if isinstance(spec, SRGBCurve | PowerLaw | BT2020Curve | LevelTable):
         return spec
@@ -278,14 +338,25 @@ def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
 
     Parameters
     ----------
-    rgb_encoded : array_like
+    rgb_encoded : array_like, shape (...)
         Encoded values in [0, 1]; NaN is refused.
-    bit_depth : int
+    bit_depth : int, default 8
         1 to 32 bits (6 for SPECTRA's 18-bit DAC, 8, 10, 12, 16).
 
     Returns
     -------
-    ndarray of int64
+    ndarray of int64, shape (...)
+        Codes 0 … 2**bit_depth - 1 (``rgb8`` for 8 bits).
+
+    Raises
+    ------
+    ColorimetryError
+        For a bit depth that is not an integer 1–32, values outside [0, 1], or NaN.
+
+    Examples
+    --------
+    >>> to_codes([0.0, 0.5, 1.0]).tolist(), to_codes([0.5], bit_depth=16).tolist()
+    ([0, 128, 255], [32768])
     """
     _check_bit_depth(bit_depth)
     v = _check_unit_range(rgb_encoded, "rgb_encoded")
@@ -295,7 +366,30 @@ def to_codes(rgb_encoded, bit_depth: int = 8) -> np.ndarray:
 
 
 def from_codes(codes, bit_depth: int = 8) -> np.ndarray:
-    """Integer codes to encoded 0-1 values, ``codes / (2**bit_depth - 1)``."""
+    """Integer codes to encoded 0-1 values, ``codes / (2**bit_depth - 1)``.
+
+    Parameters
+    ----------
+    codes : array_like of int, shape (...)
+        Codes 0 … 2**bit_depth - 1.
+    bit_depth : int, default 8
+        1 to 32 bits.
+
+    Returns
+    -------
+    numpy.ndarray of float, shape (...)
+        Encoded values in [0, 1] (``rgb_encoded``); decode them with the space's transfer.
+
+    Raises
+    ------
+    ColorimetryError
+        For a bit depth that is not an integer 1–32, or codes outside the range.
+
+    Examples
+    --------
+    >>> from_codes([0, 128, 255]).round(4).tolist()
+    [0.0, 0.502, 1.0]
+    """
     _check_bit_depth(bit_depth)
     codes = np.asarray(codes)
     top = 2 ** int(bit_depth) - 1
