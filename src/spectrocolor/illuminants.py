@@ -17,6 +17,7 @@ import numpy as np
 
 from .data_tables import load_table
 from .errors import ColorimetryError, SpectrumError
+from .registry import Registry
 from .spectrum import Spectrum, validate_wavelengths, wavelength_grid
 
 #: Second radiation constant, CODATA 2018, m·K.
@@ -30,12 +31,19 @@ C2_ILLUMINANT_A_M_K = 1.435e-2
 #: 2856 K Planckian radiator of the ITS-68/CODATA constant c₂ = 1.4388e-2 m·K).
 ILLUMINANT_A_TEMPERATURE_K = 2848.0
 
-_TABULATED = (
-    "B", "C", "D50", "D55", "D65", "D75",
-    *(f"FL{i}" for i in range(1, 13)),
-    *(f"LED-B{i}" for i in range(1, 6)),
-)  # fmt: skip
-_NAMES = ("A", *_TABULATED[:2], *_TABULATED[2:6], "E", *_TABULATED[6:])
+#: The CIE illuminants by name: value "formula" (A), "constant" (E) or "table" (a CIE table in
+#: data/illuminants/), with one-line descriptions (CIE 015:2018 §4, Tables 5-10).
+ILLUMINANTS = Registry("illuminant", "a CIE illuminant name (or use 'blackbody:T' / 'D:T' for other temperatures)")
+ILLUMINANTS.add("A", "formula", "incandescent tungsten, a 2856 K Planckian radiator (CIE 015 eq. 4.1)")
+ILLUMINANTS.add("B", "table", "direct sunlight, about 4874 K (obsolete; CIE 015 Table 10 note)")
+ILLUMINANTS.add("C", "table", "average daylight, about 6774 K (obsolete; seed 001's illuminant)")
+for _cct in (50, 55, 65, 75):
+    ILLUMINANTS.add(f"D{_cct}", "table", f"CIE daylight, about {_cct}00 K")
+ILLUMINANTS.add("E", "constant", "equal energy: 100 at every wavelength")
+for _i, _kind in enumerate(("standard",) * 6 + ("broadband",) * 3 + ("three-band",) * 3, start=1):
+    ILLUMINANTS.add(f"FL{_i}", "table", f"CIE fluorescent lamp {_i} ({_kind})")
+for _i in range(1, 6):
+    ILLUMINANTS.add(f"LED-B{_i}", "table", f"CIE phosphor-converted white LED {_i} (CIE 015 Table 10)")
 _DEFAULT_GRID = (300.0, 830.0, 5.0)
 #: Temperatures accepted for Planckian radiators, K. Below about 100 K the relative SPD
 #: over 360–830 nm underflows to zero (exp(c₂/λT) overflows), so nothing meaningful remains.
@@ -57,7 +65,7 @@ def illuminant_names() -> tuple[str, ...]:
     >>> names[:8], len(names)
     (('A', 'B', 'C', 'D50', 'D55', 'D65', 'D75', 'E'), 25)
     """
-    return _NAMES
+    return ILLUMINANTS.names()
 
 
 def canonical_illuminant_name(name: str) -> str:
@@ -67,12 +75,7 @@ def canonical_illuminant_name(name: str) -> str:
     key = re.sub(r"[\s_]+", "", name.strip().upper())
     key = re.sub(r"^LED-?B", "LED-B", key)
     key = re.sub(r"^F(\d)", r"FL\1", key) if not key.startswith("FL") else key
-    if key not in _NAMES:
-        raise ColorimetryError(
-            f"illuminant: unknown illuminant {name!r}; choose one of {', '.join(_NAMES)} "
-            "(or use blackbody(T) / daylight(T) for other temperatures)"
-        )
-    return key
+    return ILLUMINANTS.canonical(key if key in ILLUMINANTS else name)
 
 
 #: The illuminant used wherever a reflectance needs one and the caller gives none: CIE D65
@@ -149,7 +152,10 @@ def canonical_illuminant(illuminant, argument: str = "illuminant"):
         try:
             return canonical_illuminant_name(illuminant)
         except ColorimetryError:
-            pass
+            raise ColorimetryError(
+                f"{argument}: {illuminant!r:.80} is not a CIE illuminant name ({', '.join(ILLUMINANTS)}); "
+                "other forms: 'blackbody:T', 'D:T', a temperature in kelvin, a Spectrum, or None for lights"
+            ) from None
     raise ColorimetryError(f"{argument}: expected {_ACCEPTED}; got {illuminant!r:.80}")
 
 
@@ -259,6 +265,8 @@ def blackbody(
     """
     if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
         raise ColorimetryError(f"temperature_K: expected a positive temperature in kelvin, got {temperature_K!r}")
+    normalise_at_nm = real_number(normalise_at_nm, "normalise_at_nm", "a wavelength in nm",
+                                  positive=True)
     grid = _grid_or_default(wavelengths_nm, (360.0, 830.0, 1.0))
     # the ratio in logarithms: at a few tens of kelvin both radiances underflow to 0 (0/0 = NaN)
     log_ratio = _log_planck(grid, temperature_K, c2_m_K) - _log_planck(
@@ -267,9 +275,9 @@ def blackbody(
         values = 100.0 * np.exp(log_ratio)
     if not np.all(np.isfinite(values)):
         raise ColorimetryError(
-            f"temperature_K: a blackbody at {temperature_K:g} K relative to {normalise_at_nm:g} nm "
-            "exceeds the floating-point range on this grid; use a higher temperature or "
-            "normalise at a longer wavelength")
+            f"temperature_K, normalise_at_nm: a blackbody at {temperature_K:g} K relative to "
+            f"{normalise_at_nm:g} nm exceeds the floating-point range on this grid; use a higher "
+            "temperature or normalise at a longer wavelength")
     return Spectrum(grid, values, ("blackbody",))
 
 
