@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..arguments import real_array
 from ..coordinates import colour_array
 from ..errors import ColorimetryError
 from ..registry import Registry
@@ -73,7 +74,7 @@ ADAPTATION_METHODS.add("display rgb", None, "von Kries in the display's linear R
 
 
 def _white(value, argument: str) -> np.ndarray:
-    w = np.asarray(value, dtype=float)
+    w = real_array(value, argument, "XYZ of a white")
     if w.shape != (3,) or not np.all(np.isfinite(w)) or w[1] <= 0:
         raise ColorimetryError(f"{argument} must be XYZ of a white with Y > 0, got {value!r}")
     return w
@@ -93,7 +94,46 @@ def _sensor(method: str, space) -> np.ndarray:
 def adaptation_matrix(
     source_white_XYZ, target_white_XYZ, method: str = "bradford", space=None
 ) -> np.ndarray:
-    """The (3, 3) matrix A with ``XYZ_target = A @ XYZ_source``; see :func:`adapt`."""
+    """The (3, 3) matrix A with ``XYZ_target = A @ XYZ_source``; see :func:`adapt`.
+
+    ``A = M⁻¹ diag(M w_t / M w_s) M`` with M the sensor matrix of ``method``.
+
+    Parameters
+    ----------
+    source_white_XYZ : array_like, shape (3,)
+        XYZ of the white the colours are seen under (Y > 0; any scale shared with the colours).
+    target_white_XYZ : array_like, shape (3,)
+        XYZ of the white to adapt to (Y > 0).
+    method : str, default "bradford"
+        A name in :data:`ADAPTATION_METHODS`: ``"bradford"``, ``"von kries"``, ``"cat02"``,
+        ``"cat16"``, ``"xyz scaling"`` or ``"display rgb"``.
+    space : RGBSpace or str, optional
+        The display whose linear RGB is the sensor space; only (and required) for
+        ``method="display rgb"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        A, float64, shape (3, 3); ``A @ source_white_XYZ == target_white_XYZ``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a malformed white, an unknown method, ``space`` given or missing against the
+        method, or whites that give non-positive sensor responses.
+
+    References
+    ----------
+    Lam (1985) (Bradford); Moroney et al. (2002) (CAT02); Li et al. (2017) (CAT16); seed 002
+    (``matris.equ``); see the module docstring.
+
+    Examples
+    --------
+    >>> from spectrocolor import white_point
+    >>> A = adaptation_matrix(white_point("A"), white_point("D65"))
+    >>> (A @ white_point("A")).round(3).tolist()
+    [95.043, 100.0, 108.88]
+    """
     ws = _white(source_white_XYZ, "source_white_XYZ")
     wt = _white(target_white_XYZ, "target_white_XYZ")
     m = _sensor(method, space)
@@ -113,19 +153,29 @@ def adapt(
 
     Parameters
     ----------
-    XYZ : array_like (..., 3)
+    XYZ : array_like, shape (..., 3)
         Tristimulus values seen under the source white (any scale shared with the whites).
-    source_white_XYZ, target_white_XYZ : (3,)
+    source_white_XYZ, target_white_XYZ : array_like, shape (3,)
         The whites, e.g. ``white_point("A")`` and ``white_point("D65")``.
     method : {"bradford", "von kries", "cat02", "cat16", "xyz scaling", "display rgb"}
         The sensor space in which channels are scaled. ``"display rgb"`` uses the primaries of
         ``space`` (SPECTRA's "adapted to the screen").
-    space : RGBSpace or name, optional
+    space : RGBSpace or str, optional
         Only for ``method="display rgb"``.
 
     Returns
     -------
-    ndarray (..., 3)
+    ndarray, shape (..., 3)
+        Corresponding colours under the target white, on the scale of the input.
+
+    Raises
+    ------
+    ColorimetryError
+        As :func:`adaptation_matrix`, and for malformed ``XYZ``.
+
+    References
+    ----------
+    Fairchild (2013), *Color Appearance Models*, ch. 9; see the module docstring.
 
     Examples
     --------

@@ -90,8 +90,9 @@ def max_object_rgb(space, weights) -> np.ndarray:
 
     Parameters
     ----------
-    space : RGBSpace or name
-    weights : (K, 3) array
+    space : RGBSpace or str
+        The display (an RGBSpace or a built-in name).
+    weights : array_like, shape (K, 3)
         Tristimulus weights on the space's XYZ scale, e.g.
         ``spectrocolor.weights(wavelengths_nm, observer, illuminant)`` (perfect white Y = 100).
 
@@ -100,6 +101,22 @@ def max_object_rgb(space, weights) -> np.ndarray:
     ndarray (3,)
         Maximum R, G, B. Use ``.max()`` as the scale for ``normalise="fixed"`` (SPECTRA's
         alternative A: R_max = 1.58 for its monitor, 400-700 nm at 10 nm, equal energy).
+
+    Raises
+    ------
+    ColorimetryError
+        For weights that are not a finite (K, 3) array, or an unknown space.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999), STEP 2 and note 10 (alternative A, R_max = 1.58).
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> W = weights(wavelength_grid(400, 700, 10), illuminant="E")
+    >>> max_object_rgb("SPECTRA 7000K", W).round(2).tolist()
+    [1.58, 1.02, 0.92]
     """
     w = np.asarray(weights, dtype=float)
     if w.ndim != 2 or w.shape[1] != 3 or not np.all(np.isfinite(w)):
@@ -109,7 +126,35 @@ def max_object_rgb(space, weights) -> np.ndarray:
 
 
 def white_scale(space, white_XYZ) -> float:
-    """Scale that puts the largest channel of the given white at 1 (alternative A from a white)."""
+    """Scale that puts the largest channel of the given white at 1 (alternative A from a white).
+
+    Parameters
+    ----------
+    space : RGBSpace or str
+        The display (an RGBSpace or a built-in name).
+    white_XYZ : array_like, shape (3,)
+        XYZ of the white on the space's scale (e.g. ``white_point("A")``, Y = 100).
+
+    Returns
+    -------
+    float
+        The largest linear channel of the white: the divisor for ``normalise="fixed"``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a malformed white or one that drives no channel positively.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999), STEP 2 (normalisation alternative A).
+
+    Examples
+    --------
+    >>> from spectrocolor import white_point
+    >>> round(white_scale("sRGB", white_point("A")), 4)  # illuminant A's white drives red to 1.85
+    1.8454
+    """
     w = np.asarray(white_XYZ, dtype=float)
     if w.shape != (3,) or not np.all(np.isfinite(w)):
         raise ColorimetryError(f"white_XYZ must be three finite numbers, got {white_XYZ!r}")
