@@ -32,6 +32,13 @@ _PUBLIC: dict[str, str] = {
     "DEFAULT_OBSERVER": "observers",
     "Registry": "registry",
     "SUMMATION_METHODS": "colorimetry",
+    "ILLUMINANTS": "illuminants",
+    "OBSERVERS": "observers",
+    "GAMUT_STRATEGIES": "display.gamut",
+    "NORMALISATIONS": "display.normalise",
+    "ADAPTATION_METHODS": "display.adaptation",
+    "RGB_SPACES": "display.spaces",
+    "TRANSFERS": "display.transfer",
     "blackbody": "illuminants",
     "daylight": "illuminants",
     "daylight_xy": "illuminants",
@@ -128,6 +135,10 @@ _PUBLIC: dict[str, str] = {
     "zawischa_strip": "thinfilm.zawischa",
     # ASTM E308 / E2022 weights
     "astm_e308_weights": "astm_e308",
+    # spectral upsampling: RGB images to exact reflectances by table
+    "upsampling_table": "upsampling",
+    "UpsamplingTable": "upsampling",
+    "upsample": "upsampling",
     # light sources: colour rendering, fidelity, photometry, α-opic (matplotlib only for graphics)
     "colour_rendering_index": "lighting.cri",
     "CRI": "lighting.cri",
