@@ -173,12 +173,98 @@ def compare(tables, meng_count: int) -> None:
               f"{m['rate']:.3g} |")
 
 
+def _chart(rgb_linear: np.ndarray, patch: int = 48) -> np.ndarray:
+    """A 4 x 6 chart of 8-bit sRGB patches from linear RGB (24, 3), clipped to the gamut."""
+    codes = sc.render(sc.rgb_space("sRGB").XYZ_from_rgb_linear(rgb_linear), gamut="clip").codes
+    chart = codes.reshape(4, 6, 3).astype(np.uint8)
+    return np.repeat(np.repeat(chart, patch, axis=0), patch, axis=1)
+
+
+def pictures() -> None:
+    """docs/images/upsampling_relit.png and upsampling_spectra.png (see docs/upsampling.md)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from spectrocolor.io import read_spectra
+    from spectrocolor.pictures import save_image
+    from spectrocolor.upsampling import relight, rgb_linear_from_image
+
+    data = Path(sc.__file__).parent / "data" / "reflectances_colorchecker_babel.csv"
+    checker = read_spectra(data)
+    grid = checker.wavelengths_nm
+    table = upsampling_table("sRGB", "D65", wavelengths=(grid[0], grid[-1], grid[1] - grid[0]),
+                             resolution=17, measure_excess=False)
+    truth = np.asarray(checker.values)
+    photo = _chart(truth @ table.weights @ np.linalg.inv(table.matrix).T, patch=1)[..., :]
+    rgb = rgb_linear_from_image(photo.reshape(24, 3))  # what the camera recorded, 8-bit
+    W_A = np.asarray(sc.weights(grid, illuminant="A"))
+    display = sc.rgb_space("sRGB")
+    panels, report = [], []
+    for adaptation in (None, "bradford"):
+        relit = relight(table, rgb, "A", adaptation=adaptation)
+        seen = table.weights.sum(0) if adaptation is None else W_A.sum(0)
+        true_XYZ = sc.adapt(truth @ W_A, seen, display.white_XYZ)
+        de = sc.delta_e_2000(sc.lab(relit.XYZ100, display.white_XYZ),
+                             sc.lab(true_XYZ, display.white_XYZ))
+        report.append((adaptation, de))
+        panels.append((_chart(relit.rgb_linear), _chart(display.rgb_linear_from_XYZ(true_XYZ))))
+    gap = np.full((4 * 48, 12, 3), 255, np.uint8)
+    top = np.concatenate([_chart(rgb), gap, panels[0][0], gap, panels[0][1]], axis=1)
+    bottom = np.concatenate([np.full_like(_chart(rgb), 255), gap, panels[1][0], gap,
+                             panels[1][1]], axis=1)
+    image = np.concatenate([top, np.full((12, top.shape[1], 3), 255, np.uint8), bottom])
+    DOCS_IMAGES.mkdir(exist_ok=True)
+    save_image(image, DOCS_IMAGES / "upsampling_relit.png")
+    for adaptation, de in report:
+        print(f"   ColorChecker under A ({adaptation or 'no'} adaptation): ΔE00 table-relit vs "
+              f"measured spectra: mean {de.mean():.2f}, max {de.max():.2f} "
+              f"(patch {checker.names[int(np.argmax(de))]})")
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from upsampling_baselines import SigmoidPolynomial, smits
+
+    srgb = upsampling_table("sRGB", "D65", resolution=17, measure_excess=False)
+    g = srgb.wavelengths_nm
+    examples = {"red (0.8, 0.05, 0.05)": [0.8, 0.05, 0.05], "sky (0.2, 0.4, 0.8)": [0.2, 0.4, 0.8],
+                "green (0.1, 0.6, 0.1)": [0.1, 0.6, 0.1], "skin (0.6, 0.4, 0.3)": [0.6, 0.4, 0.3]}
+    rgb = np.array(list(examples.values()))
+    model = SigmoidPolynomial(srgb.weights, g, srgb.matrix)
+    curves = {"this table (17³)": upsample(srgb, rgb).reflectance,
+              "exact smoothest": sc.smoothest_reflectance(rgb @ srgb.matrix.T).spectrum.values,
+              "sigmoid polynomial (fit)": model.spectra(model.fit(rgb)),
+              "Smits 1999": smits(rgb, g)}
+    fig, axes = plt.subplots(1, 4, figsize=(13, 3.2), sharey=True)
+    styles = {"this table (17³)": "-", "exact smoothest": ":", "sigmoid polynomial (fit)": "--",
+              "Smits 1999": "-."}
+    for i, (ax, title) in enumerate(zip(axes, examples, strict=True)):
+        for name, values in curves.items():
+            ax.plot(g, values[i], styles[name], label=name, lw=1.6)
+        ax.set_title(f"linear sRGB {title.split(' ', 1)[1]}\n{title.split(' ')[0]}", fontsize=9)
+        ax.set_xlabel("wavelength (nm)")
+        ax.axhline(1.0, color="0.8", lw=0.8)
+        ax.axhline(0.0, color="0.8", lw=0.8)
+    axes[0].set_ylabel("reflectance")
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    fig.savefig(DOCS_IMAGES / "upsampling_spectra.png", dpi=110)
+    plt.close(fig)
+    print(f"   wrote {DOCS_IMAGES / 'upsampling_relit.png'} and upsampling_spectra.png")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--size", type=int, default=4096)
     parser.add_argument("--compare", action="store_true")
     parser.add_argument("--meng", type=int, default=0)
+    parser.add_argument("--pictures", action="store_true",
+                        help="only write the pictures of docs/upsampling.md")
     args = parser.parse_args()
+    if args.pictures:
+        pictures()
+        return
     tables = build()
     apply_speed(tables["sRGB"], args.size)
     if args.compare:

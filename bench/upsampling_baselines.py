@@ -103,7 +103,7 @@ class SigmoidPolynomial:
         """Fitted coefficients at the n³ nodes of the linear-RGB cube, (n, n, n, 3)."""
         axis = np.linspace(0.0, 1.0, n)
         nodes = np.stack(np.meshgrid(axis, axis, axis, indexing="ij"), -1).reshape(-1, 3)
-        return self.fit(nodes).reshape(n, n, n, 3)
+        return self.fit(nodes, steps=4).reshape(n, n, n, 3)
 
     @staticmethod
     def from_table(table: np.ndarray, rgb_linear: np.ndarray) -> np.ndarray:
