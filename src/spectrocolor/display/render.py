@@ -47,6 +47,14 @@ class Rendering:
         Name of the RGB space.
     bit_depth : int
         Bits per code (6 for SPECTRA's 64-level table).
+
+    Examples
+    --------
+    >>> r = render([[20.0, 21.0, 22.0], [1.0, 60.0, 5.0]], gamut="clip")
+    >>> r.hex.tolist(), r.in_gamut.tolist()
+    (['#807e7c', '#00ff00'], [True, False])
+    >>> r.negative[1].tolist(), r.gamut, r.normalise, r.space, r.bit_depth
+    ([True, False, True], 'clip', 'none', 'sRGB', 8)
     """
 
     rgb_linear: np.ndarray
@@ -85,7 +93,7 @@ def render(
 
     Parameters
     ----------
-    XYZ100 : array_like (..., 3)
+    XYZ100 : array_like, shape (..., 3)
         Tristimulus values on the space's scale: for ``normalise="none"``, Y = 100 is the
         display's white at full drive (for measured spaces, the scale of their table).
     space : str or RGBSpace
@@ -102,12 +110,25 @@ def render(
     bit_depth : int, optional
         Bits per integer code. Default: 8 for curve transfers; a measured level table uses its
         own levels (64 levels = 6 bits) and refuses any other depth.
-    tolerance : float
+    tolerance : float, default DEFAULT_TOLERANCE
         Channels within this distance of [0, 1] count as in gamut.
 
     Returns
     -------
     Rendering
+        Drive values, encoded values and codes of shape ``(..., 3)``, per-colour flags, and the
+        normalisation, scale, gamut strategy, space and bit depth that were used.
+
+    Raises
+    ------
+    ColorimetryError
+        For NaN or infinite XYZ, an unknown space, normalisation or gamut strategy, a missing or
+        superfluous ``scale``, or a ``bit_depth`` a measured level table cannot give.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999), STEPS 2–3 ("cannot be reproduced"); seed 000 (Zawischa),
+    eqs. 19–24.
 
     Examples
     --------
