@@ -25,12 +25,22 @@ class Medium:
 
     Parameters
     ----------
-    name
+    name : str
         Human-readable name, e.g. ``"water (Daimon & Masumura 2007, 20 °C)"``.
-    index_function
-        Maps vacuum wavelengths in nm, shape ``(K,)``, to the complex index, shape ``(K,)``.
-    valid_nm
+    index_function : callable
+        Maps vacuum wavelengths in nm, shape ``(K,)``, to the complex index ``n + ik``,
+        shape ``(K,)`` (``k >= 0`` is absorption).
+    valid_nm : tuple of float, default (0.0, inf)
         ``(lowest, highest)`` vacuum wavelength in nm where the model is defined.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> glass = Medium("n = 1.5", lambda wl: np.full(wl.shape, 1.5 + 0j), (400.0, 700.0))
+    >>> glass.refractive_index([400, 700]).real.tolist()
+    [1.5, 1.5]
+    >>> medium("water")  # the built-in media are Medium objects too
+    Medium('water (Daimon & Masumura 2007, 20 °C)')
     """
 
     name: str
@@ -40,10 +50,26 @@ class Medium:
     def refractive_index(self, wavelengths_nm) -> np.ndarray:
         """Complex refractive index ``n + ik`` at the given vacuum wavelengths (nm), shape ``(K,)``.
 
+        Parameters
+        ----------
+        wavelengths_nm : array_like, shape (K,)
+            Vacuum wavelengths, nm, finite and positive, inside :attr:`valid_nm`.
+
+        Returns
+        -------
+        numpy.ndarray of complex, shape (K,)
+            ``n + ik`` at each wavelength.
+
         Raises
         ------
         SpectrumError
-            If a wavelength lies outside :attr:`valid_nm`.
+            If a wavelength lies outside :attr:`valid_nm` (never extrapolated) or the grid is
+            malformed.
+
+        Examples
+        --------
+        >>> medium("water").refractive_index([589.3]).real.round(4).tolist()
+        [1.3333]
         """
         wl = _wavelengths(wavelengths_nm)
         lo, hi = self.valid_nm
@@ -326,6 +352,34 @@ def medium(spec) -> Medium:
     Names: ``air``, ``vacuum``, ``water`` (= ``soap``), ``oil``, ``bk7`` (= ``glass``),
     ``fused-silica``. Numbers like ``"1.38"`` or ``"2.0+0.1j"`` give a constant index; a
     string ending in ``.csv`` is read with :func:`read_medium_csv`.
+
+    Parameters
+    ----------
+    spec : str, int, float, complex or Medium
+        A name above, a number or numeric string (a constant complex index ``n + ik``), a path
+        to a CSV file with columns ``wavelength_nm,n[,k]``, or a Medium (returned unchanged).
+
+    Returns
+    -------
+    Medium
+        The medium, with its range of validity in nm.
+
+    Raises
+    ------
+    SpectrumError
+        For an unknown name, an index with ``n <= 0`` or ``k < 0``, or a malformed CSV file.
+
+    References
+    ----------
+    Daimon & Masumura (2007) (water); SCHOTT N-BK7 data sheet; Malitson (1965) (fused silica);
+    see the docstrings of :func:`water`, :func:`bk7` and :func:`fused_silica`.
+
+    Examples
+    --------
+    >>> medium("glass").refractive_index([587.56]).real.round(4).tolist()
+    [1.5168]
+    >>> medium("2.0+0.1j").refractive_index([500.0]).tolist()
+    [(2+0.1j)]
     """
     if isinstance(spec, Medium):
         return spec
