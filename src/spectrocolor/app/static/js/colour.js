@@ -26,7 +26,7 @@ export function encode(v, t) {
 /** Weights per level (K × 3) for reflectances under an illuminant given as levels 0–30:
  * the library's sc.weights(wl, observer, Spectrum(illuminant)), perfect white Y = 100,
  * derived from the equal-energy weights the model serves. */
-export function weightsUnder(illuminant, model) {
+function weightsUnder(illuminant, model) {
   const WE = model.weights;
   let yIll = 0;
   for (let k = 0; k < WE.length; k++) yIll += illuminant[k] * WE[k][1];
@@ -36,7 +36,7 @@ export function weightsUnder(illuminant, model) {
 
 /** SPECTRA's alternative A divisor for weights per level: the largest channel any 0–30
  * distribution can drive (the library's max_object_rgb(...).max()). */
-export function fixedScale(W, M) {
+function fixedScale(W, M) {
   const top = [0, 0, 0];
   for (const w of W) {
     for (let c = 0; c < 3; c++) {
@@ -47,14 +47,15 @@ export function fixedScale(W, M) {
   return Math.max(...top);
 }
 
-/** Y of each primary at full drive: row Y of the display's own RGB → XYZ matrix, the inverse
- * of its XYZ → RGB matrix (before any adaptation). */
-function luminanceRow(model) {
-  const M = model.display_matrix_from_XYZ;
-  const det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
-    + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
-  return [-(M[1][0] * M[2][2] - M[1][2] * M[2][0]) / det, (M[0][0] * M[2][2] - M[0][2] * M[2][0]) / det,
-    -(M[0][0] * M[1][2] - M[0][2] * M[1][0]) / det];
+/** Weights per level and the normalisation divisor for one setting: under E (settings 1–3, 5)
+ * or under setting 4's illuminant (levels), or null when the illuminant is dark everywhere. */
+export function localWeights(model, normalise, illuminant) {
+  if (!illuminant) return {W: model.weights, scale: model.fixed_scale};
+  if (!illuminant.some((v) => v > 0)) return null;  // nothing lit: the server says why
+  const W = weightsUnder(illuminant, model);
+  // exact A depends on the weights (the brightest object colour under this illuminant);
+  // SPECTRA's own A (from the display's matrix) and B do not
+  return {W, scale: normalise === "fixed" ? fixedScale(W, model.matrix_from_XYZ) : model.fixed_scale};
 }
 
 const inside = (rgb) => rgb.every((c) => c >= 0 && c <= 1);
@@ -86,7 +87,6 @@ const STRATEGIES = {
     return rgb.map((c) => clip01((1 - t) * c + t * g));
   },
 };
-export const localStrategies = Object.keys(STRATEGIES);
 
 /**
  * One distribution's colour as /api/evaluate gives it (without λd and purity, which only the
@@ -113,7 +113,7 @@ export function localColour(levels, model, opts) {
   const inGamut = !negative.some(Boolean) && !over.some(Boolean);
   const snapped = rgb.map((c) => (c < 0 && c >= -tol) ? 0 : (c > 1 && c <= 1 + tol) ? 1 : c);
   if (!STRATEGIES[gamut]) throw new Error(`gamut strategy ${gamut} has no local fast path`);
-  const lin = STRATEGIES[gamut](snapped, inGamut, luminanceRow(model));
+  const lin = STRATEGIES[gamut](snapped, inGamut, model.luminance_row);
   const enc = lin.map((c) => encode(c, model.transfer));
   const codes = model.transfer.kind === "levels" ? enc.map((e) => Math.round(e * (model.transfer.levels.length - 1)))
     : enc.map((e) => rint(e * (2 ** model.bit_depth - 1)));

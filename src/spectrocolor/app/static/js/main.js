@@ -6,8 +6,8 @@ import {$, el, fill} from "./dom.js";
 import {apiJSON, api} from "./api.js";
 import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stateURL, readURLOptions,
   readURLDistributions, persist, readPersisted} from "./state.js";
-import {localColour, weightsUnder, fixedScale, whiteOf, emitted} from "./colour.js";
-import {buildPatches, buildCards, paint, evalSpec, markStale, GAMUT_TEXT, NORMALISE_TEXT, ADAPTATION_TEXT} from "./view.js";
+import {localColour, localWeights, whiteOf, emitted} from "./colour.js";
+import {buildPatches, buildCards, paint, evalSpec, markStale, gamutLabel, NORMALISE_TEXT} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, drawPoints} from "./diagram.js";
 import {applyPreset, presetButtons} from "./presets.js";
@@ -35,23 +35,12 @@ function requestBody() {
   return body;
 }
 
-/** Weights and fixed scale for the current setting (under E, or under setting 4's illuminant). */
-function localWeights(e) {
-  const m = S.model;
-  if (!e.illuminant) return {W: m.weights, scale: m.fixed_scale};
-  if (!e.illuminant.some((v) => v > 0)) return null;  // nothing lit: the server says why
-  const W = weightsUnder(e.illuminant, m);
-  // A depends on the weights (the brightest object colour under this illuminant); SPECTRA's
-  // own A and B do not
-  return {W, scale: S.normalise === "fixed" ? fixedScale(W, m.matrix_from_XYZ) : m.fixed_scale};
-}
-
 let urlTimer = null;
 /** Repaint now from the local fast path, then ask the server. `final`: an edit has ended. */
 function update(final = true) {
   S.settled = false;
   const e = evalSpec();
-  const lw = localWeights(e);
+  const lw = localWeights(S.model, S.normalise, e.illuminant);
   drawEditors();
   if (lw) {
     S.localWhite = whiteOf(lw.W);
@@ -146,6 +135,7 @@ async function loadModel() {
 /** A chosen option: reload what depends on it, then give the keyboard back to the bars. */
 async function option(name, value) {
   S[name] = value;
+  S.settled = false;
   try {
     if (name !== "gamut") await loadModel();
     if (name === "normalise" && value !== "per-colour") S.normaliseA = value;
@@ -160,6 +150,7 @@ function focusBars() {
 
 async function changeStep(step) {
   const fromWl = S.wl;
+  S.settled = false;
   try {
     S.step = step;
     S.presets = await apiJSON(`/api/presets?step_nm=${step}`);
@@ -180,6 +171,7 @@ async function toggleNorm() {
   const value = S.normalise === "per-colour" ? S.normaliseA : "per-colour";
   $("normalise").value = value;
   S.normalise = value;
+  S.settled = false;
   try { await loadModel(); } catch (err) { fail("Could not switch the normalisation", err); }
   update();
 }
@@ -349,7 +341,7 @@ function fromURL(search) {
   if (o.observer && o.observer in opts.observers) S.observer = o.observer;
   if (o.display && opts.displays.includes(o.display)) S.display = o.display;
   if (o.gamut && opts.gamuts.includes(o.gamut)) S.gamut = o.gamut;
-  if (o.adaptation && o.adaptation in (opts.adaptations || {})) S.adaptation = o.adaptation;
+  if (o.adaptation && (opts.adaptations || []).some(([v]) => v === o.adaptation)) S.adaptation = o.adaptation;
   if (o.normalise && opts.normalisations.includes(o.normalise)) S.normalise = o.normalise;
   if (S.normalise !== "per-colour") S.normaliseA = S.normalise;
   return o.setting;
@@ -361,6 +353,7 @@ function syncControls() {
 }
 
 async function onPopState() {
+  S.settled = false;
   const step = S.step, display = S.display, observer = S.observer, adaptation = S.adaptation, normalise = S.normalise;
   const setting = fromURL(location.search) || 1;
   try {
@@ -380,15 +373,15 @@ async function init() {
   const defaults_ = o.defaults || {};
   S.gamut = defaults_.gamut || o.gamuts[0];
   S.normalise = S.normaliseA = defaults_.normalise || "fixed";
-  S.display = o.displays[0];
-  if (o.adaptations) S.adaptation = defaults_.adaptation || Object.keys(o.adaptations)[0];
+  S.display = defaults_.display || o.displays[0];
+  if (o.adaptations) S.adaptation = defaults_.adaptation || o.adaptations[0][0];
   const setting = fromURL(location.search) || 1;
   fillSelect("display", o.displays.map((d) => [d, d]), S.display);
   fillSelect("observer", Object.entries(o.observers), S.observer);
-  fillSelect("gamut", o.gamuts.map((g) => [g, (GAMUT_TEXT[g] || [g])[0], (GAMUT_TEXT[g] || [])[1]]), S.gamut);
+  fillSelect("gamut", o.gamuts.map((g) => [g, gamutLabel(g), (o.gamut_actions || {})[g]]), S.gamut);
   fillSelect("normalise", o.normalisations.map((n) => [n, ...(NORMALISE_TEXT[n] || [n, ""])]), S.normalise);
   if (o.adaptations) {
-    fillSelect("adaptation", Object.entries(o.adaptations).map(([v, text]) => [v, text, ADAPTATION_TEXT[v]]), S.adaptation);
+    fillSelect("adaptation", o.adaptations, S.adaptation);
     $("adaptation-label").hidden = false;
   }
   for (const name of ["display", "observer", "gamut", "adaptation", "normalise"]) {

@@ -7,23 +7,17 @@ import {hexOf, lab} from "./colour.js";
 
 const fmt = (v, n) => (v === null || v === undefined || !Number.isFinite(v)) ? "—" : v.toFixed(n);
 
-export const GAMUT_TEXT = {
-  "flag": ["cannot be reproduced (SPECTRA)", "SPECTRA's strict rule: a colour no mix of the primaries can show is drawn black and flagged."],
-  "clip": ["channels clipped", "Each linear channel is cut to 0–1 on its own: hue, saturation and luminance change."],
-  "preserve-luminance": ["negative channels zeroed, luminance kept", "Negative channels are set to 0 and the others scaled so Y stays the same (Zawischa eqs. 20–21)."],
-  "desaturate": ["desaturated at constant luminance", "Mixed with the grey of the same luminance, just enough to enter the display's gamut: hue angle and Y are kept."],
-};
+/** Short names of the gamut strategies; what each does comes from the server (gamut_actions). */
+const GAMUT_NAMES = {"flag": "SPECTRA: cannot be reproduced", "clip": "clip channels",
+  "preserve-luminance": "keep luminance", "desaturate": "desaturate (keep hue and luminance)"};
+export const gamutLabel = (g) => GAMUT_NAMES[g] || g;
+const gamutAction = (g) => ((S.options && S.options.gamut_actions) || {})[g] || "";
+
 export const NORMALISE_TEXT = {
   "fixed": ["A · fixed scale", "One scale for all colours: the largest channel any distribution can drive (lightness relations kept)."],
   "per-colour": ["B · per colour (Optimised!)", "Every colour as bright as the display allows: only its chromaticity is kept."],
   "spectra-exact": ["A · as SPECTRA computed it", "The program's own numbers: 1.32 × the white's largest channel, one factor k per channel from its step 1."],
 };
-export const ADAPTATION_TEXT = {
-  "bradford": "The reference white E is shown as the display's white (Bradford adaptation): neutral looks neutral.",
-  "display rgb": "E is shown as the display's white by scaling its R, G, B (SPECTRA's equal-energy matrix, matris.equ).",
-  "none": "Unadapted: E's own chromaticity is shown, slightly pink on a D65 display.",
-};
-export const gamutLabel = (g) => (GAMUT_TEXT[g] || [g])[0];
 
 /** What each setting evaluates: the spectra sent to the library, their labels, the pairs. */
 export function evalSpec() {
@@ -149,8 +143,8 @@ export function paint(colours, server) {
     if (!badge.hidden) {
       const channels = [...c.negative.map((ch) => `${ch} negative`), ...c.over.map((ch) => `${ch} above 1`)].join(", ");
       const applied = dom ? dom.gamut_applied || gamut : gamut;
-      badge.querySelector(".badge-text").textContent = `${gamutLabel(applied)} · ${channels}`;
-      badge.title = dom && dom.explanation ? dom.explanation : (GAMUT_TEXT[applied] || ["", ""])[1];
+      badge.querySelector(".badge-text").textContent = `${channels}: ${gamutAction(applied) || gamutLabel(applied)}`;
+      badge.title = dom && dom.explanation ? dom.explanation : `${gamutLabel(applied)}: ${gamutAction(applied)}`;
       const strict = gamut === "flag";
       const sw = badge.querySelector(".badge-switch");
       sw.textContent = strict ? "show the nearest colour" : "strict: cannot be reproduced";
