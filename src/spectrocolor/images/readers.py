@@ -553,8 +553,14 @@ class MatlabH5Array:
         if any(k is Ellipsis for k in key) or len(key) > self.ndim:
             return np.asarray(self)[key]
         key = key + (slice(None),) * (self.ndim - len(key))
-        with h5py.File(self.path, "r") as handle:
-            block = np.asarray(handle[self.name][tuple(reversed(key))])
+        try:
+            with h5py.File(self.path, "r") as handle:
+                block = np.asarray(handle[self.name][tuple(reversed(key))])
+        except (TypeError, ValueError, IndexError):
+            raise  # a bad index: the caller's error, not the file's
+        except Exception as exc:  # a damaged file, as in _read_mat73
+            reason = f"{type(exc).__name__}: {exc}"
+            raise SpectrumError(f"{self.path}: variable {self.name!r} cannot be read ({reason})") from None
         return block.transpose(tuple(reversed(range(block.ndim))))
 
     def __array__(self, dtype=None, copy=None) -> np.ndarray:
@@ -602,11 +608,11 @@ def _mat_wavelengths(path: Path, load, shapes, bands: int, wavelengths_nm, wavel
 
 
 def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
-    import zlib
-
     import scipy.io
 
-    errors = (ValueError, TypeError, OSError, NotImplementedError, zlib.error, scipy.io.matlab.MatReadError)
+    # scipy's MAT parser meets damaged files with whatever its code hits (IndexError, KeyError,
+    # struct.error, zlib.error, …): any of them means "this file cannot be read", said in one line.
+    errors = (Exception,)
     try:
         listing = scipy.io.whosmat(str(path))
     except errors as exc:
@@ -640,21 +646,33 @@ def _read_mat73(path: Path, wavelengths_nm, wavelength_units, variable) -> Spect
         handle = h5py.File(path, "r")
     except OSError as exc:
         raise SpectrumError(f"{path}: says MATLAB 7.3 but is not a readable HDF5 file ({exc})") from None
-    with handle:
-        datasets = {name: item for name, item in handle.items() if isinstance(item, h5py.Dataset)}
-        shapes = {name: tuple(reversed(item.shape)) for name, item in datasets.items()}
-        numeric = {name for name, item in datasets.items() if item.dtype.kind in "biuf"}
-        name = _mat_choice(path, shapes, numeric, variable)
-        dataset = datasets[name]
-        if dataset.chunks is None:  # contiguous: its bytes must be in the file
-            offset = dataset.id.get_offset() or 0
-            _check_claimed_size(path, offset + dataset.size * dataset.dtype.itemsize, f"{name} {shapes[name]}")
-        values = MatlabH5Array(str(path), name, tuple(dataset.shape), dataset.dtype.str)
+    try:
+        return _mat73_cube(path, handle, wavelengths_nm, wavelength_units, variable)
+    except SpectrumError:
+        raise
+    except Exception as exc:  # h5py on a damaged file: KeyError, RuntimeError, OSError, … (see _read_mat5)
+        raise SpectrumError(f"{path}: a damaged MATLAB 7.3 (HDF5) file ({type(exc).__name__}: {exc})") from None
+    finally:
+        handle.close()
 
-        def load(variable_name):
-            return np.asarray(datasets[variable_name])
 
-        wavelengths = _mat_wavelengths(path, load, shapes, values.shape[2], wavelengths_nm, wavelength_units)
+def _mat73_cube(path: Path, handle, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+    import h5py
+
+    datasets = {name: item for name, item in handle.items() if isinstance(item, h5py.Dataset)}
+    shapes = {name: tuple(reversed(item.shape)) for name, item in datasets.items()}
+    numeric = {name for name, item in datasets.items() if item.dtype.kind in "biuf"}
+    name = _mat_choice(path, shapes, numeric, variable)
+    dataset = datasets[name]
+    if dataset.chunks is None:  # contiguous: its bytes must be in the file
+        offset = dataset.id.get_offset() or 0
+        _check_claimed_size(path, offset + dataset.size * dataset.dtype.itemsize, f"{name} {shapes[name]}")
+    values = MatlabH5Array(str(path), name, tuple(dataset.shape), dataset.dtype.str)
+
+    def load(variable_name):
+        return np.asarray(datasets[variable_name])
+
+    wavelengths = _mat_wavelengths(path, load, shapes, values.shape[2], wavelengths_nm, wavelength_units)
     return SpectralCube(values, wavelengths, str(path), {"variable": name, "mat": "v7.3"})
 
 

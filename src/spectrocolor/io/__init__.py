@@ -50,6 +50,8 @@ def _parse_json(text: str, source: str, percent: bool | None) -> Spectrum:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise SpectrumError(f"{source}: not valid JSON ({exc})") from None
+    except RecursionError:
+        raise SpectrumError(f"{source}: JSON nested too deeply; expected {FORMATS[0][1]}") from None
     try:
         spectrum = Spectrum.from_dict(data)
     except (SpectrumError, ValueError, TypeError) as exc:
