@@ -34,17 +34,28 @@ SEED_000_ILLUMINANT = "blackbody:6504"
 class FilmColours:
     """Colours of a series of films.
 
+    Returned by :func:`film_colours`.
+
     Attributes
     ----------
-    XYZ100
+    XYZ100 : numpy.ndarray, shape (..., 3)
         Tristimulus values relative to a perfect reflector under the light (Y = 100), before
-        exposure, shape ``(..., 3)``.
-    xy
-        Chromaticities, shape ``(..., 2)``.
-    rendering
+        exposure.
+    xy : numpy.ndarray, shape (..., 2)
+        Chromaticities.
+    rendering : Rendering
         The :class:`spectrocolor.Rendering` (linear and encoded RGB, codes, gamut flags).
-    illuminant, observer, exposure
-        What was used.
+    illuminant, observer, exposure : str
+        What was used (the illuminant as :func:`spectrocolor.illuminant_label` writes it).
+
+    Examples
+    --------
+    >>> from spectrocolor import soap_film, wavelength_grid
+    >>> colours = film_colours(soap_film([100.0, 300.0, 500.0], wavelength_grid(380, 780, 5)))
+    >>> colours.rendering.hex.tolist()
+    ['#fafdfa', '#c8ffa8', '#6bf862']
+    >>> colours.illuminant, colours.exposure, colours.rgb8.shape
+    ('blackbody 6504 K', 'global-max', (3, 3))
     """
 
     XYZ100: np.ndarray
@@ -70,29 +81,54 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_IL
 
     Parameters
     ----------
-    films
+    films : FilmOptics or Spectrum
         A :class:`~spectrocolor.thinfilm.optics.FilmOptics` or a :class:`spectrocolor.Spectrum`
         of reflectance (or transmittance, or two-beam) factors, shape ``(..., K)``.
-    quantity
+    quantity : str, keyword-only, default "reflectance"
         ``"reflectance"`` or ``"transmittance"`` (FilmOptics only).
-    illuminant
+    illuminant : str, float or Spectrum, keyword-only
         Any form of :func:`spectrocolor.canonical_illuminant` except ``None`` (a film's
         reflectance needs a light); default ``"blackbody:6504"``, seed 000's light. A Spectrum
         must contain every sample of the films' grid.
-    observer
+    observer : str or Spectrum, keyword-only
         Any name :func:`spectrocolor.observer` accepts (default CIE 1931 2°).
-    exposure
+    exposure : str, keyword-only, default "global-max"
         ``"global-max"`` or ``"perfect-reflector"`` (see the module docstring).
-    gain
+    gain : float, keyword-only, default 1.0
         Multiplier for ``"perfect-reflector"`` exposure (must be 1 for ``"global-max"``).
-    space, gamut, bit_depth
+    space : str or RGBSpace, keyword-only, default "sRGB"
         Passed to :func:`spectrocolor.render`.
-    method
+    gamut : str, keyword-only, default "preserve-luminance"
+        Gamut strategy, passed to :func:`spectrocolor.render` (seed 000's eqs. 20–21 by default).
+    bit_depth : int, keyword-only, default 8
+        Passed to :func:`spectrocolor.render`.
+    method : str, keyword-only, default "sum"
         Summation method of :func:`spectrocolor.weights`.
 
     Returns
     -------
     FilmColours
+        XYZ100, xy, the rendering and the choices used.
+
+    Raises
+    ------
+    SpectrumError
+        For input that is neither FilmOptics nor Spectrum, or ``quantity`` with a Spectrum.
+    ColorimetryError
+        For ``illuminant=None``, an unknown exposure, a gain that is not positive or given with
+        ``"global-max"``, and as :func:`spectrocolor.weights` and :func:`spectrocolor.render`.
+
+    References
+    ----------
+    Seed 000 (Zawischa): 6504 K blackbody, eqs. 13–24.
+
+    Examples
+    --------
+    >>> from spectrocolor import soap_film, wavelength_grid
+    >>> bright = film_colours(soap_film([250.0], wavelength_grid(380, 780, 5)),
+    ...                       exposure="perfect-reflector", gain=5)
+    >>> bright.XYZ100.round(2).tolist()  # relative to a perfect reflector: a few per cent
+    [[2.58, 3.08, 8.56]]
     """
     from ..colorimetry import weights
     from ..coordinates import xy as chromaticity
