@@ -15,6 +15,7 @@ from functools import cache
 
 import numpy as np
 
+from .arguments import real_number
 from .data_tables import load_table
 from .errors import ColorimetryError, SpectrumError
 from .registry import Registry

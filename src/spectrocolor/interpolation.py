@@ -183,8 +183,8 @@ def interpolation_matrix(source_nm: np.ndarray, target_nm: np.ndarray, method: s
     """
     source_nm = np.asarray(source_nm, dtype=float)
     target_nm = np.asarray(target_nm, dtype=float)
-    if method not in METHODS:
-        raise SpectrumError(f"method: {method!r} is not a resampling method; choose one of {METHODS}")
+    if not isinstance(method, str) or method not in METHODS:
+        raise SpectrumError(f"method: {method!r:.40} is not a resampling method; choose one of {METHODS}")
     _check_inside(source_nm, target_nm)
     entries = max(target_nm.size, source_nm.size + 4) * source_nm.size
     if entries > MAX_MATRIX_ENTRIES:

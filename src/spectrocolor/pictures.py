@@ -214,9 +214,9 @@ def save_image(image, path) -> Path:
     unchanged and raises :class:`spectrocolor.safe_write.OutputError`.
     """
     img = np.asarray(image)
-    if img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8:
+    if img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8 or 0 in img.shape:
         raise ColorimetryError(
-            f"image must be an (H, W, 3) uint8 array, got {img.shape} {img.dtype}"
+            f"image must be an (H, W, 3) uint8 array with H, W >= 1, got {img.shape} {img.dtype}"
         )
     path = Path(path)
     suffix = path.suffix.lower()

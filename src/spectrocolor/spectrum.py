@@ -80,11 +80,12 @@ def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarr
     count = (stop_nm - start_nm) / step_nm
     if count + 1 > _MAX_GRID_SAMPLES:
         raise SpectrumError(
-            f"step_nm: {step_nm!r} nm over {start_nm!r}–{stop_nm!r} nm gives {count + 1:.3g} samples; "
-            f"at most {_MAX_GRID_SAMPLES} are allowed"
+            f"start_nm, stop_nm, step_nm: {step_nm!r} nm over {start_nm!r}–{stop_nm!r} nm gives "
+            f"{count + 1:.3g} samples; at most {_MAX_GRID_SAMPLES} are allowed"
         )
     if abs(count - round(count)) > 1e-9 * max(1.0, count):
-        raise SpectrumError(f"step_nm: {step_nm!r} does not divide {start_nm!r}–{stop_nm!r} nm into whole steps")
+        raise SpectrumError(f"start_nm, stop_nm, step_nm: {step_nm!r} does not divide "
+                            f"{start_nm!r}–{stop_nm!r} nm into whole steps")
     return start_nm + step_nm * np.arange(round(count) + 1, dtype=float)
 
 
@@ -441,8 +442,8 @@ class Spectrum:
         >>> s.resample([450, 500, 550]).values.tolist()
         [0.5, 1.0, 0.5]
         """
-        if method not in METHODS:
-            raise SpectrumError(f"method: {method!r} is not a resampling method; choose one of {METHODS}")
+        if not isinstance(method, str) or method not in METHODS:
+            raise SpectrumError(f"method: {method!r:.40} is not a resampling method; choose one of {METHODS}")
         target = validate_wavelengths(wavelengths_nm)
         if target.shape == self._wavelengths_nm.shape and np.array_equal(target, self._wavelengths_nm):
             return self

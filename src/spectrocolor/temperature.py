@@ -39,6 +39,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .arguments import real_array
 from .coordinates import uv_1960, xy_from_uv_1960
 from .errors import ColorimetryError
 from .illuminants import C2_CIE_LOCUS_M_K, planck
@@ -237,14 +238,17 @@ def xy_from_cct(cct_K, duv=0.0, observer=DEFAULT_OBSERVER) -> np.ndarray:
     >>> xy_from_cct(6504).round(4)
     array([0.3135, 0.3236])
     """
-    T = np.asarray(cct_K, dtype=np.float64)
+    T = real_array(cct_K, "cct_K", "temperatures in kelvin")
     if not np.all(np.isfinite(T)) or np.any((T < _T_MIN_K) | (T > _T_MAX_K)):
         raise ColorimetryError(
             f"cct_K must be finite temperatures between {_T_MIN_K:g} and {_T_MAX_K:g} K; "
             f"got {cct_K!r:.80}"
         )
-    duv = np.asarray(duv, dtype=np.float64)
-    T, duv = np.broadcast_arrays(T, duv)
+    duv = real_array(duv, "duv", "distances from the Planckian locus", finite=True)
+    try:
+        T, duv = np.broadcast_arrays(T, duv)
+    except ValueError:
+        raise ColorimetryError(f"cct_K, duv: shapes {T.shape} and {duv.shape} do not broadcast") from None
     canonical = canonical_observer_name(observer)
     flat = T.reshape(-1)
     step = 1e-4  # relative; central difference for the locus direction

@@ -11,6 +11,7 @@ shell's SIGPIPE status, 141.
 from __future__ import annotations
 
 import argparse
+import csv
 import importlib
 import os
 import sys
@@ -92,6 +93,11 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except (UserError, SpectrumError, ColorimetryError, OSError) as exc:  # OSError: full disk, ...
         print(f"spectrocolor {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except (csv.Error, RecursionError) as exc:  # only hostile input makes a parser raise these
+        reason = str(exc).splitlines()[0][:200] if str(exc) else exc.__class__.__name__
+        print(f"spectrocolor {args.command}: error: the input cannot be read ({reason})",
+              file=sys.stderr)
         return 2
 
 

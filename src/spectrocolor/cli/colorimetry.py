@@ -73,6 +73,9 @@ def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: st
 def load_samples(args: argparse.Namespace) -> Spectrum:
     """Read ``args.file`` and apply --range, --interval and --percent, checking reflectances."""
     from ..spectrum_io import read_spectra
+    from .files import MAX_SPECTRAL_FILE_BYTES, check_files
+
+    check_files(args, (), ("file",), MAX_SPECTRAL_FILE_BYTES)  # a regular file, bounded: never /dev/zero
 
     if args.light and args.illuminant is not None:
         raise UserError("--illuminant: lights are not lit by an illuminant; drop --illuminant or --light")

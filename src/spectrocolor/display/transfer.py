@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import real_array
 from ..errors import ColorimetryError
 from ..registry import Registry
 
@@ -50,7 +51,7 @@ __all__ = [
 
 
 def _check_unit_range(values: np.ndarray, argument: str) -> np.ndarray:
-    values = np.asarray(values, dtype=float)
+    values = real_array(values, argument, "encoded values 0-1")
     bad = (values < 0.0) | (values > 1.0)
     if np.any(bad):
         raise ColorimetryError(
@@ -112,7 +113,8 @@ class PowerLaw:
 
     def __post_init__(self):
         if not np.isfinite(self.gamma) or self.gamma <= 0:
-            raise ColorimetryError(f"gamma must be a positive number, got {self.gamma!r}")
+            raise ColorimetryError(f"gamma: a power-law transfer needs a positive, finite "
+                                   f"exponent, got {self.gamma!r}")
         if not self.name:
             object.__setattr__(self, "name", f"gamma {self.gamma:g}")
 
@@ -391,7 +393,7 @@ def from_codes(codes, bit_depth: int = 8) -> np.ndarray:
     [0.0, 0.502, 1.0]
     """
     _check_bit_depth(bit_depth)
-    codes = np.asarray(codes)
+    codes = real_array(codes, "codes", "integer codes")
     top = 2 ** int(bit_depth) - 1
     if np.any(codes < 0) or np.any(codes > top):
         raise ColorimetryError(f"codes must lie in 0..{top} for bit_depth {bit_depth}")

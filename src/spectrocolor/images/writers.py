@@ -59,8 +59,9 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
     """
     path = Path(path)
     array = np.asarray(image)
-    if array.ndim not in (2, 3) or (array.ndim == 3 and array.shape[2] != 3):
-        raise SpectrumError(f"image must have shape (H, W, 3) or (H, W); got {array.shape}")
+    if array.ndim not in (2, 3) or (array.ndim == 3 and array.shape[2] != 3) or 0 in array.shape:
+        raise SpectrumError(f"image must have shape (H, W, 3) or (H, W) with H, W >= 1; got "
+                            f"{array.shape}")
     suffix = path.suffix.lower()
     if suffix == ".png":
         if metadata:

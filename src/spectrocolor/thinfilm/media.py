@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arguments import real_array
 from ..errors import SpectrumError
 
 
@@ -86,7 +87,7 @@ class Medium:
 
 
 def _wavelengths(wavelengths_nm) -> np.ndarray:
-    wl = np.asarray(wavelengths_nm, dtype=float)
+    wl = real_array(wavelengths_nm, "wavelengths_nm", "wavelengths in nm", SpectrumError)
     if wl.ndim != 1 or not np.all(np.isfinite(wl)) or np.any(wl <= 0):
         raise SpectrumError(
             "wavelengths_nm: expected a 1-D array of finite positive wavelengths in nm, "
@@ -137,7 +138,8 @@ def refractive_index(medium, wavelengths_nm) -> np.ndarray:
 def constant(n: float, k: float = 0.0, name: str | None = None) -> Medium:
     """A medium with a wavelength-independent index ``n + ik``."""
     if not (np.isfinite(n) and n > 0 and np.isfinite(k) and k >= 0):
-        raise SpectrumError(f"constant: need finite n > 0 and k >= 0, got n={n!r}, k={k!r}")
+        raise SpectrumError(f"medium: a constant index needs finite n > 0 and k >= 0, got n={n!r}, "
+                            f"k={k!r}")
     value = complex(n, k)
     return Medium(name or f"n = {value.real:g}" + (f" + {k:g}i" if k else ""),
                   lambda wl: np.full(wl.shape, value))

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import real_array, real_number
 from ..errors import SpectrumError
 from .media import _wavelengths, refractive_index
 
@@ -111,10 +112,7 @@ def _check_polarisation(polarisation: str) -> str:
 
 
 def _numbers(values, argument: str) -> np.ndarray:
-    try:
-        return np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise SpectrumError(f"{argument}: expected numbers, got {values!r:.60}") from None
+    return real_array(values, argument, "numbers", SpectrumError)
 
 
 def _nonnegative(values, argument: str) -> np.ndarray:
@@ -176,12 +174,16 @@ def two_beam_reflectance(opd_nm, wavelengths_nm, beta: float = 0.95) -> np.ndarr
     wavelengths_nm : array_like, shape (K,)
         Vacuum wavelengths in nm.
     beta : float, default 0.95
-        Amplitude of the back-surface beam relative to the front-surface beam, ``0 <= β <= 1``.
+        Amplitude of the back-surface beam relative to the front-surface beam, ``-1 <= β <= 1``.
+        Positive (seed 000's 0.95) for a free film, where one of the two reflections changes the
+        phase by π; negative when both do or neither does (a low-index coating on glass): then
+        the factor is ``1 + β² + 2|β| cos(2π s / λ)``. For Fresnel amplitudes ``r₁`` (front)
+        and ``r₂`` (back) at normal incidence, ``β = −r₂ / r₁``.
 
     Returns
     -------
     ndarray, shape ``(..., K)``
-        The relative reflectance, between ``(1 − β)²`` and ``(1 + β)²``.
+        The relative reflectance, between ``(1 − |β|)²`` and ``(1 + |β|)²``.
 
     Raises
     ------
@@ -203,9 +205,14 @@ def two_beam_reflectance(opd_nm, wavelengths_nm, beta: float = 0.95) -> np.ndarr
     """
     s = _nonnegative(opd_nm, "opd_nm")
     wl = _wavelengths(wavelengths_nm)
-    if not (np.isfinite(beta) and 0 <= beta <= 1):
-        raise SpectrumError(f"beta: expected 0 <= beta <= 1, got {beta!r}")
-    return 1.0 + beta * beta - 2.0 * beta * np.cos(2.0 * np.pi * s[..., None] / wl)
+    if not -1 <= real_number(beta, "beta", "-1 <= beta <= 1", SpectrumError) <= 1:
+        raise SpectrumError(f"beta: expected -1 <= beta <= 1, got {beta!r}")
+    with np.errstate(over="ignore"):
+        phase = 2.0 * np.pi * s[..., None] / wl
+    if not np.all(np.isfinite(phase)):
+        raise SpectrumError(f"opd_nm: path differences up to {s.max():.3g} nm overflow the phase "
+                            "2 pi s / lambda; give path differences that are finite numbers of nm")
+    return 1.0 + beta * beta - 2.0 * beta * np.cos(phase)
 
 
 def optical_path_difference(thickness_nm, film_index: float, angle_deg=0.0,
@@ -247,12 +254,12 @@ def optical_path_difference(thickness_nm, film_index: float, angle_deg=0.0,
     (266.0, 246.487)
     """
     d = _nonnegative(thickness_nm, "thickness_nm")
-    theta = np.asarray(angle_deg, dtype=float)
-    if not np.all(np.isfinite(theta)) or np.any((theta < 0) | (theta >= 90)):
-        raise SpectrumError(f"angle_deg: expected [0, 90) degrees, got {angle_deg!r}")
-    if not (film_index > 0 and ambient_index > 0):
-        raise SpectrumError("film_index and ambient_index must be positive real numbers")
-    return 2.0 * d * np.sqrt(film_index**2 - (ambient_index * np.sin(np.radians(theta))) ** 2)
+    theta = _angles(angle_deg)[..., 0]  # radians
+    n = np.float64(real_number(film_index, "film_index", "a refractive index", SpectrumError, True))
+    n0 = np.float64(real_number(ambient_index, "ambient_index", "a refractive index",
+                                SpectrumError, True))
+    with np.errstate(over="ignore"):
+        return 2.0 * d * np.sqrt(n**2 - (n0 * np.sin(theta)) ** 2)
 
 
 def thin_film(thickness_nm, wavelengths_nm, film, *, ambient=1.0, substrate=1.0,
