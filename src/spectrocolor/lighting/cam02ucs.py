@@ -46,6 +46,11 @@ class JMh(NamedTuple):
     h: np.ndarray
 
 
+def _times(colours: np.ndarray, matrix: np.ndarray) -> np.ndarray:
+    """``matrix @ colour`` for every colour of ``(..., 3)``, as one (n, 3) × (3, 3) product."""
+    return (colours.reshape(-1, 3) @ matrix.T).reshape(colours.shape)
+
+
 def _compress(rgb: np.ndarray, F_L) -> np.ndarray:
     power = (F_L * np.abs(rgb) / 100.0) ** 0.42
     return np.sign(rgb) * 400.0 * power / (27.13 + power) + 0.1
@@ -73,10 +78,10 @@ def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
         n = Y_b / Y_w
         z = 1.48 + np.sqrt(n)
         N_bb = 0.725 * n**-0.2
-        rgb_w = white @ _M_CAT02.T
+        rgb_w = _times(white, _M_CAT02)
         gain = D * Y_w[..., None] / rgb_w + 1.0 - D
-        rgb_a = _compress((XYZ @ _M_CAT02.T * gain) @ _CAT02_TO_HPE.T, F_L)
-        rgb_aw = _compress((rgb_w * gain) @ _CAT02_TO_HPE.T, F_L)
+        rgb_a = _compress(_times(_times(XYZ, _M_CAT02) * gain, _CAT02_TO_HPE), F_L)
+        rgb_aw = _compress(_times(rgb_w * gain, _CAT02_TO_HPE), F_L)
         R, G, B = rgb_a[..., 0], rgb_a[..., 1], rgb_a[..., 2]
         a = R - 12.0 * G / 11.0 + B / 11.0
         b = (R + G - 2.0 * B) / 9.0

@@ -103,11 +103,17 @@ def fidelity_reference(cct_K, wavelengths_nm) -> np.ndarray:
     T = np.asarray(cct_K, dtype=float)
     grid = np.asarray(wavelengths_nm, dtype=float)
     V_delta = cmfs_on(grid, "1931")[:, 1] * np.gradient(grid)
+    share = np.clip((T - 4000.0) / 1000.0, 0.0, 1.0)  # daylight share: 0 below 4000 K, 1 above 5000 K
+    result = np.full((*T.shape, grid.size), np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
-        planckian = planckian_spd(T, grid)
-        planckian = planckian / (planckian @ V_delta)[..., None]
-        daylight = daylight_spd(T, grid)
-        daylight = daylight / (daylight @ V_delta)[..., None]
-    share = np.clip((T - 4000.0) / 1000.0, 0.0, 1.0)[..., None]
-    mixed = (1.0 - share) * planckian + share * np.nan_to_num(daylight)
-    return np.where((T < 4000.0)[..., None], planckian, np.where((T > 5000.0)[..., None], daylight, mixed))
+        planckian, daylight = share < 1.0, share > 0.0  # NaN temperatures are in neither
+        if np.any(planckian):
+            spd = planckian_spd(T[planckian], grid)
+            result[planckian] = spd / (spd @ V_delta)[..., None]
+        if np.any(daylight):
+            spd = daylight_spd(T[daylight], grid)
+            spd = spd / (spd @ V_delta)[..., None]
+            weight = share[daylight][..., None]
+            mixed = planckian[daylight]
+            result[daylight] = np.where(mixed[..., None], (1.0 - weight) * result[daylight] + weight * spd, spd)
+    return result

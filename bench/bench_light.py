@@ -1,0 +1,97 @@
+"""Light-source metrics on 10 000 random LED spectra: spectrocolor vs colour-science vs NumPy.
+
+Run: .venv/bin/python bench/bench_light.py [--count 10000] [--sample 20]
+Prints, measured in this one run: spectra per second for the CIE 13.3 CRI (Ra, R1–R14) and
+for CIE 224 / TM-30 (Rf, Rg, 16 hue bins) computed by spectrocolor on the whole batch, by
+colour-science one spectrum at a time on a sample, and the NumPy limit of the core matrix
+products (the sample colorimetry of the light and of its reference illuminant with
+precomputed weights: nothing else). Goal: ≥ 100× colour-science with the same numbers
+(the agreement on the sample is printed too).
+"""
+
+from __future__ import annotations
+
+import argparse
+import warnings
+
+import numpy as np
+
+from spectrocolor import Spectrum, wavelength_grid
+from spectrocolor.lighting import colour_fidelity, colour_rendering_index
+from spectrocolor.lighting.spectra import ces_reflectances, tcs_reflectances
+from spectrocolor.sampling import cmfs_on
+from timing import best_of
+
+
+def led_mixtures(count: int, grid: np.ndarray, seed: int = 0) -> np.ndarray:
+    """Mixtures of 3–5 Gaussian LEDs (425–660 nm, 15–40 nm wide) and a broad phosphor band, (count, K)."""
+    rng = np.random.default_rng(seed)
+    peaks = rng.uniform(425, 660, (count, 5, 1))
+    widths = rng.uniform(15, 40, (count, 5, 1)) / 2.3548
+    weights = rng.uniform(0.0, 1.0, (count, 5, 1)) * (rng.uniform(size=(count, 5, 1)) < 0.8)
+    leds = (weights * np.exp(-0.5 * ((grid - peaks) / widths) ** 2)).sum(axis=1)
+    phosphor = rng.uniform(0.0, 1.5, (count, 1)) * np.exp(-0.5 * ((grid - 570.0) / 55.0) ** 2)
+    return leds + phosphor + 1e-3
+
+
+def _limit(S: np.ndarray, reflectances: np.ndarray, observer: str, grid: np.ndarray) -> float:
+    """Best time of the two core products S @ M and R @ M with M = (reflectance × CMF) precomputed."""
+    M = (reflectances[:, :, None] * cmfs_on(grid, observer)[None]).transpose(1, 0, 2).reshape(grid.size, -1)
+    R = S[::-1].copy()  # stands for the reference illuminants (same shape)
+    return best_of(lambda: (S @ M, R @ M), 3)
+
+
+def main() -> None:
+    import colour
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--count", type=int, default=10_000)
+    parser.add_argument("--sample", type=int, default=20)
+    args = parser.parse_args()
+
+    grid = wavelength_grid(360, 780, 1)
+    S = led_mixtures(args.count, grid)
+    lights = Spectrum(grid, S)
+    lights_380 = lights.restrict(380, 780)
+
+    ours_cri = best_of(lambda: colour_rendering_index(lights), 3)
+    ours_tm30 = best_of(lambda: colour_fidelity(lights_380), 3)
+    limit_cri = _limit(S, tcs_reflectances(grid), "1931", grid)
+    limit_tm30 = _limit(lights_380.values, ces_reflectances(lights_380.wavelengths_nm), "1964",
+                        lights_380.wavelengths_nm)
+
+    sample = range(args.sample)
+    sds = [colour.SpectralDistribution(S[i], grid) for i in sample]
+    sds_380 = [colour.SpectralDistribution(lights_380.values[i], lights_380.wavelengths_nm) for i in sample]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        theirs_cri = best_of(lambda: [colour.colour_rendering_index(sd) for sd in sds], 1) / args.sample
+        theirs_tm30 = best_of(
+            lambda: [colour.quality.colour_fidelity_index_ANSIIESTM3018(sd, True) for sd in sds_380], 1
+        ) / args.sample
+        Ra = np.array([colour.colour_rendering_index(sd) for sd in sds])
+        specs = [colour.quality.colour_fidelity_index_ANSIIESTM3018(sd, True) for sd in sds_380]
+    cri = colour_rendering_index(Spectrum(grid, S[: args.sample]))
+    tm30 = colour_fidelity(Spectrum(lights_380.wavelengths_nm, lights_380.values[: args.sample]))
+    inside = cri.cct_K > 1700  # colour-science's Robertson table starts at 1667 K
+    dRa = np.abs(cri.Ra - Ra)[inside].max()
+    dRf = np.abs(tm30.Rf - [s.R_f for s in specs]).max()
+    dRg = np.abs(tm30.Rg - [s.R_g for s in specs]).max()
+
+    n = args.count
+    print(f"{n} random LED spectra, 1 nm (CRI 360-780 nm, TM-30 380-780 nm); colour-science on {args.sample}")
+    print("                        spectra/s   vs colour-science   ours / NumPy limit")
+    print(f"  CRI  spectrocolor   {n / ours_cri:11.0f}   {theirs_cri * n / ours_cri:10.0f}x   "
+          f"{ours_cri / limit_cri:10.1f}x")
+    print(f"  CRI  colour-science {1 / theirs_cri:11.0f}")
+    print(f"  CRI  NumPy limit    {n / limit_cri:11.0f}")
+    print(f"  TM30 spectrocolor   {n / ours_tm30:11.0f}   {theirs_tm30 * n / ours_tm30:10.0f}x   "
+          f"{ours_tm30 / limit_tm30:10.1f}x")
+    print(f"  TM30 colour-science {1 / theirs_tm30:11.0f}")
+    print(f"  TM30 NumPy limit    {n / limit_tm30:11.0f}")
+    print(f"  agreement on the sample: max |dRa| {dRa:.4f}, |dRf| {dRf:.4f}, |dRg| {dRg:.4f} "
+          "(CCT methods differ: Robertson / Ohno table vs exact; 1 nm daylight Sprague vs linear)")
+
+
+if __name__ == "__main__":
+    main()
