@@ -151,21 +151,43 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
 
     Parameters
     ----------
-    film
-        Callable ``film(thickness_nm, wavelengths_nm, angle_deg=...) -> FilmOptics`` such as
+    film : callable
+        ``film(thickness_nm, wavelengths_nm, angle_deg=...) -> FilmOptics`` such as
         :func:`~spectrocolor.thinfilm.films.soap_film` (reflectance is used).
-    max_thickness_nm
+    max_thickness_nm : float
         Largest thickness in the table (nm).
-    thickness_step_nm
+    thickness_step_nm : float, keyword-only, default 0.5
         Thickness grid spacing (nm).
-    max_angle_deg
+    max_angle_deg : float, keyword-only, optional
         ``None``: normal incidence only. Otherwise an angle grid ``0, angle_step_deg, ...``
-        up to this angle (< 90).
-    wavelengths_nm
-        Spectral grid (default 380-780 nm at 5 nm).
-    **colour_options
+        up to this angle (< 90), in degrees.
+    angle_step_deg : float, keyword-only, default 1.0
+        Angle grid spacing, degrees (only with ``max_angle_deg``).
+    wavelengths_nm : array_like, shape (K,), keyword-only, optional
+        Spectral grid, nm (default 380-780 nm at 5 nm).
+    **colour_options : dict
         Passed to :func:`~spectrocolor.thinfilm.colour.film_colours` (illuminant, observer,
         exposure, gain, space, gamut).
+
+    Returns
+    -------
+    ColourTable
+        8-bit codes of shape ``(angles, thicknesses, 3)`` (one angle without an angle grid).
+
+    Raises
+    ------
+    SpectrumError
+        For a thickness range or step that is not positive, an angle grid outside (0, 90),
+        a ``film`` that does not return FilmOptics, and as :func:`film_colours`.
+
+    Examples
+    --------
+    >>> from spectrocolor import soap_film
+    >>> table = colour_table(soap_film, 600.0, thickness_step_nm=1.0)
+    >>> table.rgb8.shape, table.max_thickness_nm
+    ((1, 601, 3), 600.0)
+    >>> table.description
+    'soap_film, blackbody 6504 K, observer CIE 1931 2°, exposure global-max'
     """
     if not (np.isfinite(max_thickness_nm) and max_thickness_nm > 0):
         raise SpectrumError(f"max_thickness_nm: expected a positive number, got {max_thickness_nm}")
@@ -199,7 +221,41 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
 
 def render_thickness_map(thickness_nm, table: ColourTable, angle_deg=None,
                          background=(0, 0, 0)) -> np.ndarray:
-    """An ``(H, W, 3)`` ``uint8`` image of a thickness map (nm); see :meth:`ColourTable.lookup`."""
+    """An ``(H, W, 3)`` ``uint8`` image of a thickness map (nm); see :meth:`ColourTable.lookup`.
+
+    Parameters
+    ----------
+    thickness_nm : array_like, shape (H, W)
+        Film thickness per pixel, nm, within the table's range; NaN where there is no film.
+    table : ColourTable
+        From :func:`colour_table`.
+    angle_deg : array_like, shape (H, W), optional
+        Angle of incidence per pixel, degrees; required if and only if the table has an
+        angle grid.
+    background : tuple of int, default (0, 0, 0)
+        8-bit colour of the pixels without film.
+
+    Returns
+    -------
+    numpy.ndarray of uint8, shape (H, W, 3)
+        The picture's 8-bit codes (encoded with the table's space, sRGB by default).
+
+    Raises
+    ------
+    SpectrumError
+        For a map that is not 2-D, thicknesses or angles outside the table, or an angle map
+        given to (or missing for) a table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import colour_table, soap_film
+    >>> table = colour_table(soap_film, 600.0, thickness_step_nm=1.0)
+    >>> image = render_thickness_map(np.array([[0.0, 300.0], [np.nan, 600.0]]), table,
+    ...                              background=(255, 255, 255))
+    >>> image.shape, image.dtype.name, image[1, 0].tolist()
+    ((2, 2, 3), 'uint8', [255, 255, 255])
+    """
     d = np.asarray(thickness_nm)
     if d.ndim != 2:
         raise SpectrumError(f"thickness_nm: expected an (H, W) map, got shape {d.shape}")
