@@ -69,7 +69,38 @@ def zawischa_space():
 
 
 def zawischa_strip(columns: int = COLUMNS, beta: float = BETA) -> ZawischaStrip:
-    """Compute seed 000's strip (see the module docstring for every parameter)."""
+    """Compute seed 000's strip (see the module docstring for every parameter).
+
+    Parameters
+    ----------
+    columns : int, default 1000
+        Number of columns; column ``i`` (0-based) has optical path difference ``5 (i + 1)`` nm.
+    beta : float, default 0.95
+        Relative amplitude of the second beam (seed 000, eq. 8).
+
+    Returns
+    -------
+    ZawischaStrip
+        The path differences (nm), the films' colours (8-bit sRGB codes in
+        ``colours.rgb8``) and the tick columns every 500 nm.
+
+    Raises
+    ------
+    SpectrumError
+        For ``columns`` that is not a positive whole number or β outside [0, 1].
+
+    References
+    ----------
+    Seed 000 (Zawischa), eqs. (6)–(24) and Appendix A.
+
+    Examples
+    --------
+    >>> strip = zawischa_strip()
+    >>> strip.opd_nm[[0, -1]].tolist(), strip.colours.rgb8.shape
+    ([5.0, 5000.0], (1000, 3))
+    >>> strip.tick_columns.tolist()[:3]
+    [99, 199, 299]
+    """
     from ..illuminants import blackbody
     from ..spectrum import Spectrum, wavelength_grid
 
