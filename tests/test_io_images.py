@@ -101,6 +101,25 @@ def test_cli_image_applies_the_same_fields(tmp_path, codes):
     np.testing.assert_array_equal(XYZ, cube_to_xyz(read_cube(hdr), illuminant="D65").astype(np.float32))
 
 
+def test_masked_pixels_render_black_in_the_api_and_the_cli(tmp_path, codes):
+    from spectrocolor.images import cube_to_rgb
+
+    hdr = _envi_with_fields(tmp_path, codes, "reflectance scale factor = 10000\ndata ignore value = -9999")
+    rgb8 = cube_to_rgb(read_cube(hdr), illuminant="D65")
+    assert rgb8[1, 2].tolist() == [0, 0, 0] and rgb8[0, 0].tolist() == [188, 188, 188]  # sRGB of Y = 50 grey
+    out = tmp_path / "scene.png"
+    result = subprocess.run(
+        [sys.executable, "-m", "spectrocolor", "image", str(hdr), "--illuminant", "D65", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    from PIL import Image
+
+    np.testing.assert_array_equal(np.asarray(Image.open(out)), rgb8)
+
+
 def test_npy_header_claiming_more_than_the_file_is_refused_without_allocating(tmp_path):
     path = tmp_path / "huge.npy"
     header = np.lib.format.header_data_from_array_1_0(np.zeros((1, 1, 1), np.float32))

@@ -63,11 +63,20 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
     Returns
     -------
     ndarray, shape (..., 3)
-        Integer codes (uint8 or uint16) or float64 linear / encoded RGB.
+        Integer codes (uint8 or uint16) or float64 linear / encoded RGB. Masked pixels (NaN in
+        the values, e.g. an ENVI data ignore value) are black codes (0, 0, 0), or NaN floats.
     """
     import spectrocolor as sc
 
     XYZ = xyz_block(values, weights)
+    masked = ~np.isfinite(XYZ).all(axis=-1)
+    if masked.any():  # render the others; masked pixels stay black codes or NaN
+        codes = options["output"] == "codes"
+        dtype = (np.uint8 if options["bit_depth"] <= 8 else np.uint16) if codes else np.float64
+        result = np.full(XYZ.shape, 0 if codes else np.nan, dtype=dtype)
+        if not masked.all():
+            result[~masked] = rgb_block(values[~masked], weights, options)
+        return result
     if options["adapt_from"] is not None:
         space = sc.rgb_space(options["space"]) if isinstance(options["space"], str) else (
             options["space"]
