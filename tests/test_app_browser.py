@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from appbrowser import check_card, check_patch, choose, drag, key, library, patch_rgb, settle, state
+from spectrocolor import mixing
 from spectrocolor.app import compute
 
 pytestmark = pytest.mark.browser
@@ -146,6 +147,19 @@ def test_setting3_transfers_conserve_the_total(page):
     check_card(page, 0, lib["colours"][0])
     check_card(page, 1, lib["colours"][1])
     check_patch(page, 1, lib["colours"][1])
+    # a key edit on either side is the library's complementary edit (clipped at 0 and 30)
+    key(page, "1")
+    for side, arrow in ((0, "ArrowUp"), (1, "ArrowDown"), (1, "ArrowUp")):
+        if page.evaluate("window.__spectra.active[3]") != side:
+            key(page, " ")
+        before = state(page)["dists"]
+        k = page.evaluate(f"window.__spectra.cursor['3:{side}'] ?? 15")
+        key(page, arrow)
+        mine, other = before[side], before[1 - side]
+        level = mine[k] + (1 if arrow == "ArrowUp" else -1)
+        want = mixing.complementary_edit(mine, other, k, level, full=30)
+        got = state(page)["dists"]
+        assert got[side] == want[0].tolist() and got[1 - side] == want[1].tolist()
 
 
 def test_setting4_metamers_under_illuminants(page):
@@ -167,11 +181,17 @@ def test_setting4_metamers_under_illuminants(page):
 def test_setting5_moss_green_filters(page):
     choose(page, 5)
     key(page, "7")
-    lib = library(state(page))
+    st = state(page)
+    lib = library(st)
     for i in range(4):
         check_card(page, i, lib["colours"][i])
     check_patch(page, 3, lib["colours"][3])
     assert lib["colours"][3]["dominant_nm"] > 590
+    # the light through both filters is the library's subtractive mix of the two
+    both = mixing.subtractive_mix(st["dists"][0], st["dists"][1], full=30)
+    np.testing.assert_allclose(st["server"]["colours"][3]["XYZ"], compute.evaluate(
+        10.0, st["observer"], st["display"], st["normalise"], st["gamut"], [both.tolist()],
+        adaptation=st["adaptation"])["colours"][0]["XYZ"], rtol=1e-12)
 
 
 def test_touch_drag_edits_bars_on_a_tablet(browser, base_url, artifacts_dir):

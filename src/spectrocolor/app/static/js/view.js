@@ -191,5 +191,5 @@ export function markStale(reason) {
   for (const id of ["patches", "numbers"]) $(id).classList.toggle("stale", S.stale);
   const note = $("stale-note");
   note.hidden = !S.stale;
-  note.textContent = S.stale ? `Not recomputed — these results belong to an earlier state (${reason}).` : "";
+  note.textContent = S.stale ? `Not recomputed (${reason}): the colours and numbers shown belong to an earlier state, or are missing.` : "";
 }
