@@ -105,6 +105,8 @@ def test_unknown_strategy_and_bad_input_are_refused_by_name():
         upsample(table, [0.1, np.nan, 0.3])
     with pytest.raises(sc.ColorimetryError, match="rgb_linear"):
         upsample(table, [[0.1, 0.2]])
+    with pytest.raises(sc.ColorimetryError, match="table"):
+        upsample("srgb.scup", [0.1, 0.2, 0.3])
 
 
 def test_colours_under_another_light_equal_the_spectral_route():

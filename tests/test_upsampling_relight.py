@@ -117,7 +117,7 @@ def test_cli_never_writes_over_its_input(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["--to", "Q99"], "illuminant"),
+    (["--to", "Q99"], "--to"),
     (["--to", "A", "--resolution", "1"], "--resolution"),
     (["--to", "A", "--space", "nonsense"], "space"),
 ])

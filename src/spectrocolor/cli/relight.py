@@ -174,6 +174,11 @@ def _relight(args: argparse.Namespace) -> int:
 
     if not 2 <= args.resolution <= 65:
         raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")
+    from ..illuminants import canonical_illuminant
+
+    for option, value in (("--to", args.to_illuminant), ("--from", args.from_illuminant)):
+        if value is not None:
+            canonical_illuminant(value, option)  # a clear error before any work
     pairs = _pairs(args)
     table = _table(args)
     for photo, target in pairs:

@@ -121,6 +121,8 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     -------
     Lookup
     """
+    if not isinstance(table, UpsamplingTable):
+        raise ColorimetryError(f"table: expected an UpsamplingTable, got {type(table).__name__}")
     move = OUT_OF_RANGE_STRATEGIES.get(out_of_range)
     t = _coordinates(rgb_linear)
     outside = np.any((t < 0.0) | (t > 1.0), axis=-1)
