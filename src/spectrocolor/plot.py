@@ -143,28 +143,55 @@ def chromaticity_diagram(
 
     Parameters
     ----------
-    kind : {"xy", "uv"}
-    observer : str
+    kind : {"xy", "uv"}, default "xy"
+        CIE 1931 (x, y) or CIE 1976 (u', v').
+    observer : str, default DEFAULT_OBSERVER
         Observer of the spectral locus, the whites and the Planckian locus.
     spaces : sequence of RGB space names or RGBSpace
         Gamut triangles to draw (with their white points).
     whites : sequence of illuminant names, or dict label -> XYZ
         White points to mark.
-    planckian : bool
+    planckian : bool, default True
         Draw the Planckian locus (1000-20000 K) with a few temperatures labelled.
-    points : (N, 3) XYZ or (N, 2) CIE 1931 xy, optional
-        Points to mark; ``labels`` (N,) names them.
-    curves : list of (M, 3) XYZ or (M, 2) xy arrays, optional
-        Curves to draw (e.g. the colours of a thin film); ``curve_labels`` for the legend.
-    fill : bool
+    points : array_like, shape (N, 3) or (N, 2), optional
+        Points to mark, as XYZ (any scale) or CIE 1931 xy.
+    labels : sequence of str, shape (N,), optional
+        Names of ``points``.
+    curves : list of array_like, shape (M, 3) or (M, 2), optional
+        Curves to draw as XYZ or xy (e.g. the colours of a thin film).
+    curve_labels : sequence of str, optional
+        Legend entries of ``curves``.
+    fill : bool, default True
         Paint the horseshoe in sRGB (the encoding of PNG files and browsers; see the module
         docstring for colours outside the sRGB gamut).
-    ax : matplotlib Axes, optional
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new 6.4 × 6.4 inch figure.
     title : str, optional
+        The axes' title.
 
     Returns
     -------
     matplotlib.axes.Axes
+        The axes drawn into.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown kind, observer, space or white, or malformed points or curves.
+
+    References
+    ----------
+    CIE 015:2018 §§7.3, 8.1 and 9 (chromaticity diagrams, Planckian locus).
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> ax = chromaticity_diagram(points=[[0.64, 0.33]], labels=["sRGB red"], fill=False)
+    >>> ax.get_xlabel()
+    'x'
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close(ax.figure)
     """
     from .chromaticity import spectral_locus
     from .colorimetry import white_point
@@ -412,13 +439,36 @@ def spectrum_plot(spectrum, index=None, style: str = "bars", ax=None, title=None
     spectrum : Spectrum
         A single spectrum, or a batch with ``index`` choosing one (``spectrum.values[index]``).
     index : int or tuple, optional
-    style : {"bars", "area"}
-    ax : matplotlib Axes, optional
-    title, ylabel : str
+        Which spectrum of a batch to draw.
+    style : {"bars", "area"}, default "bars"
+        One bar per sample, or a filled area under the interpolated curve.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new 6.4 × 3.2 inch figure.
+    title : str, optional
+        The axes' title.
+    ylabel : str, default "relative spectral power"
+        The y-axis label (say the scale: e.g. "reflectance factor (0–1)").
 
     Returns
     -------
     matplotlib.axes.Axes
+        The axes drawn into (x: wavelength in nm).
+
+    Raises
+    ------
+    ColorimetryError
+        For a non-Spectrum, a batch without ``index``, or an unknown style.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from spectrocolor import illuminant, wavelength_grid
+    >>> ax = spectrum_plot(illuminant("D65", wavelength_grid(400, 700, 10)))
+    >>> ax.get_xlabel(), len(ax.patches)  # one tinted bar per sample
+    ('wavelength (nm)', 31)
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close(ax.figure)
     """
     from .pictures import wavelength_tint
     from .spectrum import Spectrum
