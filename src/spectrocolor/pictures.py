@@ -81,12 +81,27 @@ def wavelength_tint(wavelengths_nm) -> np.ndarray:
 
     Parameters
     ----------
-    wavelengths_nm : array_like (...,)
+    wavelengths_nm : array_like, shape (...)
         Wavelengths in nm, 360 to 830.
 
     Returns
     -------
-    ndarray (..., 3) uint8
+    ndarray of uint8, shape (..., 3)
+        8-bit sRGB codes (``rgb8``), illustrative only.
+
+    Raises
+    ------
+    SpectrumError
+        For non-numbers, NaN, or wavelengths outside 360–830 nm.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999): SPECTRA's tinted spectrum bars and "Certainly not!".
+
+    Examples
+    --------
+    >>> wavelength_tint([470, 555, 620]).tolist()
+    [[0, 0, 170], [53, 255, 0], [199, 0, 0]]
     """
     try:
         wl = np.asarray(wavelengths_nm, dtype=float)
@@ -235,10 +250,75 @@ def save_image(image, path) -> Path:
 
 
 def write_swatches(rgb8, path, **options) -> Path:
-    """:func:`swatch_image` written to ``path`` (.png or .ppm); options as for swatch_image."""
+    """:func:`swatch_image` written to ``path`` (.png or .ppm); options as for swatch_image.
+
+    Parameters
+    ----------
+    rgb8 : array_like of int, shape (N, 3)
+        8-bit codes 0–255, e.g. ``render(...).codes``.
+    path : str or os.PathLike
+        Output file; ``.png`` (needs Pillow) or ``.ppm`` (binary P6). Written atomically.
+    **options : dict
+        ``size``, ``columns``, ``gap``, ``background``, ``crossed``: see :func:`swatch_image`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ColorimetryError
+        For malformed codes or options, or another file extension.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_swatches([[255, 0, 0], [0, 128, 255]], pathlib.Path(folder) / "s.ppm", size=16)
+    ...     path.read_bytes().split()[:3]  # binary PPM header: width 44, height 24 pixels
+    [b'P6', b'44', b'24']
+    """
     return save_image(swatch_image(rgb8, **options), path)
 
 
 def write_strip(rgb8, path, **options) -> Path:
-    """:func:`strip_image` written to ``path`` (.png or .ppm); options as for strip_image."""
+    """:func:`strip_image` written to ``path`` (.png or .ppm); options as for strip_image.
+
+    Parameters
+    ----------
+    rgb8 : array_like of int, shape (N, 3)
+        8-bit codes 0–255, one pixel column each (e.g. ``zawischa_strip().colours.rgb8``).
+    path : str or os.PathLike
+        Output file; ``.png`` (needs Pillow) or ``.ppm`` (binary P6). Written atomically.
+    **options : dict
+        ``height``, ``ticks``, ``tick_height``, ``tick_rgb8``: see :func:`strip_image`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ColorimetryError
+        For malformed codes or options, or another file extension.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
+
+    References
+    ----------
+    Seed 000 (Zawischa): the strip with tick marks every 500 nm.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_strip([[255, 0, 0], [0, 128, 255], [0, 0, 0]], pathlib.Path(folder) / "s.ppm",
+    ...                        height=20, ticks=[1], tick_height=5)
+    ...     path.read_bytes().split()[:3]
+    [b'P6', b'3', b'20']
+    """
     return save_image(strip_image(rgb8, **options), path)
