@@ -151,3 +151,26 @@ def test_dask_equals_numpy():
     lazy = upsample_dask(table, da.from_array(image, chunks=(7, 9, 3)))
     assert lazy.shape == (30, 20, 81)
     np.testing.assert_array_equal(lazy.compute(), upsample_spectra(table, image))
+
+
+def test_streaming_memory_is_bounded_by_the_block_budget(tmp_path):
+    import tracemalloc
+
+    table = srgb_table()
+    shape = (400, 500, 3)  # all spectra at once: 400 * 500 * 81 * 8 B = 130 MB
+    image = np.lib.format.open_memmap(tmp_path / "big.npy", mode="w+", dtype=np.float64,
+                                      shape=shape)
+    image[:] = 0.5
+    image.flush()
+    tracemalloc.start()
+    try:
+        rows = 0
+        for block, spectra in upsample_blocks(table, image, max_block_mib=2.0):
+            rows += block.stop - block.start
+            assert spectra.shape[-1] == 81
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert rows == 400
+    # a 2 MiB budget of spectra per block, plus the lookup's temporaries (~3x): far below 130 MB
+    assert peak < 16 * 2**20
