@@ -144,7 +144,7 @@ def test_a_file_that_is_none_of_them_names_the_formats_tried(tmp_path):
         sc.read_spectra(path)
     message = str(info.value)
     assert "\n" not in message
-    for expected in ("JSON", "TM-27", "CGATS", "long CSV", "wide CSV", "not recognisably a wavelength"):
+    for expected in ("JSON", "TM-27", "CGATS", "CSV/TSV: long (", "wide (", "not recognisably a wavelength"):
         assert expected in message
 
 

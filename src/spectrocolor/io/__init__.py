@@ -40,7 +40,7 @@ __all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "
 FORMATS = (
     ("JSON", '{"wavelengths_nm": […], "spectra": {name: […]}}'),
     ("IES TM-27 XML", tm27.EXPECTED),
-    ("CGATS", cgats.EXPECTED),
+    ("CGATS/Argyll", cgats.EXPECTED),
     ("CSV/TSV", delimited.EXPECTED),
 )
 
@@ -112,7 +112,7 @@ def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None
         if "not a spectral table" not in str(exc) and "no data" not in str(exc):
             raise
         tried = "; ".join(f"{name}: {expected}" for name, expected in FORMATS)
-        raise SpectrumError(f"{exc} [formats tried: {tried}]") from None
+        raise SpectrumError(f"{exc}. Formats tried: {tried}") from None
 
 
 def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:

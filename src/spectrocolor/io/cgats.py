@@ -48,7 +48,7 @@ _FACTS = {
     "originator": ("ORIGINATOR",),
 }
 #: What a CGATS file must contain, for messages.
-EXPECTED = "CGATS.17/Argyll (BEGIN_DATA_FORMAT … END_DATA_FORMAT, BEGIN_DATA … END_DATA, SPECTRAL_NM380-style fields)"
+EXPECTED = "BEGIN_DATA_FORMAT … END_DATA_FORMAT, BEGIN_DATA … END_DATA with SPECTRAL_NM380/SPEC_380 fields"
 
 
 def looks_like_cgats(text: str) -> bool:

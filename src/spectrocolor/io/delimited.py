@@ -30,8 +30,8 @@ _NANOMETRE = re.compile(r"(nm|nanomet|wavelength|lambda|λ|wl)", re.IGNORECASE)
 
 #: What the two layouts look like, for messages.
 EXPECTED = (
-    "long CSV/TSV (header 'wavelength_nm,sample_1,…', one spectrum per column) or wide CSV/TSV "
-    "(header 'name,380,390,…' or 'Sample Name,Date,380nm,…', one sample per row)"
+    "long ('wavelength_nm,sample_1,…', one spectrum per column) or wide ('name,380,390,…' or "
+    "'Sample Name,Date,380nm,…', one sample per row), delimited by ',', ';' or tab"
 )
 
 
@@ -91,8 +91,7 @@ def _long(rows, source: str, decimal_comma: bool) -> Spectrum:
     elif not _NANOMETRE.search(header[0]):
         raise SpectrumError(
             f"{source}, line {header_line}: not a spectral table: first column {header[0][:40]!r} is not "
-            "recognisably a wavelength and fewer than three column names are wavelengths; expected "
-            f"{EXPECTED}"
+            "recognisably a wavelength and fewer than three column names are wavelengths"
         )
     if len(header) < 2:
         raise SpectrumError(

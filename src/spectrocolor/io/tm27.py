@@ -30,7 +30,7 @@ from ..errors import SpectrumError
 from ..spectrum import Spectrum
 from .text import apply_scale, number
 
-EXPECTED = "IES TM-27-14/-20 XML (<IESTM2714> with <SpectralDistribution><SpectralData wavelength=…>)"
+EXPECTED = "<IESTM2714> with <SpectralDistribution><SpectralData wavelength=…>"
 
 
 def looks_like_tm27(text: str) -> bool:
