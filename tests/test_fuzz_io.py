@@ -218,3 +218,24 @@ def test_damaged_matlab_files(mat_files, name, where, junk, truncate):
         result = _outcome(lambda: read_cube(path))
         if not isinstance(result, SpectrumError):
             _outcome(lambda: np.asarray(result.values))
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    name=st.sampled_from(sorted(CORPUS_TEXTS)),
+    where=st.floats(0, 1),
+    insert=st.lists(TOKENS, max_size=3).map("".join),
+    command=st.sampled_from([["xyz", "--format", "cgats"], ["describe", "--format", "csv"], ["xyz", "--percent"]]),
+)
+def test_command_line_on_damaged_files_exits_0_or_2_with_one_line(capsys, name, where, insert, command):
+    from spectrocolor.cli import main
+
+    text = CORPUS_TEXTS[name]
+    at = int(where * len(text))
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / name
+        path.write_text(text[:at] + insert + text[at + 5 :], encoding="utf-8")
+        status = main([command[0], str(path), *command[1:]])
+    err = capsys.readouterr().err
+    assert status in (0, 2) and "Traceback" not in err
+    assert (status == 0) == (err == "") and err.count("\n") <= 1

@@ -9,7 +9,7 @@ by white space, strings are in double quotes, ``#`` starts a comment, and line e
 Spectral fields are recognised by name: ``SPECTRAL_NM380`` (i1Profiler), ``SPECTRAL_NM_380``,
 ``SPECTRAL_380``, ``SPEC_380`` (ArgyllCMS), ``NM380``/``nm_380`` (Barbieri and others),
 ``SPECTRAL_PCT_380``/``SPECTRAL_DEC_380`` (percent / decimal). Sample names come from
-``SAMPLE_NAME``, else ``SAMPLE_ID``; every other field (``LAB_L``, ``XYZ_X``, ``RGB_R`` …) is kept as
+``SAMPLE_NAME``, else ``SAMPLE_ID`` (or ``SampleID``); every other field (``LAB_L``, ``XYZ_X``, ``RGB_R`` …) is kept as
 text in ``metadata["sample_fields"]``, every keyword in ``metadata["keywords"]``.
 
 **Percent or fraction**, as the file declares it: Argyll's ``SPECTRAL_NORM`` keyword (values are
@@ -186,7 +186,7 @@ def _table_spectra(identifier, keywords, fields, rows, spectral, source, percent
         for k, i in enumerate(columns):
             values[r, k] = number(row[i], f"{source}, line {line_number}, field {fields[i]}")
     upper = [f.upper() for f in fields]
-    name_index = next((upper.index(key) for key in ("SAMPLE_NAME", "SAMPLE_ID") if key in upper), None)
+    name_index = next((upper.index(key) for key in ("SAMPLE_NAME", "SAMPLE_ID", "SAMPLEID") if key in upper), None)
     names = [row[name_index] if name_index is not None else f"sample_{r + 1}" for r, (_, row) in enumerate(rows)]
     others = [i for i in range(len(fields)) if i not in set(columns) and i != name_index]
     declared, how = _declared_scale(identifier, keywords, [fields[i] for i in columns], source)
