@@ -216,20 +216,39 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         With an illuminant, the values are reflectances (0-1 after ``scale``) and the result is
         XYZ100 (the perfect white has Y = 100). Without, the values are a light's spectral
         radiance (or any radiometric quantity) and XYZ = sum of value x cmf x dλ.
-    observer : str
+    observer : str, keyword-only, default DEFAULT_OBSERVER
         "1931", "1964", "2015-2", "2015-10" and the aliases of :func:`spectrocolor.observer`.
-    method : str
+    method : str, keyword-only, default "sum"
         "sum" or "1nm", as for :func:`spectrocolor.weights`.
-    scale : float
+    scale : float, keyword-only, default 1.0
         Factor from the stored values to reflectance (e.g. 1/255 for 8-bit codes, 1/10000 for
         an ENVI reflectance scale factor of 10000). Applied exactly, folded into the weights.
-    rows_per_block, max_block_mib, out, progress
-        Blocking, output array and progress bar: see :func:`run_blocks`.
+    rows_per_block : int, keyword-only, optional
+        Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
+    max_block_mib : float, keyword-only, default 64.0
+        Memory budget of one block of float64 spectra, MiB.
+    out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
+        Where to write (e.g. a memory map for outputs larger than memory); default a new array.
+    progress : bool, keyword-only, default False
+        Show a tqdm progress bar over rows on standard error.
 
     Returns
     -------
     ndarray, shape (H, W, 3), float64
         XYZ100 with an illuminant; XYZ in the values' radiometric scale without.
+
+    Raises
+    ------
+    SpectrumError
+        For a cube that is not (..., K) numbers, missing or mismatched wavelengths, or an
+        ``out`` of the wrong shape.
+    ColorimetryError
+        As :func:`spectrocolor.weights` (unknown observer, illuminant or method, a grid outside
+        the observer).
+
+    References
+    ----------
+    CIE 015:2018 §7.1 (tristimulus values), as :func:`spectrocolor.tristimulus`.
 
     Examples
     --------
@@ -237,6 +256,10 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     >>> grey = np.full((2, 3, 31), 0.5)
     >>> float(cube_to_xyz(grey, np.arange(400, 701, 10), illuminant="D65")[0, 0, 1].round(6))
     50.0
+    >>> codes = np.full((2, 2, 31), 128, dtype=np.uint8)  # reflectance stored as 8-bit codes
+    >>> cube_to_xyz(codes, np.arange(400, 701, 10), illuminant="D65", scale=1 / 255,
+    ...             rows_per_block=1)[0, 0].round(3).tolist()
+    [47.656, 50.196, 54.568]
     """
     values, wavelengths = _values_and_wavelengths(cube, wavelengths_nm)
     plan = plan_conversion("xyz", wavelengths, illuminant=illuminant, observer=observer,
@@ -255,10 +278,53 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     gives L* = 100, a* = b* = 0 exactly. For lights (no illuminant) give ``white_XYZ``.
     Other parameters as for :func:`cube_to_xyz`.
 
+    Parameters
+    ----------
+    cube : SpectralCube or array_like, shape (H, W, K)
+        The spectra, as for :func:`cube_to_xyz`.
+    wavelengths_nm : array_like, shape (K,), optional
+        Band wavelengths in nm (arrays only).
+    illuminant : str or Spectrum, keyword-only, optional
+        The light for reflectances (the result is relative to its perfect reflector).
+    observer : str, keyword-only, default DEFAULT_OBSERVER
+        Observer name or alias.
+    method : str, keyword-only, default "sum"
+        Summation method, as for :func:`spectrocolor.weights`.
+    scale : float, keyword-only, default 1.0
+        Factor from the stored values to reflectance (0–1).
+    white_XYZ : array_like, shape (3,), keyword-only, optional
+        The reference white on the XYZ scale of the result (required for lights).
+    rows_per_block : int, keyword-only, optional
+        Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
+    max_block_mib : float, keyword-only, default 64.0
+        Memory budget of one block of float64 spectra, MiB.
+    out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
+        Where to write (e.g. a memory map for outputs larger than memory); default a new array.
+    progress : bool, keyword-only, default False
+        Show a tqdm progress bar over rows on standard error.
+
     Returns
     -------
     ndarray, shape (H, W, 3), float64
         L*, a*, b* (CIE 015:2018, section 8.2.1, via :func:`spectrocolor.lab`).
+
+    Raises
+    ------
+    SpectrumError
+        As :func:`cube_to_xyz`.
+    ColorimetryError
+        As :func:`cube_to_xyz`, and for lights without ``white_XYZ``.
+
+    References
+    ----------
+    CIE 015:2018, section 8.2.1 (CIELAB).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> grey = np.full((2, 3, 31), 0.5)
+    >>> cube_to_lab(grey, np.arange(400, 701, 10), illuminant="D65")[0, 0].round(3).tolist()
+    [76.069, 0.0, 0.0]
     """
     values, wavelengths = _values_and_wavelengths(cube, wavelengths_nm)
     plan = plan_conversion("lab", wavelengths, illuminant=illuminant, observer=observer,
@@ -282,25 +348,62 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
 
     Parameters
     ----------
-    space : str or RGBSpace
+    cube : SpectralCube or array_like, shape (H, W, K)
+        The spectra, as for :func:`cube_to_xyz`.
+    wavelengths_nm : array_like, shape (K,), optional
+        Band wavelengths in nm (arrays only).
+    illuminant : str or Spectrum, keyword-only, optional
+        The light for reflectances; without one the values are lights.
+    observer : str, keyword-only, default DEFAULT_OBSERVER
+        Observer name or alias.
+    method : str, keyword-only, default "sum"
+        Summation method, as for :func:`spectrocolor.weights`.
+    scale : float, keyword-only, default 1.0
+        Factor from the stored values to reflectance (0–1).
+    space : str or RGBSpace, keyword-only, default "sRGB"
         Display space, e.g. "sRGB", "Display P3".
-    gamut : str
+    gamut : str, keyword-only, default "clip"
         "clip", "flag", "preserve-luminance" or "desaturate" (see :func:`spectrocolor.render`).
         One fixed exposure and per-pixel strategies keep blocks independent, so there are no
         seams; per-image normalisations are not offered here (choose ``exposure``).
-    exposure : float
+    exposure : float, keyword-only, default 1.0
         Multiplier on XYZ before rendering (2.0 = one stop brighter).
-    adaptation : str or None
+    adaptation : str or None, keyword-only, default "bradford"
         "bradford" (default), "von kries", "cat02", "cat16", or None to render the colours as
         seen without adaptation. Lights (no illuminant) are never adapted.
-    bit_depth : int
+    bit_depth : int, keyword-only, default 8
         8 or 16 for ``output="codes"``.
-    output : str
+    output : str, keyword-only, default "codes"
         "codes" (uint8/uint16, ready for PNG), "rgb_linear" or "rgb_encoded" (float64).
+    rows_per_block : int, keyword-only, optional
+        Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
+    max_block_mib : float, keyword-only, default 64.0
+        Memory budget of one block of float64 spectra, MiB.
+    out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
+        Where to write (e.g. a memory map for outputs larger than memory); default a new array.
+    progress : bool, keyword-only, default False
+        Show a tqdm progress bar over rows on standard error.
 
     Returns
     -------
     ndarray, shape (H, W, 3)
+        uint8/uint16 codes, or float64 linear or encoded RGB (0–1), as ``output`` says.
+
+    Raises
+    ------
+    SpectrumError
+        As :func:`cube_to_xyz`.
+    ColorimetryError
+        For an unknown space, gamut strategy, adaptation or output, a bit depth other than 8
+        or 16, and as :func:`cube_to_xyz`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> grey = np.full((2, 3, 31), 0.5)
+    >>> rgb8 = cube_to_rgb(grey, np.arange(400, 701, 10), illuminant="D65")
+    >>> rgb8.dtype.name, rgb8[0, 0].tolist()
+    ('uint8', [188, 188, 188])
     """
     values, wavelengths = _values_and_wavelengths(cube, wavelengths_nm)
     plan = plan_conversion("rgb", wavelengths, illuminant=illuminant, observer=observer,
