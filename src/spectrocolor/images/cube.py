@@ -184,6 +184,19 @@ class SpectralCube:
         The file or folder the cube was read from ("" for an in-memory cube).
     metadata : dict
         Other header fields worth keeping (e.g. ENVI "reflectance scale factor").
+
+    Raises
+    ------
+    SpectrumError
+        For values that are not (H, W, K) numbers, or wavelengths that do not match the bands
+        or are not strictly increasing.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cube = SpectralCube(np.full((2, 3, 31), 0.5), np.arange(400, 701, 10))
+    >>> cube.shape, cube.wavelengths_nm[[0, -1]].tolist()
+    ((2, 3, 31), [400.0, 700.0])
     """
 
     values: object
@@ -216,7 +229,20 @@ class SpectralCube:
         return tuple(self.values.shape)
 
     def to_numpy(self) -> np.ndarray:
-        """All values in memory as an ndarray (H, W, K) of the stored dtype."""
+        """All values in memory as an ndarray (H, W, K) of the stored dtype.
+
+        Returns
+        -------
+        numpy.ndarray, shape (H, W, K)
+            The stored values, unscaled (a memory-mapped cube is read whole).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> cube = SpectralCube(np.zeros((2, 3, 4), dtype=np.uint16), [400, 500, 600, 700])
+        >>> cube.to_numpy().dtype.name
+        'uint16'
+        """
         return np.asarray(self.values)
 
     def to_xarray(self, chunks=None):
@@ -227,6 +253,20 @@ class SpectralCube:
         chunks : None, int, tuple or dict, optional
             None: values as they are (in memory, or read on access). Otherwise a dask-backed
             array with these chunks (the wavelength axis is always one whole chunk).
+
+        Returns
+        -------
+        xarray.DataArray
+            Dims ``("y", "x", "wavelength")``, the ``wavelength`` coordinate in nm; ready for
+            the ``.spectro`` accessor (registered by ``import spectrocolor.images``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import spectrocolor.images  # registers DataArray.spectro
+        >>> array = SpectralCube(np.full((2, 3, 31), 0.5), np.arange(400, 701, 10)).to_xarray(chunks=1)
+        >>> array.dims, array.spectro.to_rgb(illuminant="D65").compute().values[0, 0].tolist()
+        (('y', 'x', 'wavelength'), [188, 188, 188])
         """
         import xarray as xr
 
