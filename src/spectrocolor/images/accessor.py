@@ -32,14 +32,53 @@ __all__ = ["SpectroAccessor"]
 
 @xr.register_dataarray_accessor("spectro")
 class SpectroAccessor:
-    """Colorimetry of spectral DataArrays (see the module docstring)."""
+    """Colorimetry of spectral DataArrays (see the module docstring).
+
+    Not constructed directly: ``import spectrocolor.images`` registers it as the ``.spectro``
+    accessor of every ``xarray.DataArray``, and ``array.spectro`` builds one.
+
+    Parameters
+    ----------
+    array : xarray.DataArray
+        Spectral values with a ``wavelength`` dimension and coordinate (nm, or with a
+        ``units`` attribute "nm", "um" or "µm").
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> import spectrocolor.images  # registers DataArray.spectro
+    >>> cube = xr.DataArray(np.full((2, 3, 31), 0.5), dims=("y", "x", "wavelength"),
+    ...                     coords={"wavelength": np.arange(400, 701, 10)})
+    >>> XYZ = cube.spectro.to_xyz(illuminant="D65")
+    >>> XYZ.dims, float(XYZ.sel(XYZ="Y")[0, 0].round(6))
+    (('y', 'x', 'XYZ'), 50.0)
+    """
 
     def __init__(self, array: xr.DataArray) -> None:
         self._array = array
 
     @property
     def wavelengths_nm(self) -> np.ndarray:
-        """The ``wavelength`` coordinate in nm (units attribute honoured; default nm)."""
+        """The ``wavelength`` coordinate in nm (units attribute honoured; default nm).
+
+        Raises
+        ------
+        SpectrumError
+            Without a ``wavelength`` dimension or coordinate, or for unknown units.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import xarray as xr
+        >>> import spectrocolor.images  # registers DataArray.spectro
+        >>> cube = xr.DataArray(np.full((2, 3, 31), 0.5), dims=("y", "x", "wavelength"),
+        ...                     coords={"wavelength": np.arange(400, 701, 10)})
+        >>> micrometres = cube.assign_coords(wavelength=np.arange(400, 701, 10) / 1000)
+        >>> micrometres.coords["wavelength"].attrs["units"] = "um"
+        >>> micrometres.spectro.wavelengths_nm[:2].tolist()
+        [400.0, 410.0]
+        """
         array = self._array
         if "wavelength" not in array.dims:
             raise SpectrumError(
@@ -80,14 +119,83 @@ class SpectroAccessor:
 
     def to_xyz(self, illuminant=None, observer=DEFAULT_OBSERVER, method: str = "sum",
                scale: float = 1.0) -> xr.DataArray:
-        """CIE XYZ per pixel, dims (..., "XYZ"); arguments as :func:`cube_to_xyz`."""
+        """CIE XYZ per pixel, dims (..., "XYZ"); arguments as :func:`cube_to_xyz`.
+
+        Parameters
+        ----------
+        illuminant : str or Spectrum, optional
+            The light for reflectances (result XYZ100); ``None`` for lights.
+        observer : str, default DEFAULT_OBSERVER
+            Observer name or alias.
+        method : str, default "sum"
+            Summation method, as for :func:`spectrocolor.weights`.
+        scale : float, default 1.0
+            Factor from the stored values to reflectance (0–1).
+
+        Returns
+        -------
+        xarray.DataArray
+            Lazy on dask input; coordinate ``XYZ`` = X, Y, Z; attributes ``quantity`` and, for
+            reflectances, ``white_XYZ``.
+
+        Raises
+        ------
+        SpectrumError
+            For a missing or split ``wavelength`` dimension, as :attr:`wavelengths_nm`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import xarray as xr
+        >>> import spectrocolor.images  # registers DataArray.spectro
+        >>> cube = xr.DataArray(np.full((2, 3, 31), 0.5), dims=("y", "x", "wavelength"),
+        ...                     coords={"wavelength": np.arange(400, 701, 10)})
+        >>> XYZ = cube.spectro.to_xyz(illuminant="D65")
+        >>> XYZ.attrs["quantity"], float(XYZ.sel(XYZ="Y")[0, 0].round(6))
+        ('XYZ100', 50.0)
+        """
         plan = plan_conversion("xyz", self.wavelengths_nm, illuminant=illuminant,
                                observer=observer, method=method, scale=scale)
         return self._apply(plan, "XYZ", ("X", "Y", "Z"))
 
     def to_lab(self, illuminant=None, observer=DEFAULT_OBSERVER, method: str = "sum",
                scale: float = 1.0, white_XYZ=None) -> xr.DataArray:
-        """CIELAB per pixel, dims (..., "Lab"); arguments as :func:`cube_to_lab`."""
+        """CIELAB per pixel, dims (..., "Lab"); arguments as :func:`cube_to_lab`.
+
+        Parameters
+        ----------
+        illuminant : str or Spectrum, optional
+            The light for reflectances; ``None`` for lights (then give ``white_XYZ``).
+        observer : str, default DEFAULT_OBSERVER
+            Observer name or alias.
+        method : str, default "sum"
+            Summation method, as for :func:`spectrocolor.weights`.
+        scale : float, default 1.0
+            Factor from the stored values to reflectance (0–1).
+        white_XYZ : array_like, shape (3,), optional
+            Reference white; default the perfect reflector under ``illuminant`` on this grid.
+
+        Returns
+        -------
+        xarray.DataArray
+            Coordinate ``Lab`` = L*, a*, b*; attribute ``white_XYZ`` says which white was used.
+
+        Raises
+        ------
+        SpectrumError
+            For a missing or split ``wavelength`` dimension.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import xarray as xr
+        >>> import spectrocolor.images  # registers DataArray.spectro
+        >>> cube = xr.DataArray(np.full((2, 3, 31), 0.5), dims=("y", "x", "wavelength"),
+        ...                     coords={"wavelength": np.arange(400, 701, 10)})
+        >>> lab = cube.spectro.to_lab(illuminant="D65")
+        >>> lab.coords["Lab"].values.tolist(), float(lab.sel(Lab="L*")[0, 0].round(3))
+        (['L*', 'a*', 'b*'], 76.069)
+        """
         plan = plan_conversion("lab", self.wavelengths_nm, illuminant=illuminant,
                                observer=observer, method=method, scale=scale,
                                white_XYZ=white_XYZ)
@@ -97,7 +205,53 @@ class SpectroAccessor:
                scale: float = 1.0, space="sRGB", gamut: str = "clip", exposure: float = 1.0,
                adaptation: str | None = "bradford", bit_depth: int = 8,
                output: str = "codes") -> xr.DataArray:
-        """Display RGB per pixel, dims (..., "RGB"); arguments as :func:`cube_to_rgb`."""
+        """Display RGB per pixel, dims (..., "RGB"); arguments as :func:`cube_to_rgb`.
+
+        Parameters
+        ----------
+        illuminant : str or Spectrum, optional
+            The light for reflectances; ``None`` for lights.
+        observer : str, default DEFAULT_OBSERVER
+            Observer name or alias.
+        method : str, default "sum"
+            Summation method.
+        scale : float, default 1.0
+            Factor from the stored values to reflectance (0–1).
+        space : str or RGBSpace, default "sRGB"
+            Display space.
+        gamut : str, default "clip"
+            Per-pixel gamut strategy (see :func:`spectrocolor.render`).
+        exposure : float, default 1.0
+            Multiplier on XYZ before rendering.
+        adaptation : str or None, default "bradford"
+            Chromatic adaptation from the illuminant's white to the display white.
+        bit_depth : int, default 8
+            8 or 16 for ``output="codes"``.
+        output : str, default "codes"
+            "codes", "rgb_linear" or "rgb_encoded".
+
+        Returns
+        -------
+        xarray.DataArray
+            Coordinate ``RGB`` = R, G, B; uint8/uint16 codes or float64 values.
+
+        Raises
+        ------
+        SpectrumError
+            For a missing or split ``wavelength`` dimension.
+        ColorimetryError
+            For an unknown space, gamut, adaptation or output.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import xarray as xr
+        >>> import spectrocolor.images  # registers DataArray.spectro
+        >>> cube = xr.DataArray(np.full((2, 3, 31), 0.5), dims=("y", "x", "wavelength"),
+        ...                     coords={"wavelength": np.arange(400, 701, 10)})
+        >>> cube.spectro.to_rgb(illuminant="D65").values[0, 0].tolist()
+        [188, 188, 188]
+        """
         plan = plan_conversion("rgb", self.wavelengths_nm, illuminant=illuminant,
                                observer=observer, method=method, scale=scale, space=space,
                                gamut=gamut, exposure=exposure, adaptation=adaptation,
