@@ -1,7 +1,9 @@
 """Spectral images at scale: read cubes, convert them block by block, write images.
 
 Needs the ``images`` extra (Pillow, tifffile, xarray, dask, h5netcdf, tqdm); the core package
-never imports this. Importing it registers the ``.spectro`` accessor on xarray DataArrays.
+never imports this. ``import spectrocolor.images`` registers the ``.spectro`` accessor on xarray
+DataArrays (:class:`~spectrocolor.images.accessor.SpectroAccessor`); ``import spectrocolor``
+alone does not.
 
 * :func:`read_cube` — .npy/.npz, multi-page TIFF, ENVI, netCDF/HDF5, folder of band images.
 * :func:`cube_to_xyz`, :func:`cube_to_lab`, :func:`cube_to_rgb` — bounded-memory conversion.
