@@ -82,7 +82,7 @@ def read_cube(
         for a folder, the units of the numbers in the file names.
     variable : str, optional
         netCDF/HDF5 and MATLAB: which variable to read when more than one could be the cube.
-    raw : bool
+    raw : bool, keyword-only, default False
         ENVI only: return the stored numbers without applying the header's reflectance scale
         factor, data ignore value and bad-band list (they are then in ``metadata``). Default
         False: applied, and ``metadata["applied"]`` says what was done.
@@ -101,6 +101,21 @@ def read_cube(
         sizes.
     FileNotFoundError
         The path does not exist.
+
+    References
+    ----------
+    ENVI header format (L3Harris, *ENVI Header Files*); TIFF 6.0; netCDF-4/HDF5.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "grey.npy"
+    ...     np.save(path, np.full((2, 3, 31), 0.5))
+    ...     cube = read_cube(path, wavelengths_nm=np.arange(400, 701, 10))
+    >>> cube.shape, cube.wavelengths_nm[[0, -1]].tolist()
+    ((2, 3, 31), [400.0, 700.0])
     """
     path = Path(path)
     if path.is_dir():
