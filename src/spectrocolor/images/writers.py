@@ -41,7 +41,7 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
         For PNG: ``uint8`` codes (8-bit PNG) or ``uint16`` codes (16-bit PNG), e.g. the
         ``codes`` of :func:`spectrocolor.render`. For TIFF: float32 or float64 values, written
         as they are (no scaling, no clipping), e.g. XYZ100 or CIELAB.
-    metadata : dict, optional
+    metadata : dict, keyword-only, optional
         TIFF only: JSON-serialisable facts stored in the image description.
 
     Returns
@@ -56,6 +56,17 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
     spectrocolor.safe_write.OutputError
         The file could not be written completely (full disk, no permission ...); it is written
         beside ``path``, read back and only then renamed over it, so a previous file survives.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from PIL import Image
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_image(pathlib.Path(folder) / "codes.png", np.zeros((2, 3, 3), np.uint8))
+    ...     with Image.open(path) as picture:
+    ...         print(picture.size)  # width, height
+    (3, 2)
     """
     path = Path(path)
     array = np.asarray(image)
