@@ -30,11 +30,13 @@ from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 from starlette.exceptions import HTTPException
 
+from spectrocolor.display.explain import GAMUT_ACTIONS
 from spectrocolor.errors import ColorimetryError, SpectrumError
 from spectrocolor.spreadsheet import neutralise_cell
 
 from . import compute
 from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
+from .lab_routes import router as lab_router
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
 MAX_BODY_BYTES = 2_000_000
@@ -44,6 +46,8 @@ MAX_JSON_DEPTH = 32
 MAX_PARSERS = 2
 PARSER_WAIT_S = 10.0
 MAX_SPECTRA = 4
+#: Spectra one imported file may hold; the page lets the user choose which to edit.
+MAX_IMPORT_SPECTRA = 64
 MAX_BINS = 301  # 400-700 nm at 1 nm
 
 Step = Literal[10, 5, 2, 1]
@@ -217,6 +221,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
         return FileResponse(static / "index.html", media_type="text/html")
 
     app.mount("/static", StaticFiles(directory=static), name="static")
+    app.include_router(lab_router)
 
     @app.get("/api/options")
     def options():
@@ -226,9 +231,11 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
             "displays": list(compute.DISPLAYS),
             "gamuts": list(compute.GAMUTS),
             "normalisations": list(compute.NORMALISATIONS),
-            "adaptations": compute.ADAPTATIONS,
+            "adaptations": [[k, label, why] for k, (label, why) in compute.ADAPTATIONS.items()],
+            "gamut_actions": GAMUT_ACTIONS,
             "defaults": {"gamut": compute.DEFAULT_GAMUT, "normalise": compute.DEFAULT_NORMALISE,
-                         "adaptation": compute.DEFAULT_ADAPTATION},
+                         "adaptation": compute.DEFAULT_ADAPTATION,
+                         "display": compute.DISPLAYS[0]},
             "full_level": compute.FULL_LEVEL,
         }
 
@@ -269,7 +276,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
                 path.write_text(req.content, encoding="utf-8")
                 try:
                     return compute.import_spectra(path, float(req.step_nm), req.method,
-                                                  req.scale, max_spectra=MAX_SPECTRA)
+                                                  req.scale, max_spectra=MAX_IMPORT_SPECTRA)
                 except (ValueError, csv.Error, RecursionError, UnicodeError) as exc:
                     # SpectrumError, and what a reader lets through on a hostile file (a cell
                     # over the csv module's field limit, ...): the file's fault, never a 500
