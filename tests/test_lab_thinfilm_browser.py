@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 
 import pytest
-from appbrowser import AXE, DESKTOP, PHONE
 
+from appbrowser import AXE, DESKTOP, PHONE
 from spectrocolor.app import thinfilm_lab as lab
 from spectrocolor.thinfilm.maps import draining_film
 
@@ -33,8 +33,8 @@ def patch_rgb(page) -> list[int]:
 
 def set_range(page, selector, value):
     page.eval_on_selector(selector, """(e, v) => { e.value = v;
-        e.dispatchEvent(new Event('input', {bubbles: true})); e.dispatchEvent(new Event('change', {bubbles: true})); }""",
-                          str(value))
+        e.dispatchEvent(new Event('input', {bubbles: true}));
+        e.dispatchEvent(new Event('change', {bubbles: true})); }""", str(value))
 
 
 def test_the_thickness_slider_shows_the_librarys_colour(lab_page, artifacts_dir):
@@ -101,7 +101,8 @@ def test_the_draining_film_uses_the_librarys_profile_and_the_table(lab_page):
     lab_page.wait_for_timeout(400)
     assert lab_page.get_attribute("#play", "aria-pressed") == "true"
     lab_page.click("#play")
-    shown = lab_page.eval_on_selector("#drain", "c => Array.from(c.getContext('2d').getImageData(5, c.height - 1, 1, 1).data)")
+    bottom_pixel = "c => Array.from(c.getContext('2d').getImageData(5, c.height - 1, 1, 1).data)"
+    shown = lab_page.eval_on_selector("#drain", bottom_pixel)
     assert shown[3] == 255 and shown[:3] != [0, 0, 0]  # the bottom is thick: coloured, not black
     assert any(shown[:3] == rgb for rgb in table["rgb8"])
 
