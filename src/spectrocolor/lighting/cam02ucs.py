@@ -46,13 +46,13 @@ class JMh(NamedTuple):
     h: np.ndarray
 
 
-def _times(colours: np.ndarray, matrix: np.ndarray) -> np.ndarray:
-    """``matrix @ colour`` for every colour of ``(..., 3)``, as one (n, 3) × (3, 3) product."""
-    return (colours.reshape(-1, 3) @ matrix.T).reshape(colours.shape)
+def _times(matrix: np.ndarray, channels: np.ndarray) -> np.ndarray:
+    """``matrix @ colour`` for channel-first colours ``(3, ...)``: three contiguous planes out."""
+    return np.tensordot(matrix, channels, axes=(1, 0))
 
 
 def _compress(rgb: np.ndarray, F_L) -> np.ndarray:
-    power = (F_L * np.abs(rgb) / 100.0) ** 0.42
+    power = (F_L / 100.0 * np.abs(rgb)) ** 0.42
     return np.sign(rgb) * 400.0 * power / (27.13 + power) + 0.1
 
 
@@ -66,11 +66,12 @@ def _check_conditions(surround: str, L_A: float, Y_b: float) -> None:
 def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
     """J, M and the hue direction (cos h, sin h) of CIECAM02 (CIE 159:2004 steps 1–10).
 
+    Colours and white are channel-first, ``(3, ...)``, so every step works on contiguous planes.
     The hue enters only through cos h and sin h = (a, b) / |(a, b)|, which saves the trigonometry
     on large batches: e_t = ¼ (cos(h + 2) + 3.8) = ¼ (cos h cos 2 − sin h sin 2 + 3.8).
     """
     F, c, N_c = SURROUNDS[surround]
-    Y_w = white[..., 1]
+    Y_w = white[1]
     k = 1.0 / (5.0 * L_A + 1.0)
     F_L = 0.2 * k**4 * (5.0 * L_A) + 0.1 * (1.0 - k**4) ** 2 * (5.0 * L_A) ** (1.0 / 3.0)
     D = 1.0 if discount_illuminant else F * (1.0 - np.exp((-L_A - 42.0) / 92.0) / 3.6)
@@ -78,24 +79,50 @@ def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
         n = Y_b / Y_w
         z = 1.48 + np.sqrt(n)
         N_bb = 0.725 * n**-0.2
-        rgb_w = _times(white, _M_CAT02)
-        gain = D * Y_w[..., None] / rgb_w + 1.0 - D
-        rgb_a = _compress(_times(_times(XYZ, _M_CAT02) * gain, _CAT02_TO_HPE), F_L)
-        rgb_aw = _compress(_times(rgb_w * gain, _CAT02_TO_HPE), F_L)
-        R, G, B = rgb_a[..., 0], rgb_a[..., 1], rgb_a[..., 2]
+        rgb_w = _times(_M_CAT02, white)
+        gain = D * Y_w / rgb_w + 1.0 - D
+        R, G, B = _compress(_times(_CAT02_TO_HPE, _times(_M_CAT02, XYZ) * gain), F_L)
+        R_w, G_w, B_w = _compress(_times(_CAT02_TO_HPE, rgb_w * gain), F_L)
         a = R - 12.0 * G / 11.0 + B / 11.0
         b = (R + G - 2.0 * B) / 9.0
         chroma_ab = np.hypot(a, b)
-        cos_h, sin_h = a / chroma_ab, b / chroma_ab
         zero = chroma_ab == 0.0
-        cos_h, sin_h = np.where(zero, 1.0, cos_h), np.where(zero, 0.0, sin_h)
+        cos_h = np.where(zero, 1.0, a / chroma_ab)
+        sin_h = np.where(zero, 0.0, b / chroma_ab)
         e_t = 0.25 * (cos_h * np.cos(2.0) - sin_h * np.sin(2.0) + 3.8)
         A = (2.0 * R + G + B / 20.0 - 0.305) * N_bb
-        A_w = (2.0 * rgb_aw[..., 0] + rgb_aw[..., 1] + rgb_aw[..., 2] / 20.0 - 0.305) * N_bb
+        A_w = (2.0 * R_w + G_w + B_w / 20.0 - 0.305) * N_bb
         J = 100.0 * (A / A_w) ** (c * z)
         t = (50000.0 / 13.0 * N_c * N_bb) * e_t * chroma_ab / (R + G + 21.0 / 20.0 * B)
         C = t**0.9 * np.sqrt(J / 100.0) * (1.64 - 0.29**n) ** 0.73
     return J, C * F_L**0.25, cos_h, sin_h
+
+
+def _channels(XYZ100, white_XYZ100) -> tuple[np.ndarray, np.ndarray]:
+    XYZ = colour_array(XYZ100, "XYZ100", 3, "tristimulus values")
+    white = colour_array(white_XYZ100, "white_XYZ100", 3, "tristimulus values")
+    XYZ, white = np.broadcast_arrays(XYZ, white)
+    return np.moveaxis(XYZ, -1, 0), np.moveaxis(white, -1, 0)
+
+
+def cam02ucs_planes(XYZ, white, L_A: float = 100.0, Y_b: float = 20.0, surround: str = "average",
+                    discount_illuminant: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CAM02-UCS J', a', b' as three arrays from channel-first XYZ and white ``(3, ...)``.
+
+    The layout for large batches (CIE 224: 99 samples × many lights); :func:`cam02ucs_jab`
+    is the same for ``(..., 3)`` arrays.
+
+    Examples
+    --------
+    >>> J, a, b = cam02ucs_planes(np.array([[19.31], [23.93], [10.14]]), np.array([98.88, 90.0, 32.03])[:, None],
+    ...                           200.0, 18.0)
+    >>> [round(float(v[0]), 3) for v in (J, a, b)]
+    [61.122, -27.426, -5.769]
+    """
+    _check_conditions(surround, L_A, Y_b)
+    J, M, cos_h, sin_h = _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant)
+    M_prime = np.log1p(0.0228 * M) / 0.0228
+    return 1.7 * J / (1.0 + 0.007 * J), M_prime * cos_h, M_prime * sin_h
 
 
 def ciecam02_jmh(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
@@ -136,9 +163,7 @@ def ciecam02_jmh(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
     [48.0314, 38.7789, 191.0452]
     """
     _check_conditions(surround, L_A, Y_b)
-    XYZ = colour_array(XYZ100, "XYZ100", 3, "tristimulus values")
-    white = colour_array(white_XYZ100, "white_XYZ100", 3, "tristimulus values")
-    J, M, cos_h, sin_h = _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant)
+    J, M, cos_h, sin_h = _forward(*_channels(XYZ100, white_XYZ100), L_A, Y_b, surround, discount_illuminant)
     return JMh(J, M, np.degrees(np.arctan2(sin_h, cos_h)) % 360.0)
 
 
@@ -155,12 +180,8 @@ def cam02ucs_jab(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
     >>> cam02ucs_jab([19.31, 23.93, 10.14], [98.88, 90.0, 32.03], 200.0, 18.0).round(3).tolist()
     [61.122, -27.426, -5.769]
     """
-    _check_conditions(surround, L_A, Y_b)
-    XYZ = colour_array(XYZ100, "XYZ100", 3, "tristimulus values")
-    white = colour_array(white_XYZ100, "white_XYZ100", 3, "tristimulus values")
-    J, M, cos_h, sin_h = _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant)
-    M_prime = np.log1p(0.0228 * M) / 0.0228
-    return np.stack([1.7 * J / (1.0 + 0.007 * J), M_prime * cos_h, M_prime * sin_h], axis=-1)
+    return np.stack(cam02ucs_planes(*_channels(XYZ100, white_XYZ100), L_A, Y_b, surround, discount_illuminant),
+                    axis=-1)
 
 
 def cam02ucs(jmh: JMh) -> np.ndarray:

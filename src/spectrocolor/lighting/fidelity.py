@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..sampling import cmfs_on
-from .cam02ucs import cam02ucs_jab
+from .cam02ucs import cam02ucs_planes
 from .reference import fidelity_reference
 from .spectra import ces_reflectances, light_cct, light_grid
 
@@ -84,13 +84,16 @@ def rf_from_delta_e(delta_E):
     return 10.0 * np.log1p(np.exp((100.0 - CF * np.asarray(delta_E, dtype=float)) / 10.0))
 
 
-def _jab(S: np.ndarray, products: np.ndarray, W10: np.ndarray) -> np.ndarray:
-    """CAM02-UCS J'a'b' (N, 99, 3) of the samples under lights S (N, K)."""
+def _jab(S: np.ndarray, products: np.ndarray, W10: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CAM02-UCS J', a', b' (each (N, 99)) of the samples under lights S (N, K).
+
+    ``products`` is (K, 3·99), channel-major, so the XYZ come out as three contiguous planes.
+    """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         k = 100.0 / (S @ W10[:, 1])
-        white = (S @ W10) * k[:, None]
-        XYZ = (S @ products).reshape(len(S), -1, 3) * k[:, None, None]
-    return cam02ucs_jab(XYZ, white[:, None, :])
+        white = (S @ W10).T * k  # (3, N)
+        XYZ = (S @ products).reshape(len(S), 3, -1).transpose(1, 0, 2) * k[:, None]  # (3, N, 99)
+    return cam02ucs_planes(XYZ, white[:, :, None])
 
 
 def _polygon_area(ab: np.ndarray) -> np.ndarray:
@@ -151,14 +154,15 @@ def colour_fidelity(spd) -> Fidelity:
     R = fidelity_reference(temperature.cct_K, grid)
     W10 = cmfs_on(grid, "1964") * delta
     ces = ces_reflectances(grid)
-    products = (ces[:, :, None] * W10[None]).transpose(1, 0, 2).reshape(grid.size, -1)  # (K, 99·3)
-    jab_t = _jab(S, products, W10)
-    jab_r = _jab(R, products, W10)
-    delta_E = np.linalg.norm(jab_t - jab_r, axis=-1)  # (N, 99)
+    products = (W10.T[:, None, :] * ces[None]).reshape(3 * len(ces), grid.size).T  # (K, 3·99), channel-major
+    J_t, a_t, b_t = _jab(S, products, W10)
+    J_r, a_r, b_r = _jab(R, products, W10)
+    delta_E = np.sqrt((J_t - J_r) ** 2 + (a_t - a_r) ** 2 + (b_t - b_r) ** 2)  # (N, 99)
 
-    hue_ref = np.degrees(np.arctan2(jab_r[..., 2], jab_r[..., 1])) % 360.0
-    test_ab, reference_ab, bin_delta_E = _bin_means(hue_ref, jab_t[..., 1:], jab_r[..., 1:], delta_E)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+    hue_ref = np.degrees(np.arctan2(b_r, a_r)) % 360.0
+    test_ab, reference_ab, bin_delta_E = _bin_means(hue_ref, np.stack([a_t, b_t], axis=-1),
+                                                    np.stack([a_r, b_r], axis=-1), delta_E)
+    with np.errstate(divide="ignore", invalid="ignore"):
         Rg = 100.0 * _polygon_area(test_ab) / _polygon_area(reference_ab)
     theta = np.radians((np.arange(HUE_BINS) + 0.5) * 360.0 / HUE_BINS)
     shift = test_ab - reference_ab
