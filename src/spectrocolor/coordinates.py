@@ -87,7 +87,7 @@ def xy(XYZ) -> np.ndarray:
 
     References
     ----------
-    CIE 015:2018, section 7.3.
+    CIE 015:2018, section 7 (chromaticity coordinates).
 
     Examples
     --------
