@@ -181,7 +181,7 @@ def chromaticity_diagram(
 
     References
     ----------
-    CIE 015:2018 §§7.3, 8.1 and 9 (chromaticity diagrams, Planckian locus).
+    CIE 015:2018 §7 (chromaticity coordinates), §8.1 (u'v' diagram), §9 (Planckian locus).
 
     Examples
     --------
