@@ -34,7 +34,7 @@ def _reflectance(spectrum, argument: str) -> Spectrum:
 
 def cohen_projector(wavelengths_nm, illuminant="D65", observer="1931") -> np.ndarray:
     """Cohen's matrix ``R`` (K, K): the orthogonal projector onto the span of the weights."""
-    W = np.asarray(weights(wavelengths_nm, observer, illuminant))
+    W = np.asarray(weights(wavelengths_nm, observer=observer, illuminant=illuminant))
     return W @ np.linalg.solve(W.T @ W, W.T)
 
 
@@ -71,8 +71,8 @@ def metamerism_index(
     if not np.array_equal(s1.wavelengths_nm, s2.wavelengths_nm):
         raise SpectrumError("spectrum2: must share spectrum1's wavelength grid; resample it first")
     grid = s1.wavelengths_nm
-    W_ref = np.asarray(weights(grid, observer, reference))
-    W_test = np.asarray(weights(grid, observer, test))
+    W_ref = np.asarray(weights(grid, observer=observer, illuminant=reference))
+    W_test = np.asarray(weights(grid, observer=observer, illuminant=test))
     ref1, ref2 = s1.values @ W_ref, s2.values @ W_ref
     with np.errstate(divide="ignore", invalid="ignore"):
         correction = np.where(ref2 > 0, ref1 / ref2, 1.0)
@@ -107,8 +107,8 @@ def colour_shift(spectrum: Spectrum, source="D65", target="A", observer="1931",
     from ..display.adaptation import adapt
 
     s = _reflectance(spectrum, "spectrum")
-    W_s = np.asarray(weights(s.wavelengths_nm, observer, source))
-    W_t = np.asarray(weights(s.wavelengths_nm, observer, target))
+    W_s = np.asarray(weights(s.wavelengths_nm, observer=observer, illuminant=source))
+    W_t = np.asarray(weights(s.wavelengths_nm, observer=observer, illuminant=target))
     white_s, white_t = W_s.sum(axis=0), W_t.sum(axis=0)
     lab_s = lab(s.values @ W_s, white_s)
     lab_t = lab(adapt(s.values @ W_t, white_t, white_s, method=method), white_s)

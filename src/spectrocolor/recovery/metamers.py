@@ -33,9 +33,10 @@ from ..differences import delta_e_2000
 from ..errors import ColorimetryError
 from ..illuminants import canonical_illuminant_name
 from ..spectrum import Spectrum, wavelength_grid
-from . import _qp
+from . import qp
+from .certificate import Certificate, certify
+from .inputs import DEFAULT_WAVELENGTHS, grid_key, setup_for, xyz_array
 from .optimal import object_colour_membership
-from .smoothest import DEFAULT_WAVELENGTHS, Certificate, _certify, _colours, _grid_key, setup_for
 
 
 @dataclass(frozen=True)
@@ -101,18 +102,18 @@ class MetamerResult:
 
 def _pair_weights(wavelengths, observer, illuminant, second_illuminant):
     setup, obs, ill = setup_for(wavelengths, observer, illuminant)
-    W2 = np.asarray(weights(setup.grid, observer, second_illuminant))
+    W2 = np.asarray(weights(setup.grid, observer=observer, illuminant=second_illuminant))
     ill2 = (canonical_illuminant_name(second_illuminant) if isinstance(second_illuminant, str)
             else "custom illuminant")
     return setup, W2, obs, ill, ill2
 
 
 @lru_cache(maxsize=16)
-def _pair_problem(grid_key, observer, illuminant, second_illuminant) -> _qp.Problem:
+def _pair_problem(grid_key, observer, illuminant, second_illuminant) -> qp.Problem:
     grid = wavelength_grid(*grid_key)
-    W = np.concatenate([np.asarray(weights(grid, observer, illuminant)),
-                        np.asarray(weights(grid, observer, second_illuminant))], axis=1)
-    return _qp.make_problem(W, grid_key[2])
+    W = np.concatenate([np.asarray(weights(grid, observer=observer, illuminant=illuminant)),
+                        np.asarray(weights(grid, observer=observer, illuminant=second_illuminant))], axis=1)
+    return qp.make_problem(W, grid_key[2])
 
 
 def _fibonacci_directions(n: int) -> np.ndarray:
@@ -173,7 +174,7 @@ def metamer_mismatch_region(
     """
     from scipy.optimize import linprog
 
-    b = _colours(XYZ)
+    b = xyz_array(XYZ)
     if b.shape != (3,):
         raise ColorimetryError(f"XYZ: expected one colour of shape (3,), got {b.shape}")
     setup, W2, obs, ill, ill2 = _pair_weights(wavelengths, observer, illuminant,
@@ -241,20 +242,19 @@ def smoothest_metamer(
     """
     from scipy.optimize import linprog
 
-    b1, b2 = _colours(XYZ), _colours(XYZ_second)
+    b1, b2 = xyz_array(XYZ), xyz_array(XYZ_second, "XYZ_second")
     if b1.shape != b2.shape:
         raise ColorimetryError(f"XYZ_second: shape {b2.shape} differs from XYZ's {b1.shape}")
     setup, W2, obs, ill, ill2 = _pair_weights(wavelengths, observer, illuminant,
                                               second_illuminant)
     if all(isinstance(v, str) for v in (observer, illuminant, second_illuminant)):
-        prob = _pair_problem(_grid_key(wavelengths), obs, ill, ill2)
+        prob = _pair_problem(grid_key(wavelengths), obs, ill, ill2)
     else:
-        prob = _qp.make_problem(np.concatenate([setup.W, W2], axis=1), setup.step_nm)
+        prob = qp.make_problem(np.concatenate([setup.W, W2], axis=1), setup.step_nm)
     shape = b1.shape[:-1]
     b = np.concatenate([b1, b2], axis=-1).reshape(-1, 6)
     N, K = len(b), prob.size
-    rho = b @ prob.unconstrained
-    mu = b @ prob.multipliers
+    rho, mu = qp.solve_unconstrained(prob, b)
     lam = np.zeros((N, K))
     converged = np.ones(N, dtype=bool)
     feasible = np.ones(N, dtype=bool)
@@ -265,7 +265,7 @@ def smoothest_metamer(
         feasible[i] = res.status == 0
     todo = todo[feasible[todo]]
     if todo.size:
-        sol = _qp.solve_bounded(prob, b[todo], 0.0, 1.0)
+        sol = qp.solve_bounded(prob, b[todo], 0.0, 1.0)
         rho[todo], mu[todo], lam[todo] = sol.rho, sol.mu, sol.lam
         converged[todo] = sol.converged
     rho[~feasible], mu[~feasible], lam[~feasible] = np.nan, np.nan, np.nan
@@ -274,14 +274,14 @@ def smoothest_metamer(
         raise ColorimetryError(
             f"XYZ_second: {b2.tolist()} under {ill2} is outside the metamer mismatch region of "
             f"{b1.tolist()} under {ill}; no reflectance 0 ≤ ρ ≤ 1 matches both")
-    certificate = _certify(prob, b, rho, mu, lam, 0.0, 1.0, converged)
+    certificate = certify(prob.W, prob.step_nm, b, rho, mu, 0.0, 1.0, converged)
     return MetamerResult(
         spectrum=Spectrum(setup.grid, rho.reshape(*shape, K)),
         XYZ100=b1,
         XYZ100_second=b2,
         feasible=feasible.reshape(shape),
         roughness=prob.objective(rho).reshape(shape),
-        certificate=Certificate(*(np.asarray(c).reshape(shape) for c in certificate)),
+        certificate=certificate.reshape(shape),
     )
 
 

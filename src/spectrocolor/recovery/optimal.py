@@ -26,8 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
-from . import _zonotope
-from .smoothest import DEFAULT_WAVELENGTHS, _colours, setup_for
+from . import zonotope
+from .inputs import DEFAULT_WAVELENGTHS, setup_for, xyz_array
 
 
 @dataclass(frozen=True)
@@ -62,10 +62,10 @@ def object_colour_membership(
     >>> m.inside.tolist()
     [True, False]
     """
-    b = _colours(XYZ)
+    b = xyz_array(XYZ)
     setup, _, _ = setup_for(wavelengths, observer, illuminant)
     flat = b.reshape(-1, 3)
-    ratio, excess, _ = _zonotope.gauge(setup.solid, flat, cone=False)
+    ratio, excess, _ = zonotope.gauge(setup.solid, flat, cone=False)
     depth = 1.0 - ratio
     shape = b.shape[:-1]
     return SolidMembership(

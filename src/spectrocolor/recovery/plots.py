@@ -149,4 +149,4 @@ def _second_white(region):
     from ..colorimetry import weights
 
     grid = region.extreme_metamers.wavelengths_nm
-    return np.asarray(weights(grid, region.observer, region.second_illuminant)).sum(axis=0)
+    return np.asarray(weights(grid, observer=region.observer, illuminant=region.second_illuminant)).sum(axis=0)

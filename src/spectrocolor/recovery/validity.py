@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
-from .smoothest import DEFAULT_WAVELENGTHS, setup_for
+from .inputs import DEFAULT_WAVELENGTHS, setup_for
 
 #: Chromaticity triangle x, y, z ≥ 0 that the clipping starts from.
 _TRIANGLE = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])

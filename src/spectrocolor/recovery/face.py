@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _qp
+from . import qp
 
 #: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
 PLANE_TOLERANCE = 1e-10
@@ -52,8 +52,8 @@ def _touching_facet(G, c, lower, upper, tol):
     if np.isfinite(upper):
         support = np.where(p > 0, upper * p, lower * p).sum(axis=1)
     else:  # the cone: only normals with no generator on their positive side bound it
-        tol = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
-        ok = np.all(p <= tol, axis=1)
+        in_plane = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
+        ok = np.all(p <= in_plane, axis=1)
         n, p = n[ok], p[ok]
         support = lower * p.sum(axis=1)
     if len(n) == 0:
@@ -103,6 +103,41 @@ def _strictly_feasible(W, b, lower, upper, rho, free):
     return out
 
 
+def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
+    """Multipliers whose bound multipliers have the right signs with the widest margin.
+
+    ``basis`` (m, r) spans the free generators, whose stationarity fixes ``μ`` there; the
+    other components ``z`` (normals of the faces) are free. The normals were built level by
+    level, and with nearly parallel generators their rounding can flip the sign of a small
+    multiplier of an inner level once an outer level's large multiple is added. A linear
+    programme instead maximises the smallest margin ``σ_k λ_k / |w_k|`` over a box ten times
+    the size of the level-by-level solution (``σ = +1`` at ``lower``, ``-1`` at ``upper``);
+    the certificate then checks the result. Returns None where no positive margin exists.
+    """
+    from scipy.optimize import linprog
+
+    m = W.shape[1]
+    N = np.linalg.svd(basis.T)[2][basis.shape[1]:].T if basis.shape[1] else np.eye(m)
+    if N.shape[1] == 0:
+        return mu
+    base = mu - N @ (N.T @ mu)
+    idx = np.flatnonzero(fixed)
+    sigma = np.where(rho[idx] == lower, 1.0, -1.0)
+    c = Q[idx] @ rho - W[idx] @ base
+    a = W[idx] @ N
+    size = np.linalg.norm(W[idx], axis=1)
+    box = 10.0 * max(float(np.abs(mu).max()), 1.0)
+    d = N.shape[1]
+    cost = np.zeros(d + 1)
+    cost[-1] = -1.0
+    A = np.concatenate([sigma[:, None] * a, size[:, None]], axis=1)
+    res = linprog(cost, A_ub=A, b_ub=sigma * c, bounds=[(-box, box)] * d + [(None, box)],
+                  method="highs")
+    if res.status != 0 or res.x[-1] <= 0.0:
+        return None
+    return base + N @ res.x[:d]
+
+
 def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upper: float,
                   facet_tolerance: float = FACET_TOLERANCE):
     """The smoothest ``rho`` with ``W.T rho = b`` and bounds, for a colour b on the boundary.
@@ -123,7 +158,7 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
         F = np.flatnonzero(free)
         G = W[F] @ basis
         _, sv, vt = np.linalg.svd(G, full_matrices=False)
-        rank = int(np.count_nonzero(sv > 1e-10 * sv[0])) if sv[0] > 0 else 0
+        rank = int(np.count_nonzero(sv > len(F) * 64 * np.finfo(float).eps * sv[0])) if sv[0] > 0 else 0
         basis = basis @ vt[:rank].T
         if rank == 0:
             break
@@ -149,18 +184,23 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
         start = _strictly_feasible(Wb, b @ basis, lower, upper, rho, free)
         if start is None:
             return failed
-        rho, mu_b, _, _, ok = _qp.primal_active_set(Q, Wb, b @ basis, lower, upper, start,
+        rho, mu_b, _, _, ok = qp.primal_active_set(Q, Wb, b @ basis, lower, upper, start,
                                                     ~free, pinned=~free)
         if not ok:
             return failed
         mu = basis @ mu_b
     else:
         mu = np.zeros(m)
-    # a multiple of each level's normal makes the bounds fixed at that level correctly signed
+    # a multiple of each level's normal makes the bounds fixed at that level correctly
+    # signed; twice the smallest such multiple leaves each level's tightest bound a margin
     for normal, idx in reversed(levels):
         g = Q[idx] @ rho - W[idx] @ mu
         w_n = W[idx] @ normal
-        mu = mu + normal * max(0.0, float(np.max(g / w_n)))
+        mu = mu + normal * 2.0 * max(0.0, float(np.max(g / w_n)))
+    if levels:
+        mu = _deepest_multipliers(W, Q, rho, mu, basis, ~free, lower)
+        if mu is None:
+            return failed
     lam = Q @ rho - W @ mu
     lam[free & (rho > lower) & (rho < upper)] = 0.0
     return rho, mu, lam, True

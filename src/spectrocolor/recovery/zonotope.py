@@ -12,7 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-_CHUNK = 4096
+#: Elements (colours × facets) of one block of the membership test: bounds its memory (128 MiB
+#: per array) whatever the grid (the solid has K (K − 1) facets) and the batch.
+_BLOCK = 1 << 24
 
 
 @dataclass(frozen=True)
@@ -81,8 +83,9 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
     facet = np.empty(N, dtype=np.int64)
     scaled = facets.normals if cone else facets.normals / facets.support[:, None]
     half = len(scaled) // 2
-    for start in range(0, N, _CHUNK):
-        d = b[start:start + _CHUNK] - facets.centre
+    chunk = max(1, _BLOCK // max(len(scaled), 1))
+    for start in range(0, N, chunk):
+        d = b[start:start + chunk] - facets.centre
         rows = np.arange(len(d))
         if cone:
             rel = d @ scaled.T

@@ -39,12 +39,12 @@ import numpy as np
 from scipy.linalg import lapack, lu_factor, lu_solve
 
 from ..errors import ColorimetryError
+from . import certificate
 
 _MAX_PDAS_ITER = 30
 #: Values of :attr:`Solution.method`: how each colour was solved.
 METHODS = ("unconstrained", "active set", "active set restarted from interior point",
            "dense primal active set")
-_TOL = 1e-13
 #: Iterative-refinement steps of the reduced solves (:func:`_reduced_solve`, :func:`_equality_qp`).
 _REFINE_STEPS = 3
 
@@ -63,12 +63,15 @@ class Problem:
         ``rho = b @ unconstrained`` solves the programme without bounds.
     multipliers : ndarray (m, m)
         ``mu = b @ multipliers`` are its Lagrange multipliers.
+    kkt_inverse : ndarray (K + m, K + m)
+        Inverse of the KKT matrix ``[[Q, -W], [W.T, 0]]`` (for iterative refinement).
     """
 
     W: np.ndarray
     step_nm: float
     unconstrained: np.ndarray
     multipliers: np.ndarray
+    kkt_inverse: np.ndarray
 
     @property
     def size(self) -> int:
@@ -91,11 +94,7 @@ class Problem:
 
     def hess_times(self, rho: np.ndarray) -> np.ndarray:
         """``Q @ rho`` along the last axis."""
-        d = np.diff(rho, axis=-1) * (2.0 / self.step_nm)
-        out = np.zeros_like(rho)
-        out[..., :-1] -= d
-        out[..., 1:] += d
-        return out
+        return certificate.hess_times(rho, self.step_nm)
 
 
 def make_problem(W: np.ndarray, step_nm: float) -> Problem:
@@ -112,19 +111,41 @@ def make_problem(W: np.ndarray, step_nm: float) -> Problem:
             "constraints; this happens when the illuminant has power in fewer than "
             f"{m} wavelength bands (or is zero almost everywhere); use an illuminant with "
             "power across the spectrum")
-    prob = Problem(W, float(step_nm), np.empty((m, K)), np.empty((m, m)))
+    prob = Problem(W, float(step_nm), *(np.empty((n, n)) for n in (0, 0, 0)))
     kkt = np.zeros((K + m, K + m))
     kkt[:K, :K] = prob.hessian_dense()
     kkt[:K, K:] = -W
     kkt[K:, :K] = W.T
-    rhs = np.zeros((K + m, m))
-    rhs[K:] = np.eye(m)
-    sol = np.linalg.solve(kkt, rhs)  # columns: response to b = e_j
-    unconstrained = np.ascontiguousarray(sol[:K].T)
-    multipliers = np.ascontiguousarray(sol[K:].T)
-    unconstrained.setflags(write=False)
-    multipliers.setflags(write=False)
-    return Problem(W, float(step_nm), unconstrained, multipliers)
+    inverse = np.linalg.inv(kkt)
+    unconstrained = np.ascontiguousarray(inverse[:K, K:].T)  # rows: response to b = e_j
+    multipliers = np.ascontiguousarray(inverse[K:, K:].T)
+    for a in (inverse, unconstrained, multipliers):
+        a.setflags(write=False)
+    return Problem(W, float(step_nm), unconstrained, multipliers, inverse)
+
+
+def solve_unconstrained(prob: Problem, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The minimiser without bounds and its multipliers for colours ``b`` (N, m).
+
+    The closed form ``b @ unconstrained`` is followed, where it misses the certificate's
+    rounding level (cancellation among the terms of the product), by iterative refinement
+    with the inverse KKT matrix: residuals of both KKT equations, one matrix product.
+    """
+    rho = b @ prob.unconstrained
+    mu = b @ prob.multipliers
+    K = prob.size
+    for _ in range(_REFINE_STEPS):
+        r = b - rho @ prob.W
+        s = mu @ prob.W.T - prob.hess_times(rho)
+        bad = (np.any(np.abs(r) > 0.25 * certificate.primal_tolerance(prob.W, b, rho), axis=1)
+               | np.any(np.abs(s) > 0.25 * certificate.dual_tolerance(
+                   prob.W, prob.step_nm, rho, mu), axis=1))
+        if not bad.any():
+            break
+        correction = np.concatenate([s[bad], r[bad]], axis=1) @ prob.kkt_inverse.T
+        rho[bad] += correction[:, :K]
+        mu[bad] += correction[:, K:]
+    return rho, mu
 
 
 @dataclass
@@ -159,15 +180,16 @@ def _reduced_solve(prob: Problem, b, lower_active, upper_active, lower, upper):
     du = (off * free).ravel()[:-1]
     dl = (off[:, :-1] * free[:, 1:])
     dl = np.concatenate([dl, np.zeros((N, 1))], axis=1).ravel()[:-1]
+    factors = lapack.dgttrf(dl, d, du)
+    if factors[-1] != 0:  # pragma: no cover - cannot happen with at least one active bound
+        raise np.linalg.LinAlgError(f"tridiagonal factorisation failed (info={factors[-1]})")
+    factors = factors[:-1]
     # right-hand sides in Fortran order, as LAPACK wants them (no hidden copy)
     rhs = np.empty((1 + m, N * K)).T
     rhs[:, 0] = (np.where(lower_active, lower, 0.0) + np.where(upper_active, upper, 0.0)).ravel()
     for j in range(m):
         rhs[:, 1 + j] = (free * prob.W[:, j]).ravel()
-    _, _, _, x, info = lapack.dgtsv(dl, d, du, rhs, overwrite_dl=1, overwrite_d=1,
-                                    overwrite_du=1, overwrite_b=1)
-    if info != 0:  # pragma: no cover - cannot happen with at least one active bound
-        raise np.linalg.LinAlgError(f"tridiagonal solve failed (info={info})")
+    x, _ = lapack.dgttrs(*factors, rhs, overwrite_b=1)
     p = x[:, 0].reshape(N, K)
     P = [x[:, 1 + i].reshape(N, K) for i in range(m)]
     M = np.stack([Pi @ prob.W for Pi in P], axis=2)  # W.T P  (N, m, m)
@@ -181,17 +203,26 @@ def _reduced_solve(prob: Problem, b, lower_active, upper_active, lower, upper):
     rho = p + sum(Pi * mu[:, i, None] for i, Pi in enumerate(P))
     rho = np.where(lower_active, lower, rho)
     rho = np.where(upper_active, upper, rho)
-    # near the boundary M is ill-conditioned (the free weights are nearly dependent) and
-    # the residual of W.T rho = b can exceed rounding; refinement with the same P and M
-    # removes it (the active values stay exact: P vanishes on them)
+    # Iterative refinement of both KKT equations (stationarity on the free samples and
+    # W.T rho = b), with the same factors: near the boundary M is ill-conditioned (the free
+    # weights are nearly dependent), and the first solve misses the certificate's rounding
+    # level by orders of magnitude. The active values stay exact (P and the correction
+    # vanish on them).
     for _ in range(_REFINE_STEPS):
         r = b - rho @ prob.W
-        bad = ok & (np.abs(r).max(axis=1) > _TOL * (np.abs(rho) @ np.abs(prob.W)).max(axis=1))
+        s = (mu @ prob.W.T - prob.hess_times(rho)) * free
+        bad = ok & (np.any(np.abs(r) > 0.25 * certificate.primal_tolerance(prob.W, b, rho), axis=1)
+                    | np.any(np.abs(s) > 0.25 * certificate.dual_tolerance(
+                        prob.W, prob.step_nm, rho, mu), axis=1))
         if not bad.any():
             break
-        dmu = np.linalg.solve(M[bad], r[bad][..., None])[..., 0]
+        s[~bad] = 0.0
+        y, _ = lapack.dgttrs(*factors, s.reshape(-1, 1))
+        y = y.reshape(N, K)[bad]
+        dmu = np.linalg.solve(M[bad], (r[bad] - y @ prob.W)[..., None])[..., 0]
         mu[bad] += dmu
-        rho[bad] += sum(Pi[bad] * dmu[:, i, None] for i, Pi in enumerate(P))
+        # pivoting can leave rounding-sized values on the identity rows: keep them exact
+        rho[bad] += (y + sum(Pi[bad] * dmu[:, i, None] for i, Pi in enumerate(P))) * free[bad]
     return rho, mu, ok
 
 
@@ -227,12 +258,13 @@ def _pdas(prob, b, lower, upper, lo_act, up_act, max_iter):
         l_i = prob.hess_times(r_i) - m_i @ prob.W.T
         act = lo_act | up_act
         l_i[~act] = 0.0
-        # rounding-level tolerances keep degenerate indices (bound and multiplier both
-        # zero) from flipping forever
-        tol_l = _TOL * (1.0 + np.abs(m_i @ prob.W.T).max(axis=1, keepdims=True))
-        tol_r = _TOL * (1.0 + max(abs(lower), abs(upper) if np.isfinite(upper) else 0.0))
-        new_lo = np.where(act, lo_act & (l_i > -tol_l), r_i < lower - tol_r)
-        new_up = np.where(act, up_act & (l_i < tol_l), r_i > upper + tol_r)
+        # a bound stays while its multiplier has the right sign to within half the
+        # certificate's rounding tolerance (so that a degenerate index, bound and multiplier
+        # both zero, does not flip forever, and a settled result passes the certificate);
+        # any value beyond a bound joins the active set (the bounds must hold exactly)
+        tol_l = 0.5 * certificate.dual_tolerance(prob.W, prob.step_nm, r_i, m_i)
+        new_lo = np.where(act, lo_act & (l_i > -tol_l), r_i < lower)
+        new_up = np.where(act, up_act & (l_i < tol_l), r_i > upper)
         same = np.all(new_lo == lo_act, axis=1) & np.all(new_up == up_act, axis=1)
         done = ok & same
         idx = pending[done]
@@ -539,11 +571,12 @@ def primal_active_set(Q, W, b, lower, upper, rho, active, pinned=None, max_iter=
         rho = target
         lam = Q @ rho - W @ mu
         lam[~active] = 0.0
-        tol = _TOL * (1.0 + np.abs(W @ mu).max())
-        wrong = np.where(rho == lower, -lam, lam)
+        step_nm = 2.0 / Q[0, 0]
+        tol = 0.5 * certificate.dual_tolerance(W, step_nm, rho, mu)
+        wrong = np.where(rho == lower, -lam, lam) / tol
         wrong[~active | pinned] = 0.0
         worst = int(np.argmax(wrong))
-        if wrong[worst] <= tol:
+        if wrong[worst] <= 1.0:
             return rho, mu, lam, it, True
         active[worst] = False
     return (*nan, max_iter, False)

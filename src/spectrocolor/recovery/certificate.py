@@ -1,0 +1,160 @@
+"""Certificates of optimality for the smoothest-reflectance programmes, at rounding level.
+
+For the programme ``min ρ Q ρ / 2`` subject to ``ρ @ W = b`` and ``lower ≤ ρ ≤ upper``
+(:mod:`spectrocolor.recovery.qp`), a reflectance ``ρ`` with multipliers ``μ`` is optimal when
+
+* it reproduces the colour: ``ρ @ W = b``;
+* it keeps the bounds exactly;
+* the bound multipliers ``λ = Q ρ − W μ`` vanish where ρ is off its bounds (stationarity) and
+  are ≥ 0 where ``ρ = lower``, ≤ 0 where ``ρ = upper`` (signs). The programme is convex, so
+  these Karush–Kuhn–Tucker conditions are sufficient.
+
+In floating point "=" and "vanish" mean: within the rounding error of evaluating the
+expression, which is bounded by the sizes of the terms actually summed (Higham 2002, §3.1):
+a sum of n terms ``t_i`` computed in any order, with any blocking (so on any BLAS and any
+number of threads), is within ``γ_n Σ |t_i|`` of the exact sum, ``γ_n = n ε / (1 − n ε)``.
+The tolerances below are small multiples of those bounds, computed per component:
+
+* primal, component j: ``PRIMAL_FACTOR · γ_{K+1} · (Σ_k |ρ_k W_kj| + |b_j|)``;
+* dual, sample k: ``DUAL_FACTOR · ε · (|Q| |ρ| + |W| |μ|)_k`` — the two terms of ``λ_k``
+  are a 3-term difference and a 3-term (6 for metamers) product sum.
+
+They grow with ``|W| |μ|`` only because those are the terms summed in ``λ``: a large
+multiplier (degenerate faces) makes each term large, and ``λ`` is then known only to the
+rounding of those terms. A factor, never a fixed relative slack like 1e-8, separates a
+certified result from a wrong one.
+
+References
+----------
+N. J. Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed., SIAM (2002), §3.1
+(rounding error of sums and inner products).
+J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed., Springer (2006), Thm. 16.4
+(KKT conditions of a convex quadratic programme).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+EPS = float(np.finfo(float).eps)
+#: Multiple of the worst-case rounding bound allowed for ``ρ @ W − b`` (half of it for the
+#: rounding of the evaluation in any order, half for the rounding of ρ itself).
+PRIMAL_FACTOR = 2.0
+#: Multiple of ``ε (|Q||ρ| + |W||μ|)_k`` allowed for ``λ_k`` off the bounds and for a wrong
+#: sign at them: ``γ_6 ≈ 6 ε`` bounds the rounding of one evaluation, the solver's iterative
+#: refinement leaves at most about as much again, and a factor 2 keeps the verdict the same
+#: for every summation order.
+DUAL_FACTOR = 32.0
+
+
+def gamma(n: int) -> float:
+    """Higham's ``γ_n = n ε / (1 − n ε)``: relative error bound of an n-term sum.
+
+    Examples
+    --------
+    >>> bool(abs(gamma(1) - 2.0 ** -52) < 1e-30)
+    True
+    """
+    return n * EPS / (1.0 - n * EPS)
+
+
+def abs_hess_times(rho: np.ndarray, step_nm: float) -> np.ndarray:
+    """``|Q| |ρ|`` along the last axis, for the path Laplacian ``Q`` of :mod:`.qp`."""
+    a = np.abs(rho) * (2.0 / step_nm)
+    out = 2.0 * a
+    out[..., 0] = a[..., 0]
+    out[..., -1] = a[..., -1]
+    out[..., :-1] += a[..., 1:]
+    out[..., 1:] += a[..., :-1]
+    return out
+
+
+def hess_times(rho: np.ndarray, step_nm: float) -> np.ndarray:
+    """``Q ρ`` along the last axis (``ρ Q ρ / 2 = Σ (Δρ)² / h``)."""
+    d = np.diff(rho, axis=-1) * (2.0 / step_nm)
+    out = np.zeros_like(rho)
+    out[..., :-1] -= d
+    out[..., 1:] += d
+    return out
+
+
+def primal_tolerance(W: np.ndarray, b: np.ndarray, rho: np.ndarray) -> np.ndarray:
+    """Allowed ``|ρ @ W − b|`` per component (N, m)."""
+    return PRIMAL_FACTOR * gamma(W.shape[0] + 1) * (np.abs(rho) @ np.abs(W) + np.abs(b))
+
+
+def dual_tolerance(W: np.ndarray, step_nm: float, rho: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """Allowed ``|λ_k|`` off the bounds (and wrong-signed ``λ_k`` at them), (N, K)."""
+    return DUAL_FACTOR * EPS * (abs_hess_times(rho, step_nm) + np.abs(mu) @ np.abs(W).T)
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """Evidence that each result solves the programme (arrays of the batch shape).
+
+    Attributes
+    ----------
+    primal_residual : ndarray
+        ``max_j |ρ @ W − XYZ100|_j``, XYZ100 units.
+    bound_violation : ndarray
+        Largest amount by which ρ leaves its bounds (0 when the bounds hold exactly).
+    multiplier_sign_violation : ndarray
+        Largest wrong-signed bound multiplier ``λ = Qρ − Wμ`` (it must be ≥ 0 where
+        ``ρ = lower`` and ≤ 0 where ``ρ = upper``), in units of the roughness gradient.
+    stationarity : ndarray
+        ``max |λ_k|`` over the samples off the bounds (same units).
+    rounding_ratio : ndarray
+        The largest of these measures divided by its tolerance (see the module docstring:
+        small multiples of the rounding error of the terms summed): ≤ 1 passes.
+    converged : ndarray of bool
+        The solver settled **and** every check passes: entries finite, bounds held exactly,
+        ``rounding_ratio ≤ 1``. A result that fails any check (NaN included) is reported
+        not converged.
+    """
+
+    primal_residual: np.ndarray
+    bound_violation: np.ndarray
+    multiplier_sign_violation: np.ndarray
+    stationarity: np.ndarray
+    rounding_ratio: np.ndarray
+    converged: np.ndarray
+
+    def reshape(self, shape) -> Certificate:
+        """The same certificate with every array reshaped to the batch shape ``shape``."""
+        return Certificate(*(np.asarray(v).reshape(shape) for v in vars(self).values()))
+
+
+def certify(W, step_nm, b, rho, mu, lower, upper, settled) -> Certificate:
+    """Check ``ρ`` (N, K) with multipliers ``μ`` (N, m) for colours ``b`` (N, m).
+
+    ``lower``/``upper`` are scalar bounds (``None`` for the unconstrained programme);
+    ``settled`` (N,) says whether the solver stopped normally. The multipliers of the bounds
+    are recomputed here from ρ and μ, so nothing else of the solver's state is trusted.
+    """
+    with np.errstate(invalid="ignore", over="ignore"):
+        finite = np.all(np.isfinite(rho), axis=1) & np.all(np.isfinite(mu), axis=1)
+        residual = np.abs(rho @ W - b)
+        primal = residual.max(axis=1)
+        ratio_p = np.max(residual / np.maximum(primal_tolerance(W, b, rho), np.finfo(float).tiny),
+                         axis=1, where=residual > 0, initial=0.0)
+        lam = hess_times(rho, step_nm) - mu @ W.T
+        tol_d = np.maximum(dual_tolerance(W, step_nm, rho, mu), np.finfo(float).tiny)
+        if lower is None:
+            violation = np.zeros(len(b))
+            wrong = np.zeros_like(lam)
+            free = np.ones(lam.shape, dtype=bool)
+        else:
+            violation = np.maximum(lower - rho, rho - upper).max(axis=1).clip(min=0.0)
+            at_lower, at_upper = rho == lower, rho == upper
+            free = ~(at_lower | at_upper)
+            wrong = np.where(at_lower, -lam, np.where(at_upper, lam, 0.0)).clip(min=0.0)
+        off = np.where(free, np.abs(lam), 0.0)
+        sign = wrong.max(axis=1)
+        station = off.max(axis=1)
+        ratio_d = (np.maximum(off, wrong) / tol_d).max(axis=1)
+        ratio = np.maximum(ratio_p, ratio_d)
+        passed = finite & (violation == 0.0) & (ratio <= 1.0)
+    return Certificate(primal, violation, sign, station, np.where(finite, ratio, np.inf),
+                       np.asarray(settled, dtype=bool) & passed)

@@ -1,0 +1,109 @@
+"""Validated inputs shared by the recovery modules: colours, grids and the cached setup.
+
+:func:`xyz_array` checks tristimulus values, :func:`grid_key` turns a wavelength argument into
+the hashable ``(start_nm, stop_nm, step_nm)`` of a uniform grid, and :func:`setup_for` returns
+the :class:`Setup` (weights, quadratic programme, facets of the object-colour solid and of the
+cone of non-negative spectra) for one grid, observer and illuminant, cached for named ones.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property, lru_cache
+from numbers import Real
+
+import numpy as np
+
+from ..colorimetry import weights
+from ..errors import ColorimetryError, SpectrumError
+from ..illuminants import canonical_illuminant_name
+from ..observers import canonical_observer_name
+from ..spectrum import Spectrum, wavelength_grid
+from . import qp, zonotope
+
+#: The default grid of the recovered reflectances: 380–780 nm in 5 nm steps.
+DEFAULT_WAVELENGTHS = (380.0, 780.0, 5.0)
+
+
+class Setup:
+    """Weights ``W`` (K, 3), programme and solid facets for one (grid, observer, illuminant)."""
+
+    def __init__(self, grid: np.ndarray, W: np.ndarray):
+        self.grid = grid
+        self.W = W
+        self.step_nm = float(grid[1] - grid[0])
+        self.problem = qp.make_problem(W, self.step_nm)
+        self.white = W.sum(axis=0)
+
+    @cached_property
+    def solid(self) -> zonotope.Facets:
+        return zonotope.solid_facets(self.W)
+
+    @cached_property
+    def cone(self) -> zonotope.Facets:
+        return zonotope.cone_facets(self.W)
+
+
+@lru_cache(maxsize=32)
+def _named_setup(key: tuple[float, float, float], observer: str, illuminant: str) -> Setup:
+    grid = wavelength_grid(*key)
+    return Setup(grid, weights(grid, observer=observer, illuminant=illuminant))
+
+
+def grid_key(wavelengths) -> tuple[float, float, float]:
+    """``(start_nm, stop_nm, step_nm)`` of a uniform grid given as such a triple or as an array.
+
+    Examples
+    --------
+    >>> grid_key([400.0, 410.0, 420.0])
+    (400.0, 420.0, 10.0)
+    """
+    if isinstance(wavelengths, tuple | list) and len(wavelengths) == 3:
+        if all(isinstance(v, Real) for v in wavelengths):
+            wavelength_grid(*wavelengths)  # validates
+            return tuple(float(v) for v in wavelengths)
+    grid = np.asarray(wavelengths, dtype=float)
+    if grid.ndim == 1 and grid.size >= 3:
+        steps = np.diff(grid)
+        if np.all(steps > 0) and np.allclose(steps, steps[0], rtol=1e-9, atol=0):
+            return (float(grid[0]), float(grid[-1]), float(steps[0]))
+    raise SpectrumError(
+        "wavelengths: expected (start_nm, stop_nm, step_nm) or a uniform increasing grid of at "
+        f"least 3 samples, got {wavelengths!r}"
+    )
+
+
+def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
+    """The :class:`Setup` (cached for named observers and illuminants) and their labels."""
+    key = grid_key(wavelengths)
+    if isinstance(observer, str) and isinstance(illuminant, str):
+        obs, ill = canonical_observer_name(observer), canonical_illuminant_name(illuminant)
+        return _named_setup(key, obs, ill), obs, ill
+    if not isinstance(illuminant, str | Spectrum):
+        raise ColorimetryError(
+            f"illuminant: expected a CIE name such as 'D65' or a Spectrum, got {illuminant!r}"
+        )
+    grid = wavelength_grid(*key)
+    label_obs = observer if isinstance(observer, str) else "custom observer"
+    label_ill = illuminant if isinstance(illuminant, str) else "custom illuminant"
+    return Setup(grid, weights(grid, observer=observer, illuminant=illuminant)), label_obs, label_ill
+
+
+def xyz_array(XYZ, name: str = "XYZ") -> np.ndarray:
+    """Finite tristimulus values of shape (..., 3) as a float array, or a clear error.
+
+    Examples
+    --------
+    >>> xyz_array([1, 2, 3]).tolist()
+    [1.0, 2.0, 3.0]
+    """
+    try:
+        b = np.asarray(XYZ, dtype=float)
+    except (TypeError, ValueError):
+        raise ColorimetryError(f"{name}: expected numbers of shape (..., 3), got {XYZ!r}") from None
+    if b.ndim == 0 or b.shape[-1] != 3:
+        raise ColorimetryError(
+            f"{name}: expected shape (..., 3) (X, Y, Z on the Y=100 scale), got {b.shape}")
+    if not np.all(np.isfinite(b)):
+        raise ColorimetryError(
+            f"{name}: contains NaN or infinite values; pass finite tristimulus values")
+    return b
