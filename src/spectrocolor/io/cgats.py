@@ -30,11 +30,9 @@ from __future__ import annotations
 
 import re
 
-import numpy as np
-
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
-from .text import apply_scale, number, wavelength_of
+from .text import apply_scale, number, number_table, wavelength_of
 
 _TOKEN = re.compile(r'"([^"]*)"|(\S+)')
 _DIALECTS = {"CTI3": "ArgyllCMS .ti3", "SPECT": "ArgyllCMS .sp", "CTI1": "ArgyllCMS .ti1", "CTI2": "ArgyllCMS .ti2"}
@@ -57,6 +55,8 @@ def looks_like_cgats(text: str) -> bool:
 
 
 def _tokens(line: str) -> list[str]:
+    if '"' not in line:
+        return line.split()
     return [m.group(1) if m.group(1) is not None else m.group(2) for m in _TOKEN.finditer(line)]
 
 
@@ -177,14 +177,15 @@ def _table_spectra(identifier, keywords, fields, rows, spectral, source, percent
         raise SpectrumError(f"{source}: the spectral table has no rows")
     spectral.sort(key=lambda item: item[1])
     columns = [i for i, _ in spectral]
-    values = np.empty((len(rows), len(columns)))
-    for r, (line_number, row) in enumerate(rows):
+    for line_number, row in rows:
         if len(row) != len(fields):
             raise SpectrumError(
                 f"{source}, line {line_number}: {len(row)} values, but the data format has {len(fields)}"
             )
-        for k, i in enumerate(columns):
-            values[r, k] = number(row[i], f"{source}, line {line_number}, field {fields[i]}")
+    values = number_table(
+        [[row[i] for i in columns] for _, row in rows],
+        lambda r, k: f"{source}, line {rows[r][0]}, field {fields[columns[k]]}",
+    )
     upper = [f.upper() for f in fields]
     name_index = next((upper.index(key) for key in ("SAMPLE_NAME", "SAMPLE_ID", "SAMPLEID") if key in upper), None)
     names = [row[name_index] if name_index is not None else f"sample_{r + 1}" for r, (_, row) in enumerate(rows)]

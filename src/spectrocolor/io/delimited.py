@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
-from .text import apply_scale, number, wavelength_of
+from .text import apply_scale, number_table, wavelength_of
 
 _MICROMETRE = re.compile(r"((^|[^a-z])um($|[^a-z])|µm|μm|micro)", re.IGNORECASE)
 _NANOMETRE = re.compile(r"(nm|nanomet|wavelength|lambda|λ|wl)", re.IGNORECASE)
@@ -103,12 +103,14 @@ def _long(rows, source: str, decimal_comma: bool) -> Spectrum:
         raise SpectrumError(f"{source}, line {header_line}: duplicate column names in {names[:8]}")
     if len(rows) < 2:
         raise SpectrumError(f"{source}: header but no data rows")
-    data = np.empty((len(rows) - 1, len(header)))
-    for r, (line_number, row) in enumerate(rows[1:]):
+    for line_number, row in rows[1:]:
         if len(row) != len(header):
             raise SpectrumError(f"{source}, line {line_number}: {len(row)} cells, but the header has {len(header)}")
-        for c, cell in enumerate(row):
-            data[r, c] = number(cell, f"{source}, line {line_number}, column {header[c]!r}", decimal_comma)
+    data = number_table(
+        [row for _, row in rows[1:]],
+        lambda r, c: f"{source}, line {rows[r + 1][0]}, column {header[c]!r}",
+        decimal_comma,
+    )
     values = data[:, 1:].T
     try:
         return Spectrum(data[:, 0] * unit_scale, values if values.shape[0] > 1 else values[0], names)
@@ -125,17 +127,19 @@ def _wide(rows, wavelength_columns, source: str, decimal_comma: bool) -> Spectru
     name_column = named[0] if named else (other[0] if other else None)
     if len(rows) < 2:
         raise SpectrumError(f"{source}: header but no data rows")
-    values = np.empty((len(rows) - 1, len(columns)))
     names, fields = [], {header[c] or f"column_{c + 1}": [] for c in other if c != name_column}
     for r, (line_number, row) in enumerate(rows[1:]):
         if len(row) != len(header):
             raise SpectrumError(f"{source}, line {line_number}: {len(row)} cells, but the header has {len(header)}")
-        for i, c in enumerate(columns):
-            values[r, i] = number(row[c], f"{source}, line {line_number}, column {header[c]!r}", decimal_comma)
         names.append(row[name_column] if name_column is not None else f"sample_{r + 1}")
         for c in other:
             if c != name_column:
                 fields[header[c] or f"column_{c + 1}"].append(row[c])
+    values = number_table(
+        [[row[c] for c in columns] for _, row in rows[1:]],
+        lambda r, i: f"{source}, line {rows[r + 1][0]}, column {header[columns[i]]!r}",
+        decimal_comma,
+    )
     metadata = {"sample_fields": {key: tuple(column) for key, column in fields.items()}} if fields else {}
     try:
         return Spectrum(wavelengths, values if values.shape[0] > 1 else values[0], names, metadata)

@@ -68,6 +68,25 @@ def number(cell: str, where: str, decimal_comma: bool = False) -> float:
     return value
 
 
+def number_table(rows: list[list[str]], locate, decimal_comma: bool = False) -> np.ndarray:
+    """Equal-length rows of text cells as a finite float table, (rows, cells).
+
+    NumPy converts the whole table at once; if anything is not a finite number, each cell is
+    parsed with :func:`number` so that the error names the first bad one (``locate(r, c)`` gives
+    its place, e.g. "file, line 7, column '410'").
+    """
+    try:
+        cells = [[cell.replace(",", ".") for cell in row] for row in rows] if decimal_comma else rows
+        table = np.array(cells, dtype=float)
+        if table.size == 0 or np.all(np.isfinite(table)):
+            return table.reshape(len(rows), -1)
+    except ValueError:
+        pass
+    return np.array(
+        [[number(cell, locate(r, c), decimal_comma) for c, cell in enumerate(row)] for r, row in enumerate(rows)]
+    )
+
+
 def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None, source: str, how: str):
     """Values on the file's declared scale turned into fractions, following the one rule.
 
