@@ -75,8 +75,12 @@ def main() -> None:
     tm30 = colour_fidelity(Spectrum(lights_380.wavelengths_nm, lights_380.values[: args.sample]))
     inside = cri.cct_K > 1700  # colour-science's Robertson table starts at 1667 K
     dRa = np.abs(cri.Ra - Ra)[inside].max()
-    dRf = np.abs(tm30.Rf - [s.R_f for s in specs]).max()
-    dRg = np.abs(tm30.Rg - [s.R_g for s in specs]).max()
+    # we give NaN where the standards define no reference (CCT outside 1000-25 000 K);
+    # colour-science extrapolates there with a warning: compare where both are defined
+    defined = np.isfinite(tm30.Rf)
+    dRf = np.abs(tm30.Rf - [s.R_f for s in specs])[defined].max()
+    dRg = np.abs(tm30.Rg - [s.R_g for s in specs])[defined].max()
+    undefined = int(np.sum(~np.isfinite(colour_fidelity(lights_380).Rf)))
 
     n = args.count
     print(f"{n} random LED spectra, 1 nm (CRI 360-780 nm, TM-30 380-780 nm); colour-science on {args.sample}")
@@ -91,6 +95,7 @@ def main() -> None:
     print(f"  TM30 NumPy limit    {n / limit_tm30:11.0f}")
     print(f"  agreement on the sample: max |dRa| {dRa:.4f}, |dRf| {dRf:.4f}, |dRg| {dRg:.4f} "
           "(CCT methods differ: Robertson / Ohno table vs exact; 1 nm daylight Sprague vs linear)")
+    print(f"  lights without a TM-30 reference (CCT outside 1000-25 000 K): {undefined} of {n} (NaN)")
 
 
 if __name__ == "__main__":

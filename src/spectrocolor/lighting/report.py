@@ -197,8 +197,14 @@ def _svg(report: LightReport, index: int) -> str:
     return text[text.index("<svg"):]
 
 
-def _cell(value) -> str:
-    return "–" if value is None else html.escape(str(value))
+#: Decimals shown in the HTML table per headline column (the CSV and JSON keep more).
+_HTML_DECIMALS = {"cct_K": 0, "duv": 4, "Ra": 1, "R9": 1, "Rf": 1, "Rg": 1, "LER_lm_per_W": 1, "melanopic_DER": 3}
+
+
+def _cell(value, decimals: int | None = None) -> str:
+    if value is None:
+        return "–"
+    return html.escape(f"{value:.{decimals}f}" if decimals is not None else str(value))
 
 
 def report_html(report: LightReport, *, title: str | None = None, pictures: int = 12) -> str:
@@ -208,7 +214,7 @@ def report_html(report: LightReport, *, title: str | None = None, pictures: int 
     head = "".join(f"<th title='{html.escape(text)}'>{html.escape(key)}</th>" for key, text in HEADLINE.items())
     rows = "".join(
         "<tr><td>" + html.escape(r["name"]) + "</td>"
-        + "".join(f"<td>{_cell(r[key])}</td>" for key in HEADLINE)
+        + "".join(f"<td>{_cell(r[key], _HTML_DECIMALS[key])}</td>" for key in HEADLINE)
         + f"<td>{'yes' if r['cri_meaningful'] else 'no'}</td></tr>"
         for r in records
     )
