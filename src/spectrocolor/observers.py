@@ -57,7 +57,32 @@ def observer_names() -> tuple[str, ...]:
 
 
 def canonical_observer_name(name: str) -> str:
-    """Canonical name for an observer name or alias (``"1931"``, ``"10deg"``, …), or raise."""
+    """Canonical name for an observer name or alias (``"1931"``, ``"10deg"``, …), or raise.
+
+    The one observer resolver: every function, the command line and the app pass observer
+    names through it.
+
+    Parameters
+    ----------
+    name : str
+        A canonical name or an alias of :data:`OBSERVERS`, in any case; spaces, underscores and
+        "degree" for "deg" are tolerated.
+
+    Returns
+    -------
+    str
+        The canonical name, e.g. ``"CIE 1964 10°"``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a non-string or an unknown observer, listing the observers.
+
+    Examples
+    --------
+    >>> canonical_observer_name("10 degree"), canonical_observer_name("2015-10")
+    ('CIE 1964 10°', 'CIE 2015 10°')
+    """
     if not isinstance(name, str):
         raise ColorimetryError(f"observer: expected a name such as '1931' or '1964', got {name!r}")
     key = " ".join(name.strip().lower().replace("_", " ").replace("degree", "deg").split())
