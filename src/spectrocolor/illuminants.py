@@ -70,7 +70,30 @@ def illuminant_names() -> tuple[str, ...]:
 
 
 def canonical_illuminant_name(name: str) -> str:
-    """``"d65"``, ``"FL 11"``, ``"led_b1"`` → ``"D65"``, ``"FL11"``, ``"LED-B1"``; or raise."""
+    """``"d65"``, ``"FL 11"``, ``"led_b1"`` → ``"D65"``, ``"FL11"``, ``"LED-B1"``; or raise.
+
+    Parameters
+    ----------
+    name : str
+        A CIE illuminant name in any case, with or without spaces or underscores (``"F2"`` is
+        read as ``"FL2"``).
+
+    Returns
+    -------
+    str
+        One of :func:`illuminant_names`.
+
+    Raises
+    ------
+    ColorimetryError
+        For a non-string or an unknown name (use :func:`canonical_illuminant` for
+        ``"blackbody:T"``, ``"D:T"`` and temperatures).
+
+    Examples
+    --------
+    >>> canonical_illuminant_name("fl 11"), canonical_illuminant_name("led_b1"), canonical_illuminant_name("F2")
+    ('FL11', 'LED-B1', 'FL2')
+    """
     if not isinstance(name, str):
         raise ColorimetryError(f"illuminant: expected a name such as 'D65', got {name!r}")
     key = re.sub(r"[\s_]+", "", name.strip().upper())
@@ -214,6 +237,26 @@ def planck(wavelengths_nm, temperature_K, c2_m_K: float) -> np.ndarray:
     """Relative Planck spectral radiance ``1 / (λ⁵ (exp(c₂/λT) − 1))`` with λ in m, arbitrary scale.
 
     ``wavelengths_nm`` and ``temperature_K`` broadcast against each other (e.g. (K,) and (N, 1)).
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like
+        Wavelengths, nm.
+    temperature_K : array_like
+        Temperatures, K.
+    c2_m_K : float
+        Second radiation constant c₂, m·K (e.g. :data:`C2_CODATA_M_K`).
+
+    Returns
+    -------
+    numpy.ndarray
+        The broadcast shape; proportional to spectral radiance (the constant ``2hc²`` omitted).
+
+    Examples
+    --------
+    >>> p = planck([400.0, 560.0, 700.0], 6504.0, C2_CODATA_M_K)
+    >>> (100 * p / p[1]).round(3).tolist()  # as blackbody(6504, [400, 560, 700])
+    [109.067, 100.0, 73.951]
     """
     wavelength_m = np.asarray(wavelengths_nm, dtype=float) * 1e-9
     return 1.0 / (wavelength_m**5 * np.expm1(c2_m_K / (wavelength_m * temperature_K)))
