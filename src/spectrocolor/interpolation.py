@@ -123,6 +123,25 @@ def resample_linear(source_nm, values, target_nm) -> np.ndarray:
     the two neighbours of each target sample (memory of the result only, never M x K), so a
     NaN affects only the targets next to it. Keeps a floating ``values`` dtype.
 
+    Parameters
+    ----------
+    source_nm : array_like, shape (K,)
+        Strictly increasing source wavelengths, nm.
+    values : array_like, shape (..., K)
+        Values on ``source_nm``.
+    target_nm : array_like, shape (M,)
+        Target wavelengths, nm, inside the source range.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., M)
+        Linearly interpolated values (exact at coinciding samples).
+
+    Raises
+    ------
+    SpectrumError
+        For a target outside the source range (never extrapolated).
+
     Examples
     --------
     >>> resample_linear([400.0, 500.0, 600.0], [[0.0, 1.0, 3.0]], [400.0, 450.0, 575.0])
