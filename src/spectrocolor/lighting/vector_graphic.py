@@ -132,11 +132,11 @@ def vector_graphic(fidelity: Fidelity, index=(), *, ax=None, title: str | None =
     ax.set_aspect("equal")
     ax.set_xticks([])
     ax.set_yticks([])
-    pick = lambda a: float(np.asarray(a)[index])  # noqa: E731
-    ax.text(-1.45, 1.45, f"Rf {pick(fidelity.Rf):.0f}", va="top", fontsize=12, weight="bold")
-    ax.text(1.45, 1.45, f"Rg {pick(fidelity.Rg):.0f}", va="top", ha="right", fontsize=12, weight="bold")
-    ax.text(-1.45, -1.45, f"CCT {pick(fidelity.cct_K):.0f} K", fontsize=10)
-    ax.text(1.45, -1.45, f"Duv {pick(fidelity.duv):.4f}", ha="right", fontsize=10)
+    Rf, Rg, cct_K, duv = (float(np.asarray(v)[index]) for v in (fidelity.Rf, fidelity.Rg, fidelity.cct_K, fidelity.duv))
+    ax.text(-1.45, 1.45, f"Rf {Rf:.0f}", va="top", fontsize=12, weight="bold")
+    ax.text(1.45, 1.45, f"Rg {Rg:.0f}", va="top", ha="right", fontsize=12, weight="bold")
+    ax.text(-1.45, -1.45, f"CCT {cct_K:.0f} K", fontsize=10)
+    ax.text(1.45, -1.45, f"Duv {duv:.4f}", ha="right", fontsize=10)
     if title:
         ax.set_title(title)
     return figure
