@@ -76,6 +76,20 @@ class SRGBCurve:
         (seed 000, eqs. 22-23) prints 0.00304, the value of the 1996 sRGB proposal; with it the
         two branches differ by 1e-5 at the break (0.039277 vs 0.039287), invisible at 8 bits
         but not continuous. Pass ``threshold=0.00304`` to reproduce the seed exactly.
+    name : str, default "sRGB (IEC 61966-2-1)"
+        Label shown in reports.
+
+    References
+    ----------
+    IEC 61966-2-1:1999, §4.2 (the sRGB encoding); seed 000, eqs. 22–23.
+
+    Examples
+    --------
+    >>> curve = SRGBCurve()
+    >>> curve.encode([0.0, 0.18, 1.0]).round(4).tolist(), curve.decode([0.5]).round(4).tolist()
+    ([0.0, 0.4614, 1.0], [0.214])
+    >>> SRGBCurve(threshold=0.00304).encode([0.00304]).round(6).tolist()  # seed 000's break point
+    [0.039277]
     """
 
     threshold: float = 0.0031308
@@ -106,6 +120,19 @@ class PowerLaw:
     gamma : float
         Display exponent (> 0): 2.2 for a generic CRT (seed 000), 2.204 for SPECTRA's monitor
         (seed 002), 563/256 = 2.19921875 for Adobe RGB (1998).
+    name : str, optional
+        Label shown in reports; default ``"gamma <gamma>"``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a gamma that is not positive and finite.
+
+    Examples
+    --------
+    >>> curve = PowerLaw(2.2)
+    >>> curve, curve.encode([0.18]).round(4).tolist(), curve.decode([0.5]).round(4).tolist()
+    (PowerLaw(gamma=2.2, name='gamma 2.2'), [0.4587], [0.2176])
     """
 
     gamma: float
@@ -133,6 +160,25 @@ class BT2020Curve:
 
     ``encoded = 4.5 * linear`` below ``beta = 0.018053968510807``, else
     ``alpha * linear ** 0.45 - (alpha - 1)`` with ``alpha = 1.09929682680944``.
+
+    Parameters
+    ----------
+    name : str, default "ITU-R BT.2020"
+        Label shown in reports.
+    alpha : float, default 1.09929682680944
+        The curve's α.
+    beta : float, default 0.018053968510807
+        The linear break point β.
+
+    References
+    ----------
+    ITU-R Recommendation BT.2020-2 (2015), Table 4.
+
+    Examples
+    --------
+    >>> curve = BT2020Curve()
+    >>> curve.encode([0.01, 0.18]).round(4).tolist(), curve.decode([0.5]).round(4).tolist()
+    ([0.045, 0.4088], [0.2597])
     """
 
     name: str = "ITU-R BT.2020"
@@ -164,13 +210,31 @@ class LevelTable:
     levels : array_like, shape (N,)
         Emission at levels 0..N-1 as a fraction of full emission: strictly increasing, starting
         at 0 and ending at 1 (SPECTRA's ``c.dat``: 64 numbers, 0 at level 0, 1 at level 63).
-    name : str
+    name : str, default "measured levels"
+        Label shown in reports.
 
     Notes
     -----
     Encoding a linear value picks the level whose emission is nearest (SPECTRA's ``digit()``:
     "scans the list, finds the nearest value and returns the index"); ties go to the lower
     level. The encoded value is ``index / (N - 1)``; decoding returns the table's emission.
+
+    Raises
+    ------
+    ColorimetryError
+        For levels that are not a 1-D table of at least 2 values increasing strictly from 0 to 1.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999), Appendix: ``c.dat`` and ``digit()``.
+
+    Examples
+    --------
+    >>> table = LevelTable([0.0, 0.2, 0.6, 1.0])
+    >>> table.index([0.1, 0.35, 0.5]).tolist()  # nearest level; the tie at 0.1 goes down
+    [0, 1, 2]
+    >>> table.encode([0.35]).round(4).tolist(), table.decode([1 / 3]).tolist()
+    ([0.3333], [0.2])
     """
 
     levels: np.ndarray
@@ -193,7 +257,28 @@ class LevelTable:
         return int(self.levels.size)
 
     def index(self, rgb_linear) -> np.ndarray:
-        """Nearest level index (0..N-1) for linear values in [0, 1]; NaN is refused."""
+        """Nearest level index (0..N-1) for linear values in [0, 1]; NaN is refused.
+
+        Parameters
+        ----------
+        rgb_linear : array_like
+            Linear drive values (relative emission) in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray of int
+            Level indices, same shape (ties go to the lower level).
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1] or NaN.
+
+        Examples
+        --------
+        >>> LevelTable([0.0, 0.2, 0.6, 1.0]).index([0.35, 1.0]).tolist()
+        [1, 3]
+        """
         x = _check_unit_range(rgb_linear, "rgb_linear")
         if np.any(np.isnan(x)):
             raise ColorimetryError("rgb_linear contains NaN, which has no signal level")
@@ -203,11 +288,53 @@ class LevelTable:
         return np.where(take_upper, upper, lower)
 
     def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded ``index / (N - 1)`` of the nearest level."""
+        """Linear 0-1 -> encoded ``index / (N - 1)`` of the nearest level.
+
+        Parameters
+        ----------
+        rgb_linear : array_like
+            Linear drive values in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            Encoded values ``index / (N - 1)``, same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1] or NaN.
+
+        Examples
+        --------
+        >>> LevelTable([0.0, 0.2, 0.6, 1.0]).encode([0.35]).round(4).tolist()
+        [0.3333]
+        """
         return self.index(rgb_linear) / (self.n_levels - 1)
 
     def decode(self, rgb_encoded):
-        """Encoded ``index / (N - 1)`` -> the table's emission at that level."""
+        """Encoded ``index / (N - 1)`` -> the table's emission at that level.
+
+        Parameters
+        ----------
+        rgb_encoded : array_like
+            Encoded values in [0, 1] (rounded to the nearest level).
+
+        Returns
+        -------
+        numpy.ndarray
+            Relative emission (linear, 0–1), same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1].
+
+        Examples
+        --------
+        >>> LevelTable([0.0, 0.2, 0.6, 1.0]).decode([1 / 3]).tolist()
+        [0.2]
+        """
         v = _check_unit_range(rgb_encoded, "rgb_encoded")
         index = np.rint(v * (self.n_levels - 1)).astype(int)
         return self.levels[index]
