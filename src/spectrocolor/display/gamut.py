@@ -42,13 +42,29 @@ def _rgb(rgb_linear) -> np.ndarray:
 def gamut_flags(rgb_linear, tolerance: float = DEFAULT_TOLERANCE):
     """Per-channel flags ``negative`` and ``over`` (> 1) and per-colour ``in_gamut``.
 
+    Parameters
+    ----------
+    rgb_linear : array_like, shape (..., 3)
+        Normalised linear RGB (1 = full drive).
+    tolerance : float, default DEFAULT_TOLERANCE
+        Channels within this distance of [0, 1] count as in gamut (and are snapped to 0 or 1).
+
     Returns
     -------
     in_gamut : ndarray bool (...,)
+        Every channel within [-tolerance, 1 + tolerance].
     negative : ndarray bool (..., 3)
+        Channels below -tolerance.
     over : ndarray bool (..., 3)
+        Channels above 1 + tolerance.
 
     NaN channels are neither negative nor over; a colour with NaN is not in gamut.
+
+    Examples
+    --------
+    >>> in_gamut, negative, over = gamut_flags([[0.5, 0.5, 0.5], [0.9, -0.05, -0.02]])
+    >>> in_gamut.tolist(), negative[1].tolist()
+    ([True, False], [False, True, True])
     """
     rgb = _rgb(rgb_linear)
     negative = rgb < -tolerance
@@ -69,14 +85,54 @@ def _inside(rgb: np.ndarray) -> np.ndarray:
 
 
 def flag_black(rgb_linear, tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
-    """SPECTRA's strategy: out-of-gamut colours are shown black (seed 002, STEP 3)."""
+    """SPECTRA's strategy: out-of-gamut colours are shown black (seed 002, STEP 3).
+
+    Parameters
+    ----------
+    rgb_linear : array_like, shape (..., 3)
+        Normalised linear RGB (1 = full drive).
+    tolerance : float, default DEFAULT_TOLERANCE
+        Channels within this distance of [0, 1] count as in gamut (and are snapped to 0 or 1).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        In-gamut colours unchanged, the others (0, 0, 0): "cannot be reproduced".
+
+    Examples
+    --------
+    >>> from spectrocolor import rgb_space
+    >>> colours = [[0.5, 0.5, 0.5], [0.9, -0.05, -0.02], [1.2, 0.5, 0.1]]
+    >>> flag_black(colours).tolist()
+    [[0.5, 0.5, 0.5], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+    """
     rgb = _snap(_rgb(rgb_linear), tolerance)
     in_gamut, _, _ = gamut_flags(rgb, tolerance)
     return np.where(in_gamut[..., None], rgb, 0.0)
 
 
 def clip(rgb_linear, tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
-    """Each channel clipped to [0, 1] independently (changes hue, saturation and luminance)."""
+    """Each channel clipped to [0, 1] independently (changes hue, saturation and luminance).
+
+    Parameters
+    ----------
+    rgb_linear : array_like, shape (..., 3)
+        Normalised linear RGB (1 = full drive).
+    tolerance : float, default DEFAULT_TOLERANCE
+        Channels within this distance of [0, 1] count as in gamut (and are snapped to 0 or 1).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Channels in [0, 1].
+
+    Examples
+    --------
+    >>> from spectrocolor import rgb_space
+    >>> colours = [[0.5, 0.5, 0.5], [0.9, -0.05, -0.02], [1.2, 0.5, 0.1]]
+    >>> clip(colours).tolist()
+    [[0.5, 0.5, 0.5], [0.9, 0.0, 0.0], [1.0, 0.5, 0.1]]
+    """
     return np.clip(_snap(_rgb(rgb_linear), tolerance), 0.0, 1.0)
 
 
@@ -95,9 +151,32 @@ def preserve_luminance(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOL
 
     Parameters
     ----------
-    rgb_linear : (..., 3)
-    luminance_row : (3,)
+    rgb_linear : array_like, shape (..., 3)
+        Normalised linear RGB (1 = full drive).
+    luminance_row : array_like, shape (3,)
         Y of each primary at full drive (``RGBSpace.luminance_row``); any positive scale.
+    tolerance : float, default DEFAULT_TOLERANCE
+        Channels within this distance of [0, 1] count as in gamut (and are snapped to 0 or 1).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Channels in [0, 1]; Y kept unless a channel had to be clipped above 1.
+
+    References
+    ----------
+    Seed 000 (Zawischa), eqs. 20–21.
+
+    Examples
+    --------
+    >>> from spectrocolor import rgb_space
+    >>> colours = [[0.5, 0.5, 0.5], [0.9, -0.05, -0.02], [1.2, 0.5, 0.1]]
+    >>> row = rgb_space("sRGB").luminance_row
+    >>> mapped = preserve_luminance(colours, row)
+    >>> mapped.round(4).tolist()
+    [[0.5, 0.5, 0.5], [0.725, 0.0, 0.0], [1.0, 0.5, 0.1]]
+    >>> (mapped @ row).round(4).tolist()  # Y of the second colour kept (15.4173)
+    [50.0, 15.4173, 57.7443]
     """
     rgb = _snap(_rgb(rgb_linear), tolerance)
     y_c = np.asarray(luminance_row, dtype=float)
@@ -123,6 +202,32 @@ def desaturate(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
 
     Colours darker than black (Y <= 0) become black and colours brighter than the white
     (Y > Y_white) become the white: no in-gamut colour has their luminance.
+
+    Parameters
+    ----------
+    rgb_linear : array_like, shape (..., 3)
+        Normalised linear RGB (1 = full drive).
+    luminance_row : array_like, shape (3,)
+        Y of each primary at full drive (``RGBSpace.luminance_row``); any positive scale.
+    tolerance : float, default DEFAULT_TOLERANCE
+        Channels within this distance of [0, 1] count as in gamut (and are snapped to 0 or 1).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Channels in [0, 1], with the input's luminance and hue (chromaticity on the line to the
+        white point).
+
+    Examples
+    --------
+    >>> from spectrocolor import rgb_space
+    >>> colours = [[0.5, 0.5, 0.5], [0.9, -0.05, -0.02], [1.2, 0.5, 0.1]]
+    >>> row = rgb_space("sRGB").luminance_row
+    >>> mapped = desaturate(colours, row)
+    >>> mapped.round(4).tolist()
+    [[0.5, 0.5, 0.5], [0.7174, 0.0, 0.0227], [1.0, 0.5414, 0.2793]]
+    >>> (mapped @ row).round(4).tolist()  # every Y kept
+    [50.0, 15.4173, 61.997]
     """
     rgb = _snap(_rgb(rgb_linear), tolerance)
     y_c = np.asarray(luminance_row, dtype=float)
