@@ -25,6 +25,7 @@ three-dimensional linear interpolation", J. Electronic Imaging 4, 226–250 (199
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -84,6 +85,14 @@ _ORDER_OF_CODE = np.array([(2, 1, 0), (0, 1, 2), (1, 2, 0), (1, 0, 2), (2, 0, 1)
                            (0, 1, 2), (0, 1, 2)], dtype=np.intp)
 
 
+@lru_cache(maxsize=16)
+def _path_offsets(n: int) -> np.ndarray:
+    """Flat offsets of the 2nd, 3rd and 4th tetrahedron corner from the cell's base node, per
+    comparison code: cumulative sums of the strides ``(n², n, 1)`` in the code's axis order."""
+    strides = np.array([n * n, n, 1], dtype=np.intp)
+    return np.cumsum(strides[_ORDER_OF_CODE], axis=-1)
+
+
 @dataclass(frozen=True)
 class Lookup:
     """Where each query lands: four node indices and their barycentric weights.
@@ -133,20 +142,21 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     s = t * (n - 1)
     base = np.minimum(s.astype(np.intp), n - 2)  # t >= 0 here, so truncation is floor
     f = s - base
-    order = _ORDER_OF_CODE[(f[..., 0] >= f[..., 1]) * 4 + (f[..., 1] >= f[..., 2]) * 2
-                           + (f[..., 0] >= f[..., 2])]
-    fs = np.take_along_axis(f, order, axis=-1)
+    code = ((f[..., 0] >= f[..., 1]).astype(np.intp) * 4 + (f[..., 1] >= f[..., 2]) * 2
+            + (f[..., 0] >= f[..., 2]))
+    f0, f1, f2 = f[..., 0], f[..., 1], f[..., 2]
+    low01, high01 = np.minimum(f0, f1), np.maximum(f0, f1)
+    high = np.maximum(high01, f2)  # the fractions sorted by selection (no rounding)
+    middle = np.maximum(low01, np.minimum(high01, f2))
+    low = np.minimum(low01, f2)
     weights = np.empty((*t.shape[:-1], 4))
-    weights[..., 0] = 1.0 - fs[..., 0]
-    weights[..., 1] = fs[..., 0] - fs[..., 1]
-    weights[..., 2] = fs[..., 1] - fs[..., 2]
-    weights[..., 3] = fs[..., 2]
-    strides = np.array([n * n, n, 1], dtype=np.intp)
-    steps = strides[order]  # (..., 3): flat step along each axis in order
+    np.subtract(1.0, high, out=weights[..., 0])
+    np.subtract(high, middle, out=weights[..., 1])
+    np.subtract(middle, low, out=weights[..., 2])
+    weights[..., 3] = low
     nodes = np.empty((*t.shape[:-1], 4), dtype=np.intp)
-    nodes[..., 0] = base @ strides
-    np.cumsum(steps, axis=-1, out=nodes[..., 1:])
-    nodes[..., 1:] += nodes[..., :1]
+    nodes[..., 0] = (base[..., 0] * n + base[..., 1]) * n + base[..., 2]
+    np.add(nodes[..., :1], _path_offsets(n)[code], out=nodes[..., 1:])
     if table.all_exact:
         exact = ~outside
     else:
