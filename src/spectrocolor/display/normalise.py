@@ -41,9 +41,10 @@ def normalise(rgb_linear, method: str, scale=None):
 
     Parameters
     ----------
-    rgb_linear : (..., 3)
+    rgb_linear : array_like, shape (..., 3)
         Linear RGB before normalisation.
     method : {"none", "fixed", "per-colour", "global-max"}
+        A name in :data:`NORMALISATIONS` (see the module docstring).
     scale : float, optional
         Required for ``"fixed"`` (a positive divisor); refused for the other methods.
 
@@ -55,6 +56,25 @@ def normalise(rgb_linear, method: str, scale=None):
         largest channel is <= 0 (black, or not displayable by any positive scale) keeps scale 1
         under ``"per-colour"``; an input whose largest channel is <= 0 keeps scale 1 under
         ``"global-max"``.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown method, ``"fixed"`` without a positive finite ``scale``, or ``scale``
+        with another method.
+
+    References
+    ----------
+    Seed 002 (Sällström 1999), STEP 2 (alternatives A and B); seed 000 (Zawischa), p. 6.
+
+    Examples
+    --------
+    >>> rgb, scale = normalise([[0.2, 0.4, 0.8], [1.0, 0.5, 0.0]], "per-colour")
+    >>> rgb.tolist(), scale.tolist()
+    ([[0.25, 0.5, 1.0], [1.0, 0.5, 0.0]], [0.8, 1.0])
+    >>> rgb, scale = normalise([[0.2, 0.4, 0.8]], "fixed", scale=1.58)  # SPECTRA's R_max
+    >>> rgb.round(4).tolist(), scale
+    ([[0.1266, 0.2532, 0.5063]], 1.58)
     """
     rgb = np.asarray(rgb_linear, dtype=float)
     method = NORMALISATIONS.canonical(method)
