@@ -139,21 +139,35 @@ def swatch_image(
 
     Parameters
     ----------
-    rgb8 : (N, 3) integers 0-255
-    size : int
+    rgb8 : array_like of int, shape (N, 3)
+        8-bit codes 0–255.
+    size : int, default 64
         Swatch side in pixels.
     columns : int, optional
         Swatches per row (default: all in one row, at most 8).
-    gap : int
+    gap : int, default 4
         Pixels between swatches and around them.
-    background : (3,) integers 0-255
-    crossed : (N,) bool, optional
+    background : tuple of int, default (255, 255, 255)
+        8-bit colour of the background.
+    crossed : array_like of bool, shape (N,), optional
         Swatches to mark with a diagonal cross in the background colour -- e.g.
         ``~rendering.in_gamut`` to show SPECTRA's "cannot be reproduced".
 
     Returns
     -------
     ndarray (H, W, 3) uint8
+        The picture.
+
+    Raises
+    ------
+    ColorimetryError
+        For codes that are not (N, 3) integers 0–255, or invalid sizes.
+
+    Examples
+    --------
+    >>> image = swatch_image([[255, 0, 0], [0, 0, 255]], size=8, gap=2, crossed=[False, True])
+    >>> image.shape, image[2, 2].tolist(), image[2, 12].tolist()  # the second swatch is crossed
+    ((12, 22, 3), [255, 0, 0], [255, 255, 255])
     """
     colours = _rgb8(rgb8)
     if int(size) != size or size < 1 or int(gap) != gap or gap < 0:
@@ -193,16 +207,36 @@ def strip_image(
 
     Parameters
     ----------
-    rgb8 : (N, 3) integers 0-255
-    height : int
+    rgb8 : array_like of int, shape (N, 3)
+        8-bit codes 0–255, one column each.
+    height : int, default 80
+        Picture height in pixels, tick band included.
     ticks : sequence of int, optional
         Column indices (0-based) of tick marks; None for no tick band.
-    tick_height : int
-    tick_rgb8 : (3,) integers 0-255
+    tick_height : int, default 10
+        Height of the black tick band in pixels.
+    tick_rgb8 : tuple of int, default (255, 255, 255)
+        8-bit colour of the ticks.
 
     Returns
     -------
     ndarray (height, N, 3) uint8
+        The picture.
+
+    Raises
+    ------
+    ColorimetryError
+        For malformed codes, a height not above the tick band, or ticks outside the strip.
+
+    References
+    ----------
+    Seed 000 (Zawischa), Appendix A (the Fortran that draws the strip).
+
+    Examples
+    --------
+    >>> strip = strip_image([[255, 0, 0]] * 5, height=10, ticks=[2], tick_height=3)
+    >>> strip.shape, strip[0, 0].tolist(), strip[9, 2].tolist(), strip[9, 0].tolist()
+    ((10, 5, 3), [255, 0, 0], [255, 255, 255], [0, 0, 0])
     """
     colours = _rgb8(rgb8)
     n = colours.shape[0]
@@ -227,6 +261,33 @@ def save_image(image, path) -> Path:
     The file is written beside ``path``, read back and renamed over it
     (:func:`spectrocolor.safe_write.atomic_path`): a failed write leaves any previous file
     unchanged and raises :class:`spectrocolor.safe_write.OutputError`.
+
+    Parameters
+    ----------
+    image : numpy.ndarray of uint8, shape (H, W, 3)
+        8-bit codes.
+    path : str or os.PathLike
+        Output file ending in ``.png`` (needs Pillow) or ``.ppm``.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ColorimetryError
+        For an image that is not (H, W, 3) uint8, or another extension.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     save_image(np.zeros((2, 3, 3), np.uint8), pathlib.Path(folder) / "black.ppm").name
+    'black.ppm'
     """
     img = np.asarray(image)
     if img.ndim != 3 or img.shape[2] != 3 or img.dtype != np.uint8 or 0 in img.shape:
