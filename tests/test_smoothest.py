@@ -406,3 +406,28 @@ def test_ill_conditioned_colours_at_depth_1e_9_are_certified(grid, illuminant, X
         assert rho.min() >= 0.0 and rho.max() <= 1.0
         assert np.abs(rho @ W - XYZ).max() <= 1e-12 * (rho @ W).max()
         assert_kkt(W, grid[2], rho, 1.0)
+
+
+@pytest.mark.parametrize("bounds", ["nonnegative", "unit"])
+def test_cone_edge_colours_are_answered_never_raised(bounds):
+    """Single wavelengths (400, 480, 630 nm), a reflectance that is zero below 650 nm (Z = 0)
+    and black, in one batch: every colour gets an answer (no exception), a converged one is
+    exact and passes the independent check. (Measured on this grid: with ρ ≥ 0 the 400 nm and
+    630 nm lines and the Z = 0 reflectance are still flagged not converged, with 0 ≤ ρ ≤ 1
+    all five are certified.)"""
+    grid = (380.0, 780.0, 5.0)
+    wl = sc.wavelength_grid(*grid)
+    W = _weights(grid)
+    R = np.zeros((5, len(wl)))
+    for row, nm in enumerate((400, 480, 630)):
+        R[row, np.argmin(np.abs(wl - nm))] = 1.0
+    R[3] = wl >= 650
+    r = smoothest_reflectance(R @ W, wavelengths=grid, bounds=bounds)
+    assert np.all(r.feasible)
+    ok = r.certificate.converged
+    assert ok[4] and (bounds == "nonnegative" or np.all(ok))
+    upper = 1.0 if bounds == "unit" else np.inf
+    for i in np.flatnonzero(ok):
+        assert np.abs(r.spectrum.values[i] @ W - R[i] @ W).max() <= 1e-12 * max(1.0, (R[i] @ W).max())
+        if i < 4:
+            assert_kkt(W, 5.0, r.spectrum.values[i], upper, mu_hint=r.multipliers[i])

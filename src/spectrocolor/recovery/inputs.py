@@ -54,8 +54,8 @@ def grid_key(wavelengths) -> tuple[float, float, float]:
 
     Examples
     --------
-    >>> grid_key([400.0, 410.0, 420.0])
-    (400.0, 420.0, 10.0)
+    >>> grid_key(np.arange(400.0, 431.0, 10.0))
+    (400.0, 430.0, 10.0)
     """
     if isinstance(wavelengths, tuple | list) and len(wavelengths) == 3:
         if all(isinstance(v, Real) for v in wavelengths):
