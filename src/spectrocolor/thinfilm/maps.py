@@ -35,21 +35,29 @@ class ColourTable:
 
     Attributes
     ----------
-    thickness_step_nm
-        Spacing of the thickness grid; entry ``i`` is ``i * thickness_step_nm``.
-    angle_step_deg
-        Spacing of the angle grid (entry ``j`` is ``j * angle_step_deg``, the last one capped at
+    thickness_step_nm : float
+        Spacing of the thickness grid, nm; entry ``i`` is ``i * thickness_step_nm``.
+    angle_step_deg : float or None
+        Spacing of the angle grid, degrees (entry ``j`` is ``j * angle_step_deg``, the last one capped at
         89.9°); ``None`` when the table was built for one angle.
-    rgb8
-        ``uint8`` codes, shape ``(angles, thicknesses, 3)``.
-    description
+    rgb8 : numpy.ndarray of uint8, shape (angles, thicknesses, 3)
+        8-bit codes.
+    description : str
         What the table was built from (film, light, observer, exposure).
-    rgb_linear
+    rgb_linear : numpy.ndarray, optional
         Linear drive values (after exposure and gamut strategy) of the same entries, float64;
         needed to interpolate between angles (tables with an angle grid).
-    transfer
+    transfer : transfer object, optional
         The display's transfer function (``encode``), to turn interpolated linear values into
         codes as :func:`spectrocolor.render` does.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import colour_table, soap_film
+    >>> table = colour_table(soap_film, 600.0, thickness_step_nm=1.0, max_angle_deg=60.0, angle_step_deg=30.0)
+    >>> table.rgb8.shape, table.angles_deg.tolist(), table.max_thickness_nm
+    ((3, 601, 3), [0.0, 30.0, 60.0], 600.0)
     """
 
     thickness_step_nm: float
@@ -84,12 +92,34 @@ class ColourTable:
 
         Parameters
         ----------
-        thickness_nm
+        thickness_nm : array_like
             Film thickness per pixel in nm, any shape; NaN = no film (``background``).
-        angle_deg
+        angle_deg : array_like, optional
             Angle of incidence per pixel in degrees (same shape, NaN allowed where thickness
             is NaN), within the table's angle grid ``0 .. angles_deg[-1]``; required if and
             only if the table has an angle grid.
+        background : tuple of int, default (0, 0, 0)
+            8-bit colour of the pixels without film.
+
+        Returns
+        -------
+        numpy.ndarray of uint8, shape (..., 3)
+            8-bit codes.
+
+        Raises
+        ------
+        SpectrumError
+            For thicknesses or angles outside the table, or an angle map given to (or missing
+            for) a table.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spectrocolor import colour_table, soap_film
+        >>> table = colour_table(soap_film, 600.0, thickness_step_nm=1.0, max_angle_deg=60.0,
+        ...                      angle_step_deg=30.0)
+        >>> table.lookup(np.array([300.0, np.nan]), np.array([15.0, np.nan])).tolist()
+        [[101, 151, 124], [0, 0, 0]]
         """
         d = np.asarray(thickness_nm)
         if d.dtype.kind != "f":
@@ -269,7 +299,32 @@ def _size(width: int, height: int) -> None:
 
 def wedge(width: int, height: int, max_thickness_nm: float,
           min_thickness_nm: float = 0.0) -> np.ndarray:
-    """A wedge: thickness rising linearly from left to right (nm), shape ``(height, width)``."""
+    """A wedge: thickness rising linearly from left to right (nm), shape ``(height, width)``.
+
+    Parameters
+    ----------
+    width, height : int
+        Image size in pixels.
+    max_thickness_nm : float
+        Thickness at the right edge, nm.
+    min_thickness_nm : float, default 0.0
+        Thickness at the left edge, nm.
+
+    Returns
+    -------
+    numpy.ndarray of float32, shape (height, width)
+        Thickness per pixel, nm.
+
+    Raises
+    ------
+    SpectrumError
+        For a size that is not a positive whole number.
+
+    Examples
+    --------
+    >>> wedge(5, 2, 400.0)[0].tolist()
+    [0.0, 100.0, 200.0, 300.0, 400.0]
+    """
     _size(width, height)
     row = np.linspace(min_thickness_nm, max_thickness_nm, width, dtype=np.float32)
     return np.broadcast_to(row, (height, width)).copy()
@@ -286,15 +341,38 @@ def draining_film(width: int, height: int, *, time_s: float, film_height_m: floa
 
     Parameters
     ----------
-    width, height
+    width, height : int
         Image size in pixels; the film spans ``film_height_m`` vertically.
-    time_s
+    time_s : float, keyword-only
         Time since the film was drawn (s, > 0).
+    film_height_m : float, keyword-only, default 0.05
+        Height of the film, m.
+    viscosity_Pa_s : float, keyword-only, default 1.0e-3
+        Dynamic viscosity η of the liquid, Pa·s (water at 20 °C).
+    density_kg_m3 : float, keyword-only, default 1000.0
+        Density ρ of the liquid, kg/m³.
+
+    Returns
+    -------
+    numpy.ndarray of float32, shape (height, width)
+        Thickness per pixel, nm (uniform along each row).
+
+    Raises
+    ------
+    SpectrumError
+        For a size that is not a positive whole number or a parameter that is not positive.
 
     References
     ----------
     K. J. Mysels, K. Shinoda and S. Frankel, *Soap Films: Studies of their Thinning and a
     Bibliography* (Pergamon, 1959).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> h = draining_film(3, 4, time_s=10.0)
+    >>> h.shape, bool(np.all(np.diff(h[:, 0]) > 0))  # thickening downward
+    ((4, 3), True)
     """
     _size(width, height)
     if not (time_s > 0 and film_height_m > 0 and viscosity_Pa_s > 0 and density_kg_m3 > 0):
@@ -313,6 +391,36 @@ def bubble(size: int, *, top_thickness_nm: float = 80.0, bottom_thickness_nm: fl
     sight. Drainage makes the film thin at the top and thick at the bottom (linear in height);
     ``swirl`` adds an illustrative marbling of that relative amplitude (0 for none). Pixels
     outside the sphere are NaN.
+
+    Parameters
+    ----------
+    size : int
+        Image side in pixels.
+    top_thickness_nm : float, keyword-only, default 80.0
+        Film thickness at the top of the bubble, nm.
+    bottom_thickness_nm : float, keyword-only, default 900.0
+        Film thickness at the bottom, nm.
+    swirl : float, keyword-only, default 0.15
+        Relative amplitude of the marbling.
+
+    Returns
+    -------
+    thickness_nm : numpy.ndarray of float32, shape (size, size)
+        Film thickness, nm; NaN outside the sphere.
+    angle_deg : numpy.ndarray of float32, shape (size, size)
+        Angle of incidence, degrees; NaN outside the sphere.
+
+    Raises
+    ------
+    SpectrumError
+        For a size that is not a positive whole number.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> thickness_nm, angle_deg = bubble(4)
+    >>> np.isnan(thickness_nm[0]).tolist(), round(float(angle_deg[1, 1]), 1)
+    ([True, False, False, True], 20.7)
     """
     _size(size, size)
     c = (np.arange(size, dtype=np.float32) + 0.5) / size * 2 - 1
@@ -332,7 +440,9 @@ def read_thickness_map(path, nm_per_count: float | None = None) -> np.ndarray:
 
     Parameters
     ----------
-    nm_per_count
+    path : str or os.PathLike
+        A ``.npy`` file (2-D, nm) or a greyscale ``.png`` (8 or 16 bit counts).
+    nm_per_count : float, optional
         Required for PNG: thickness in nm per grey count (e.g. 0.05 maps a 16-bit range to
         0-3277 nm). Must not be given for ``.npy`` (already in nm).
     """
