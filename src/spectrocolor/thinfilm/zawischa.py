@@ -44,13 +44,19 @@ class ZawischaStrip:
 
     Attributes
     ----------
-    opd_nm
-        Optical path difference of each column, nm, shape ``(1000,)``.
-    colours
+    opd_nm : numpy.ndarray, shape (columns,)
+        Optical path difference of each column, nm.
+    colours : FilmColours
         :class:`~spectrocolor.thinfilm.colour.FilmColours` (XYZ relative to a perfect
         reflector under the blackbody with α = 1, xy, the rendering and its 8-bit codes).
-    tick_columns
+    tick_columns : numpy.ndarray of int
         0-based columns at 500, 1000, ..., 5000 nm.
+
+    Examples
+    --------
+    >>> strip = zawischa_strip(columns=200)
+    >>> strip.colours.rgb8.shape, strip.tick_columns.tolist()
+    ((200, 3), [99, 199])
     """
 
     opd_nm: np.ndarray
@@ -59,7 +65,23 @@ class ZawischaStrip:
 
 
 def zawischa_space():
-    """sRGB primaries and D65 white of eqs. (11)-(12) with the seed's encoding threshold."""
+    """sRGB primaries and D65 white of eqs. (11)-(12) with the seed's encoding threshold.
+
+    Returns
+    -------
+    RGBSpace
+        sRGB with the 1996 break point 0.00304 of the encoding (transfer ``"srgb-1996"``).
+
+    References
+    ----------
+    Seed 000 (Zawischa), eqs. (11)–(12) and (22)–(23).
+
+    Examples
+    --------
+    >>> space = zawischa_space()
+    >>> space.name, space.transfer.threshold
+    ('sRGB (seed 000: threshold 0.00304)', 0.00304)
+    """
     from ..display.spaces import RGBSpace
 
     return RGBSpace.from_chromaticities(
