@@ -35,31 +35,41 @@ export function drawDiagram() {
   parts.push(svgEl("text", {class: "axis-name", x: 0.74, y: -0.02}, "x"),
     svgEl("text", {class: "axis-name", x: 0.012, y: -0.86}, "y"),
     svgEl("circle", {class: "white", r: 0.009, cx: m.white_xy[0], cy: -m.white_xy[1]}),
-    svgEl("g", {id: "pts"}));
+    $("pts") || svgEl("g", {id: "pts"}));  // the markers survive a redraw of the diagram
   fill(svg, parts);
   const dw = m.display_white_xy, cct = m.display_white ? m.display_white.cct_K : null;
   $("white-note").textContent = `${m.display}: white point x ${dw[0].toFixed(4)}, y ${dw[1].toFixed(4)}`
     + (cct ? `, CCT ${Math.round(cct)} K` : "") + ". Triangle: the colours this display can show.";
 }
 
-/** The markers of the current colours (numbered, in their patch colours) and their legend. */
+/** The markers and legend entries of the current setting's colours, built once per setting. */
+export function buildPoints(count) {
+  const shown = [...Array(count).keys()].filter((i) => !((S.setting === 4 || S.setting === 5) && i === 0));
+  fill($("pts"), shown.map((i, n) => svgEl("g", {class: "mark", "data-i": i},
+    svgEl("circle", {class: "pt", r: 0.016}, svgEl("title")),
+    svgEl("text", {class: "pt-n", "text-anchor": "middle"}, String(n + 1)))));
+  fill($("legend"), el("li", {}, el("span", {class: "key ring"}), "reference white"),
+    shown.map((i, n) => el("li", {"data-i": i}, el("span", {class: "key"}, String(n + 1)), el("span", {class: "name"}))));
+}
+
+/** Move the markers (numbered, in their patch colours) and update the legend. The white light
+ * of settings 4 and 5 is the reference white itself (the ring). */
 export function drawPoints(colours, labels, server) {
-  const g = $("pts");
-  if (!g) return;
   const white = server ? server.white_xy : S.model.white_xy;
   const wc = document.querySelector("#chroma .white");
   wc.setAttribute("cx", white[0]); wc.setAttribute("cy", -white[1]);
-  const marks = [], legend = [el("li", {}, el("span", {class: "key ring"}), "reference white")];
-  let count = 0;
-  colours.forEach((c, i) => {
-    if ((S.setting === 4 || S.setting === 5) && i === 0) return;  // the white light itself
-    const n = String(++count);
-    legend.push(el("li", {}, el("span", {class: "key", style: `background:${cssColour(c)}`}, n), labels[i]));
-    if (c.xy[0] === null) return;
-    marks.push(svgEl("circle", {class: "pt", r: 0.016, cx: c.xy[0], cy: -c.xy[1], fill: cssColour(c)},
-      svgEl("title", {}, labels[i])),
-    svgEl("text", {class: "pt-n", x: c.xy[0], y: -c.xy[1] + 0.0075, "text-anchor": "middle"}, n));
-  });
-  fill(g, marks);
-  fill($("legend"), legend);
+  for (const g of document.querySelectorAll("#pts .mark")) {
+    const i = Number(g.dataset.i), c = colours[i];
+    g.style.display = c.xy[0] === null ? "none" : "";
+    if (c.xy[0] === null) continue;
+    const dot = g.firstChild, n = g.lastChild;
+    dot.setAttribute("cx", c.xy[0]); dot.setAttribute("cy", -c.xy[1]); dot.setAttribute("fill", cssColour(c));
+    dot.firstChild.textContent = labels[i];
+    n.setAttribute("x", c.xy[0]); n.setAttribute("y", -c.xy[1] + 0.0075);
+  }
+  for (const li of document.querySelectorAll("#legend li[data-i]")) {
+    const i = Number(li.dataset.i);
+    li.firstChild.style.background = cssColour(colours[i]);
+    if (li.lastChild.textContent !== labels[i]) li.lastChild.textContent = labels[i];
+  }
 }

@@ -53,7 +53,7 @@ export function buildEditors(onEdit) {
       const [k0, v0] = last, n = Math.abs(k - k0);
       for (let j = 1; j <= n; j++) setLevel(i, k0 + Math.sign(k - k0) * j, v0 + (v - v0) * j / n);
       if (n === 0) setLevel(i, k, v);
-      last = [k, v]; S.cursor[`${S.setting}:${i}`] = k; onEdit();
+      last = [k, v]; S.cursor[`${S.setting}:${i}`] = k; S.editing = i; onEdit(false);
     });
     const stop = () => { if (last) { last = null; onEdit(true); } };
     cv.addEventListener("pointerup", stop); cv.addEventListener("pointercancel", stop);
@@ -105,12 +105,16 @@ function labels(g, w, h, hh) {  // drawn over the bars, with a dark halo so they
   }
 }
 
-export function drawEditors() {
+/** Redraw the bar editors: all of them, or (during a drag) only editor `only` and those that
+ * follow it (setting 3's other side, setting 5's product). */
+export function drawEditors(only = null) {
   const names = EDITORS[S.setting];
+  const follows = (i) => only === null || i === only || S.setting === 3 || (S.setting === 5 && i === 2);
   const lists = [...S.dists[S.setting]];
   if (S.setting === 5) lists.push(product());
   const tints = S.model ? S.model.tints : null;
   document.querySelectorAll("#editors .editor").forEach((ed, i) => {
+    if (!follows(i)) return;
     const cv = ed.querySelector("canvas");
     const [g, w, h] = plotArea(cv);
     const levels = lists[i], K = levels.length, bw = w / K, hh = h - PAD_TOP - PAD_BOTTOM;

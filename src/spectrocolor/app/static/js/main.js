@@ -9,7 +9,7 @@ import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stat
 import {localColour, localWeights, whiteOf, emitted} from "./colour.js";
 import {buildPatches, buildCards, paint, evalSpec, markStale, gamutLabel, NORMALISE_TEXT} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
-import {drawDiagram, drawPoints} from "./diagram.js";
+import {drawDiagram, buildPoints, drawPoints} from "./diagram.js";
 import {applyPreset, presetButtons} from "./presets.js";
 
 window.__spectra = S;  // for the browser tests and the latency bench
@@ -41,7 +41,8 @@ function update(final = true) {
   S.settled = false;
   const e = evalSpec();
   const lw = localWeights(S.model, S.normalise, e.illuminant);
-  drawEditors();
+  drawEditors(S.editing);
+  S.editing = null;
   if (lw) {
     S.localWhite = whiteOf(lw.W);
     S.local = e.spectra.map((s) => localColour(s, S.model, {W: lw.W, scale: lw.scale, normalise: S.normalise, gamut: S.gamut}));
@@ -111,7 +112,8 @@ function selectSetting(n, push = true) {
   });
   $("stage").setAttribute("aria-labelledby", `tab-${n}`);
   document.title = `spectrocolor · ${SETTING_NAMES[n]}`;
-  buildEditors(update); buildPatches(); buildCards(evalSpec().spectra.length);
+  const count = evalSpec().spectra.length;
+  buildEditors(update); buildPatches(); buildCards(count); buildPoints(count);
   presetButtons(update, say); actionButtons();
   $("emitted-box").hidden = true;
   if (push) history.pushState({setting: n}, "", stateURL());
@@ -394,7 +396,7 @@ async function init() {
   $("file").addEventListener("change", (e) => { if (e.target.files[0]) loadFile(e.target.files[0]); e.target.value = ""; });
   $("about-open").addEventListener("click", () => $("about").showModal());
   $("error-close").addEventListener("click", dismissError);
-  $("locus-fill").addEventListener("change", (e) => { S.filledLocus = e.target.checked; drawDiagram(); update(); });
+  $("locus-fill").addEventListener("change", (e) => { S.filledLocus = e.target.checked; drawDiagram(); });
   $("menu").addEventListener("click", () => {
     const open = document.body.classList.toggle("tools-open");
     $("menu").setAttribute("aria-expanded", String(open));

@@ -16,6 +16,7 @@ export const S = {
   dists: {}, names: {}, edited: {}, cursor: {}, active: perSetting(() => 0),
   undo: perSetting(() => []), redo: perSetting(() => []),
   sunset: -1, level: {left: -1, right: -1},
+  editing: null,  // the editor a drag is changing (only it, and what follows it, is redrawn)
   server: null, local: null, inflight: false, dirty: false, settled: false, stale: false, seq: 0,
 };
 

@@ -1,0 +1,312 @@
+// The light-source lab. The page describes a light (a named one, or Gaussian primaries) and shows
+// what the library computes for it (POST /api/lab/light): CCT, Duv, Ra, R1-R14, Rf, Rg, the TM-30
+// vector graphic, LER, melanopic DER and the test samples under the light and the reference.
+
+const $ = (id) => document.getElementById(id);
+const DEFAULT_LEDS = [[450, 20, 1.0], [540, 60, 0.7], [620, 20, 0.8]];
+const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB" };
+
+let state = structuredClone(DEFAULTS);
+let result = null;
+let inflight = false;
+let dirty = false;
+const undoStack = [];
+const redoStack = [];
+
+function showError(message) {
+  $("error-text").textContent = message;
+  $("error").hidden = false;
+}
+
+async function api(path, body) {
+  const init = body === undefined ? {} : {
+    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
+  };
+  const response = await fetch(path, init);
+  const data = await response.json();
+  if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
+  return data;
+}
+
+// ---- state, URL, undo ----------------------------------------------------------------------
+function encode(s) {
+  const params = new URLSearchParams({ kind: s.kind, name: s.name, T: String(s.temperature), display: s.display });
+  params.set("leds", s.leds.map((p) => p.join(":")).join(","));
+  return "#" + params.toString();
+}
+
+function decode(hash) {
+  const params = new URLSearchParams(hash.slice(1));
+  const next = structuredClone(DEFAULTS);
+  if (params.get("kind") === "leds" || params.get("kind") === "named") next.kind = params.get("kind");
+  if (params.has("name")) next.name = params.get("name");
+  if (params.has("display")) next.display = params.get("display");
+  const T = Number(params.get("T"));
+  if (Number.isFinite(T) && T >= 1000 && T <= 20000) next.temperature = T;
+  if (params.has("leds")) {
+    const leds = params.get("leds").split(",").map((p) => p.split(":").map(Number));
+    if (leds.length >= 1 && leds.length <= 4 && leds.every((p) => p.length === 3 && p.every(Number.isFinite))) next.leds = leds;
+  }
+  return next;
+}
+
+function source(s) {
+  if (s.kind === "leds") {
+    return { kind: "leds", peaks_nm: s.leds.map((p) => p[0]), widths_nm: s.leds.map((p) => p[1]),
+      powers: s.leds.map((p) => p[2]) };
+  }
+  const name = s.name === "blackbody" ? `blackbody:${s.temperature}`
+    : s.name === "daylight" ? `D:${Math.max(4000, s.temperature)}` : s.name;
+  return { kind: "named", name };
+}
+
+function commit(change, replace = false) {
+  const before = structuredClone(state);
+  state = { ...state, ...structuredClone(change) };
+  if (JSON.stringify(before) === JSON.stringify(state)) return;
+  if (!replace) { undoStack.push(before); redoStack.length = 0; }
+  history[replace ? "replaceState" : "pushState"](null, "", encode(state));
+  render();
+}
+
+function undo() {
+  if (!undoStack.length) return;
+  redoStack.push(structuredClone(state));
+  state = undoStack.pop();
+  history.replaceState(null, "", encode(state));
+  render();
+}
+
+function redo() {
+  if (!redoStack.length) return;
+  undoStack.push(structuredClone(state));
+  state = redoStack.pop();
+  history.replaceState(null, "", encode(state));
+  render();
+}
+
+// ---- controls ---------------------------------------------------------------------------
+function slider(label, min, max, step, value, unit, onInput, onChange) {
+  const wrap = document.createElement("label");
+  wrap.className = "wide";
+  wrap.append(document.createTextNode(label + " "));
+  const input = document.createElement("input");
+  Object.assign(input, { type: "range", min, max, step, value });
+  const out = document.createElement("output");
+  out.textContent = `${value}${unit}`;
+  input.addEventListener("input", () => { out.textContent = `${input.value}${unit}`; onInput(Number(input.value)); });
+  input.addEventListener("change", () => onChange(Number(input.value)));
+  wrap.append(input, out);
+  return wrap;
+}
+
+function buildPrimaries() {
+  const box = $("primaries");
+  box.replaceChildren(...state.leds.map((led, i) => {
+    const set = document.createElement("fieldset");
+    set.className = "primary";
+    const legend = document.createElement("legend");
+    legend.textContent = `Primary ${i + 1}`;
+    const live = (k) => (v) => { state.leds[i][k] = v; request(); };
+    const done = (k) => (v) => {
+      const leds = structuredClone(state.leds);
+      leds[i][k] = v;
+      state.leds[i][k] = lastCommitted.leds[i] ? lastCommitted.leds[i][k] : v;
+      commit({ leds });
+    };
+    set.append(legend,
+      slider("Peak", 380, 780, 1, led[0], " nm", live(0), done(0)),
+      slider("Width", 5, 200, 1, led[1], " nm", live(1), done(1)),
+      slider("Power", 0, 1, 0.01, led[2], "", live(2), done(2)));
+    return set;
+  }));
+  $("add").disabled = state.leds.length >= 4;
+  $("remove").disabled = state.leds.length <= 1;
+}
+
+let lastCommitted = structuredClone(state);
+
+function syncControls() {
+  $("kind").value = state.kind;
+  $("name").value = state.name;
+  $("display").value = state.display;
+  $("temperature").value = state.temperature;
+  $("temperature-out").textContent = `${state.temperature} K`;
+  $("named-box").hidden = state.kind !== "named";
+  $("leds-box").hidden = state.kind !== "leds";
+  $("temperature-box").hidden = !["blackbody", "daylight"].includes(state.name);
+  buildPrimaries();
+  $("undo").disabled = !undoStack.length;
+  $("redo").disabled = !redoStack.length;
+}
+
+function render() {
+  lastCommitted = structuredClone(state);
+  syncControls();
+  request();
+}
+
+// Coalesce requests: at most one in flight; the latest state is sent when it returns.
+async function request() {
+  if (inflight) { dirty = true; return; }
+  inflight = true;
+  dirty = false;
+  const asked = JSON.stringify(source(state));
+  try {
+    result = await api("/api/lab/light", { source: source(state), display: state.display });
+    $("error").hidden = true;
+    paint();
+  } catch (error) {
+    showError(`${error.message} — the numbers below are for the previous light.`);
+  } finally {
+    inflight = false;
+    if (dirty || JSON.stringify(source(state)) !== asked) request();
+    else document.body.dataset.ready = "true";
+  }
+}
+
+// ---- drawing ----------------------------------------------------------------------------
+function context(canvas) {
+  const ratio = window.devicePixelRatio || 1;
+  const { width, height } = canvas.getBoundingClientRect();
+  canvas.width = Math.max(1, Math.round(width * ratio));
+  canvas.height = Math.max(1, Math.round(height * ratio));
+  const ctx = canvas.getContext("2d");
+  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  return { ctx, width, height };
+}
+
+const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
+const fmt = (v, digits) => (v === null || v === undefined ? "—" : Number(v).toFixed(digits));
+
+function numbers() {
+  const s = result.summary;
+  const rows = [
+    ["light", result.label],
+    ["CCT", s.cct_K === null ? "— (no CCT)" : `${fmt(s.cct_K, 0)} K`],
+    ["Duv", fmt(s.duv, 4)],
+    ["Ra (CIE 13.3)", fmt(s.Ra, 1)], ["R9 (strong red)", fmt(s.R9, 1)],
+    ["Rf (TM-30 / CIE 224)", fmt(s.Rf, 1)], ["Rg (gamut)", fmt(s.Rg, 1)],
+    ["LER", `${fmt(s.LER_lm_per_W, 1)} lm/W`], ["melanopic DER", fmt(s.melanopic_DER, 3)],
+  ];
+  $("numbers").replaceChildren(...rows.flatMap(([term, value]) => {
+    const dt = document.createElement("dt"); dt.textContent = term;
+    const dd = document.createElement("dd"); dd.textContent = value;
+    return [dt, dd];
+  }));
+  $("note").textContent = s.cri_meaningful ? "" : "|Duv| > 0.0054: CIE 13.3 says the CRI is not meaningful for this light (it is not white enough).";
+}
+
+function drawSpd() {
+  const { ctx, width, height } = context($("spd"));
+  const box = { x: 40, y: 10, w: width - 52, h: height - 50 };
+  const wl = result.wavelengths_nm;
+  const X = (w) => box.x + ((w - 380) / 400) * box.w;
+  const Y = (v) => box.y + box.h - v * box.h;
+  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.font = "11px system-ui, sans-serif";
+  ctx.strokeRect(box.x, box.y, box.w, box.h);
+  ctx.textAlign = "center";
+  for (let w = 400; w <= 750; w += 50) ctx.fillText(w, X(w), box.y + box.h + 15);
+  ctx.fillText("wavelength (nm)", box.x + box.w / 2, box.y + box.h + 30);
+  ctx.textAlign = "right";
+  for (const v of [0, 0.5, 1]) ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
+  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 2;
+  ctx.beginPath();
+  result.spd.forEach((v, k) => (k ? ctx.lineTo(X(wl[k]), Y(v)) : ctx.moveTo(X(wl[k]), Y(v))));
+  ctx.stroke();
+}
+
+function drawGraphic() {
+  const { ctx, width, height } = context($("graphic"));
+  const r = Math.min(width, height) / 2 / 1.32;
+  const cx = width / 2, cy = height / 2;
+  const bins = result.bin_rgb8;
+  for (let j = 0; j < 16; j++) { // hue sectors in the bins' colours, faint
+    ctx.fillStyle = css(bins[j]);
+    ctx.globalAlpha = 0.35;
+    ctx.beginPath(); ctx.moveTo(cx, cy);
+    ctx.arc(cx, cy, r * 1.3, -(j + 1) * Math.PI / 8, -j * Math.PI / 8);
+    ctx.closePath(); ctx.fill();
+  }
+  ctx.globalAlpha = 1;
+  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 1.5;
+  ctx.beginPath(); ctx.arc(cx, cy, r, 0, 2 * Math.PI); ctx.stroke();
+  if (!result.graphic) return;
+  const P = ([a, b]) => [cx + a * r, cy - b * r];
+  ctx.strokeStyle = "#b3261e"; ctx.lineWidth = 2.5;
+  ctx.beginPath();
+  result.graphic.test.forEach((p, j) => { const [x, y] = P(p); j ? ctx.lineTo(x, y) : ctx.moveTo(x, y); });
+  ctx.closePath(); ctx.stroke();
+  ctx.lineWidth = 1.5;
+  result.graphic.test.forEach((p, j) => {
+    const [x0, y0] = P(result.graphic.reference[j]); const [x1, y1] = P(p);
+    ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke();
+  });
+  ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left";
+  ctx.fillText(`Rf ${fmt(result.summary.Rf, 0)}   Rg ${fmt(result.summary.Rg, 0)}`, 8, 16);
+}
+
+function samples() {
+  const { names, under_light: light, under_reference: reference } = result.samples;
+  $("samples").replaceChildren(...names.map((name, i) => {
+    const item = document.createElement("div");
+    item.className = "sample";
+    const swatch = document.createElement("div");
+    swatch.className = "swatch";
+    swatch.setAttribute("role", "img");
+    const top = document.createElement("div"); top.style.background = css(light[i]);
+    const bottom = document.createElement("div");
+    bottom.style.background = reference ? css(reference[i]) : "transparent";
+    swatch.append(top, bottom);
+    swatch.setAttribute("aria-label", `${name}: under the light ${css(light[i])}, under the reference ${reference ? css(reference[i]) : "none"}`);
+    const caption = document.createElement("span");
+    caption.textContent = `${name.slice(0, 5)} R${i + 1} ${fmt(result.Ri[i], 0)}`;
+    caption.title = name;
+    item.append(swatch, caption);
+    return item;
+  }));
+}
+
+function paint() {
+  if (!result) return;
+  numbers();
+  drawSpd();
+  drawGraphic();
+  samples();
+}
+
+async function start() {
+  const options = await api("/api/lab/light/options");
+  const names = [...options.lights.map((n) => [n, n]), ["blackbody", "Planckian radiator (temperature below)"],
+    ["daylight", "CIE daylight (temperature below, ≥ 4000 K)"]];
+  $("name").replaceChildren(...names.map(([value, label]) => Object.assign(document.createElement("option"), { value, textContent: label })));
+  $("display").replaceChildren(...options.displays.map((d) => Object.assign(document.createElement("option"), { value: d, textContent: d })));
+  state = decode(location.hash);
+  $("kind").addEventListener("change", (e) => commit({ kind: e.target.value }));
+  $("name").addEventListener("change", (e) => commit({ name: e.target.value }));
+  $("display").addEventListener("change", (e) => commit({ display: e.target.value }));
+  $("temperature").addEventListener("input", (e) => {
+    state.temperature = Number(e.target.value);
+    $("temperature-out").textContent = `${state.temperature} K`;
+    request();
+  });
+  $("temperature").addEventListener("change", (e) => {
+    const T = Number(e.target.value);
+    state.temperature = lastCommitted.temperature;
+    commit({ temperature: T });
+  });
+  $("add").addEventListener("click", () => commit({ leds: [...state.leds, [580, 30, 0.5]].slice(0, 4) }));
+  $("remove").addEventListener("click", () => commit({ leds: state.leds.slice(0, -1) }));
+  $("undo").addEventListener("click", undo);
+  $("redo").addEventListener("click", redo);
+  $("error-close").addEventListener("click", () => { $("error").hidden = true; });
+  document.addEventListener("keydown", (e) => {
+    if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") { e.preventDefault(); if (e.shiftKey) redo(); else undo(); }
+  });
+  window.addEventListener("popstate", () => { state = decode(location.hash); render(); });
+  window.addEventListener("resize", paint);
+  history.replaceState(null, "", encode(state));
+  render();
+}
+
+start().catch((error) => showError(error.message));
