@@ -1,8 +1,9 @@
 """HTTP routes of the explorer's labs (beyond SPECTRA's five settings).
 
-``GET /labs/thinfilm`` serves the thin-film lab's page; ``GET /api/lab/thinfilm/options`` its
-choices (from the registries); ``POST /api/lab/thinfilm`` the table for one film under one light
-(:func:`spectrocolor.app.thinfilm_lab.thinfilm_lab`). Errors use the server's one shape,
+``GET /labs/<lab>`` serves a lab's page, ``GET /api/lab/<lab>/options`` its choices (from the
+registries) and ``POST /api/lab/<lab>`` its numbers: the thin-film table for one film under one
+light (:func:`spectrocolor.app.thinfilm_lab.thinfilm_lab`), the colour rendering of one light
+(:func:`spectrocolor.app.light_lab.light_lab`). Errors use the server's one shape,
 ``{"error": "..."}``, through the library's exceptions.
 """
 
@@ -17,7 +18,7 @@ from fastapi import APIRouter
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 
-from . import thinfilm_lab
+from . import light_lab, thinfilm_lab
 
 router = APIRouter()
 
@@ -39,10 +40,51 @@ def _table(film: str, model: str, angle_deg: float, illuminant: str, observer: s
     return thinfilm_lab.thinfilm_lab(film, model, angle_deg, illuminant, observer, display)
 
 
+class NamedLight(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["named"]
+    name: Annotated[str, Field(max_length=40)]
+
+
+class LedLight(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    kind: Literal["leds"]
+    peaks_nm: Annotated[list[float], Field(min_length=1, max_length=light_lab.MAX_PRIMARIES)]
+    widths_nm: Annotated[list[float], Field(min_length=1, max_length=light_lab.MAX_PRIMARIES)]
+    powers: Annotated[list[float], Field(min_length=1, max_length=light_lab.MAX_PRIMARIES)]
+
+
+class LightRequest(BaseModel):
+    """One light (named, or a mixture of Gaussian primaries) and the display for the samples."""
+
+    model_config = ConfigDict(extra="forbid")
+    source: Annotated[NamedLight | LedLight, Field(discriminator="kind")]
+    display: Annotated[str, Field(max_length=40)] = "sRGB"
+
+
+def _page(name: str) -> FileResponse:
+    page = Path(str(resources.files("spectrocolor.app") / "static" / "labs" / f"{name}.html"))
+    return FileResponse(page, media_type="text/html")
+
+
 @router.get("/labs/thinfilm", include_in_schema=False)
 def thinfilm_page():
-    page = Path(str(resources.files("spectrocolor.app") / "static" / "labs" / "thinfilm.html"))
-    return FileResponse(page, media_type="text/html")
+    return _page("thinfilm")
+
+
+@router.get("/labs/light", include_in_schema=False)
+def light_page():
+    return _page("light")
+
+
+@router.get("/api/lab/light/options")
+def light_options():
+    return light_lab.light_lab_options()
+
+
+@router.post("/api/lab/light")
+def light(req: LightRequest):
+    return light_lab.light_lab(req.source.model_dump(), req.display)
 
 
 @router.get("/api/lab/thinfilm/options")

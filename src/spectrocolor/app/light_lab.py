@@ -1,0 +1,187 @@
+"""The explorer's light-source lab: a light's colour rendering, every number from the library.
+
+A light is a CIE illuminant, a Planckian radiator or CIE daylight of any temperature, or a
+mixture of up to four LED-like primaries (Gaussian in wavelength, each with a peak, a full width
+at half maximum and a power). For it the page shows what :mod:`spectrocolor.lighting` computes:
+CCT and Duv, CIE 13.3 Ra and R1-R14, CIE 224 / TM-30 Rf and Rg with the 16 hue bins and the colour
+vector graphic, the luminous efficacy of radiation and the melanopic daylight efficacy ratio, and
+the 14 CIE test-colour samples rendered under the light beside the same samples under the CRI's
+reference illuminant (each adapted to the display's white, so the difference is the rendering,
+not the white).
+
+References
+----------
+CIE 13.3-1995, CIE 224:2017, ANSI/IES TM-30-20, CIE S 026:2018; see :mod:`spectrocolor.lighting`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ColorimetryError
+from ..illuminants import canonical_illuminant, illuminant_label
+
+WAVELENGTHS_NM = np.arange(380.0, 781.0, 5.0)
+MAX_PRIMARIES = 4
+TCS_NAMES = ("TCS01 light greyish red", "TCS02 dark greyish yellow", "TCS03 strong yellow green",
+             "TCS04 moderate yellowish green", "TCS05 light bluish green", "TCS06 light blue",
+             "TCS07 light violet", "TCS08 light reddish purple", "TCS09 strong red", "TCS10 strong yellow",
+             "TCS11 strong green", "TCS12 strong blue", "TCS13 light yellowish pink (skin)",
+             "TCS14 moderate olive green (leaf)")  # CIE 13.3-1995 Table 1
+
+
+def led_mixture(peaks_nm, widths_nm, powers) -> np.ndarray:
+    """Relative SPD (on :data:`WAVELENGTHS_NM`) of Gaussian primaries (:meth:`Spectrum.gaussian`).
+
+    Parameters
+    ----------
+    peaks_nm, widths_nm, powers : sequences of 1-4 numbers
+        Peak wavelengths (380-780 nm), full widths at half maximum (5-200 nm) and relative peak
+        powers (0-1, not all zero).
+
+    Returns
+    -------
+    numpy.ndarray, shape (K,)
+        The mixture, peak 1.
+
+    Examples
+    --------
+    >>> spd = led_mixture([450, 550, 620], [20, 80, 20], [1.0, 0.6, 0.8])
+    >>> float(spd.max()), spd.shape
+    (1.0, (81,))
+    """
+    peaks, widths, powers = (np.asarray(v, dtype=float).reshape(-1) for v in (peaks_nm, widths_nm, powers))
+    if not (1 <= peaks.size <= MAX_PRIMARIES and peaks.size == widths.size == powers.size):
+        raise ColorimetryError(
+            f"leds: give 1-{MAX_PRIMARIES} primaries with a peak, a width and a power each, got "
+            f"{peaks.size}, {widths.size} and {powers.size} values"
+        )
+    if not (np.all((peaks >= 380) & (peaks <= 780)) and np.all((widths >= 5) & (widths <= 200))
+            and np.all((powers >= 0) & (powers <= 1)) and powers.sum() > 0):
+        raise ColorimetryError("leds: peaks must be 380-780 nm, widths 5-200 nm, powers 0-1 and not all zero")
+    from ..spectrum import Spectrum
+
+    primaries = zip(peaks, widths, powers, strict=True)
+    spd = sum(Spectrum.gaussian(p, w, WAVELENGTHS_NM, peak=a).values for p, w, a in primaries)
+    return spd / spd.max()
+
+
+def light_spd(source: dict):
+    """The light's SPD (peak 1) and its label from the page's description of it.
+
+    ``{"kind": "named", "name": "FL2"}`` (any form of :func:`spectrocolor.canonical_illuminant`
+    that names a light: a CIE name, ``"blackbody:T"``, ``"D:T"``) or ``{"kind": "leds", "peaks_nm":
+    […], "widths_nm": […], "powers": […]}``.
+
+    Examples
+    --------
+    >>> spd, label = light_spd({"kind": "named", "name": "blackbody:2700"})
+    >>> label, float(spd.max())
+    ('blackbody 2700 K', 1.0)
+    """
+    from ..illuminants import illuminant
+
+    kind = source.get("kind") if isinstance(source, dict) else None
+    if kind == "named":
+        name = canonical_illuminant(source.get("name"), "name")
+        if name is None or not isinstance(name, str):
+            raise ColorimetryError("name: the lab takes a named light, e.g. 'FL2', 'blackbody:3000' or 'D:5000'")
+        values = illuminant(name, WAVELENGTHS_NM).values
+        return values / values.max(), illuminant_label(name)
+    if kind == "leds":
+        spd = led_mixture(source.get("peaks_nm", ()), source.get("widths_nm", ()), source.get("powers", ()))
+        peaks = ", ".join(f"{p:g}" for p in np.asarray(source["peaks_nm"], dtype=float).reshape(-1))
+        return spd, f"LED mixture ({peaks} nm)"
+    raise ColorimetryError("source: expected {'kind': 'named', 'name': …} or {'kind': 'leds', 'peaks_nm': …, …}")
+
+
+def _samples_rgb8(spd: np.ndarray, display: str) -> np.ndarray:
+    """The 14 TCS under ``spd`` on ``display``, adapted from the light's white to the display's."""
+    from ..colorimetry import weights
+    from ..display.adaptation import adapt
+    from ..display.render import render
+    from ..display.spaces import rgb_space
+    from ..lighting.spectra import tcs_reflectances
+    from ..spectrum import Spectrum
+
+    W = weights(WAVELENGTHS_NM, illuminant=Spectrum(WAVELENGTHS_NM, spd))
+    XYZ = tcs_reflectances(WAVELENGTHS_NM) @ W
+    space = rgb_space(display)
+    return render(adapt(XYZ, W.sum(axis=0), space.white_XYZ), space, gamut="desaturate").codes
+
+
+def light_lab(source: dict, display: str = "sRGB") -> dict:
+    """Everything the light-source lab shows for one light, as JSON-ready values.
+
+    Parameters
+    ----------
+    source : dict
+        See :func:`light_spd`.
+    display : str
+        A built-in RGB space for the sample swatches.
+
+    Returns
+    -------
+    dict
+        ``label``, ``wavelengths_nm``, ``spd`` (peak 1); ``summary`` (CCT K, Duv, Ra, R9, Rf, Rg,
+        LER lm/W, melanopic DER; NaN → None); ``Ri`` (R1-R14); ``hue_bins`` (Rf,hj, Rcs,hj,
+        Rhs,hj); ``graphic`` (unit reference circle and test corners of the vector graphic, 16 × 2
+        each) and ``bin_rgb8``; ``samples`` (names, rgb8 under the light and under the reference).
+
+    Examples
+    --------
+    >>> lab = light_lab({"kind": "named", "name": "FL2"})   # a cool-white halophosphate lamp
+    >>> round(lab["summary"]["Ra"], 1), round(lab["summary"]["Rf"], 1)
+    (64.2, 70.1)
+    >>> lab["samples"]["under_light"] == lab["samples"]["under_reference"]   # it renders colours differently
+    False
+    """
+    from ..lighting import colour_fidelity, colour_rendering_index, summary
+    from ..lighting.reference import cri_reference
+    from ..lighting.vector_graphic import bin_colours_rgb8, normalised_graphic
+    from ..spectrum import Spectrum
+
+    spd, label = light_spd(source)
+    light = Spectrum(WAVELENGTHS_NM, spd)
+    headline = summary(light)
+    cri = colour_rendering_index(light)
+    fidelity = colour_fidelity(light)
+
+    def plain(values):
+        return [None if not np.isfinite(v) else round(float(v), 4) for v in np.asarray(values).reshape(-1)]
+
+    reference_spd = np.asarray(cri_reference(float(cri.cct_K), WAVELENGTHS_NM)) if np.isfinite(cri.cct_K) else None
+    circle, test = normalised_graphic(fidelity) if np.isfinite(fidelity.Rf) else (None, None)
+    return {
+        "label": label,
+        "wavelengths_nm": WAVELENGTHS_NM.tolist(),
+        "spd": np.round(spd, 6).tolist(),
+        "summary": {k: (v if isinstance(v, bool) else (None if not np.isfinite(v) else round(v, 4)))
+                    for k, v in headline.items()},
+        "Ri": plain(cri.Ri),
+        "hue_bins": {"Rf_h": plain(fidelity.Rf_h), "Rcs_h": plain(fidelity.Rcs_h), "Rhs_h": plain(fidelity.Rhs_h)},
+        "graphic": None if circle is None else {"reference": np.round(circle, 5).tolist(),
+                                                "test": np.round(test, 5).tolist()},
+        "bin_rgb8": bin_colours_rgb8().tolist(),
+        "samples": {
+            "names": list(TCS_NAMES),
+            "under_light": _samples_rgb8(spd, display).tolist(),
+            "under_reference": None if reference_spd is None else _samples_rgb8(reference_spd, display).tolist(),
+        },
+    }
+
+
+def light_lab_options() -> dict:
+    """The named lights and displays the lab offers (from the registries).
+
+    Examples
+    --------
+    >>> options = light_lab_options()
+    >>> options["lights"][:3]
+    ['A', 'B', 'C']
+    """
+    from ..display.spaces import RGB_SPACES
+    from ..illuminants import ILLUMINANTS
+
+    return {"lights": [n for n in ILLUMINANTS.names() if n != "E"], "displays": RGB_SPACES.names(),
+            "max_primaries": MAX_PRIMARIES}
