@@ -90,7 +90,36 @@ def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarr
 
 
 def validate_wavelengths(wavelengths_nm: ArrayLike, argument: str = "wavelengths_nm") -> np.ndarray:
-    """Return a read-only float64 copy of a strictly increasing, finite grid in nm, or raise."""
+    """Return a read-only float64 copy of a strictly increasing, finite grid in nm, or raise.
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        Wavelengths, nm.
+    argument : str, default "wavelengths_nm"
+        The caller's argument name, used in error messages.
+
+    Returns
+    -------
+    numpy.ndarray
+        Read-only float64 copy, shape (K,).
+
+    Raises
+    ------
+    SpectrumError
+        For non-numbers, a shape other than (K,) with K >= 1, NaN or infinity, a grid that is
+        not strictly increasing, non-positive values, or a largest value below 100 (which looks
+        like micrometres).
+
+    Examples
+    --------
+    >>> validate_wavelengths([400, 500]).tolist()
+    [400.0, 500.0]
+    >>> validate_wavelengths([0.4, 0.5])
+    Traceback (most recent call last):
+    ...
+    spectrocolor.errors.SpectrumError: wavelengths_nm: largest wavelength is 0.5; that looks like micrometres, but spectrocolor expects nanometres (multiply by 1000)
+    """
     try:
         grid = np.array(wavelengths_nm, dtype=float)
     except (TypeError, ValueError) as exc:
