@@ -170,8 +170,9 @@ E308_WHITE_POINTS = {
     ("1964", "F7"): (95.792, 107.687),
     ("1964", "F11"): (103.866, 65.627),
 }
-# Not reached with CIE 015:2018's 380–780 nm FL tables (misses up to 0.020 in Z for F11): E308's
-# fluorescent tables span 360–780 nm, and their 360–375 nm power is not in the CIE tables we ship.
+# Not reached with CIE 015:2018's 380–780 nm FL tables (misses up to 0.020 in Z for F11, both
+# observers). E308's fluorescent tables span 360–780 nm, but no plausible 360–375 nm power closes
+# the gap, so the lamp tables themselves probably differ; see docs/astm_e308.md.
 _FL_GAPS = {("1931", "F2"), ("1931", "F7"), ("1931", "F11"), ("1964", "F2"), ("1964", "F7"), ("1964", "F11")}
 
 
