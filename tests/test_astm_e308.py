@@ -179,7 +179,7 @@ _FL_GAPS = {("1931", "F2"), ("1931", "F7"), ("1931", "F11"), ("1964", "F2"), ("1
 @pytest.mark.parametrize(
     ("observer", "name"),
     [
-        pytest.param(*key, marks=pytest.mark.xfail(strict=True, reason="E308 FL data 360–375 nm"))
+        pytest.param(*key, marks=pytest.mark.xfail(strict=True, reason="E308 F white points not reached with CIE 015:2018 FL tables"))
         if key in _FL_GAPS
         else key
         for key in E308_WHITE_POINTS
