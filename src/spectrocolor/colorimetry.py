@@ -159,6 +159,27 @@ def apply_weights(values, W: np.ndarray) -> np.ndarray:
 
     Float32 spectra are summed in float32 (``W`` cast down: half the memory traffic, ~1e-7
     relative rounding, for large cubes); every other dtype is summed in float64.
+
+    Parameters
+    ----------
+    values : array_like, shape (..., K)
+        Spectral values on the weights' grid.
+    W : numpy.ndarray, shape (K, 3)
+        Weights from :func:`weights`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        XYZ on the weights' scale (XYZ100 for reflectances under an illuminant).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid
+    >>> W = weights(wavelength_grid(400, 700, 10), illuminant="D65")
+    >>> XYZ = apply_weights(np.ones((2, 31), np.float32), W)
+    >>> XYZ.dtype.name, round(float(XYZ[0, 1]), 3)
+    ('float32', 100.0)
     """
     values = np.asarray(values)
     if values.dtype == np.float32:
