@@ -43,6 +43,36 @@ def colour_array(values, name: str, size: int, what: str) -> np.ndarray:
 
     The shared validation of colour arguments: ``name`` is the argument named in the error,
     ``what`` says what the ``size`` components are (e.g. "tristimulus values X, Y, Z").
+
+    Parameters
+    ----------
+    values : array_like, shape (..., size)
+        The colours (real numbers; complex is refused).
+    name : str
+        The argument named in the error.
+    size : int
+        Required length of the last axis (3 for XYZ, 2 for xy).
+    what : str
+        What the components are, for the error message.
+
+    Returns
+    -------
+    numpy.ndarray
+        Float64, shape (..., size).
+
+    Raises
+    ------
+    ColorimetryError
+        For non-real or non-numeric values or a last axis of another length.
+
+    Examples
+    --------
+    >>> colour_array([1, 2, 3], "XYZ", 3, "tristimulus values X, Y, Z").dtype.name
+    'float64'
+    >>> colour_array([1, 2], "XYZ", 3, "tristimulus values X, Y, Z")
+    Traceback (most recent call last):
+    ...
+    spectrocolor.errors.ColorimetryError: XYZ must have shape (..., 3) (tristimulus values X, Y, Z); got shape (2,)
     """
     try:
         array = np.asarray(values)
