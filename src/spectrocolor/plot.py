@@ -66,7 +66,25 @@ def _as_xy(values, argument: str) -> np.ndarray:
 
 
 def planckian_locus_xy(temperatures_K, observer=DEFAULT_OBSERVER) -> np.ndarray:
-    """xy of blackbody radiators (CIE summation at 1 nm over the observer's range), (N, 2)."""
+    """xy of blackbody radiators (CIE summation at 1 nm over the observer's range), (N, 2).
+
+    Parameters
+    ----------
+    temperatures_K : array_like, shape (N,)
+        Temperatures, K.
+    observer : str, default DEFAULT_OBSERVER
+        Observer name or alias.
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, 2)
+        CIE 1931 chromaticities (x, y).
+
+    Examples
+    --------
+    >>> planckian_locus_xy([2856, 6504]).round(4).tolist()
+    [[0.4475, 0.4074], [0.3135, 0.3236]]
+    """
     from .colorimetry import tristimulus
     from .coordinates import xy
     from .illuminants import blackbody
