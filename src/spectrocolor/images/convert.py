@@ -69,6 +69,34 @@ def plan_conversion(
 
     Parameters are those of :func:`cube_to_xyz`, :func:`cube_to_lab` and :func:`cube_to_rgb`;
     ``quantity`` is "xyz", "lab" or "rgb".
+
+    Parameters
+    ----------
+    quantity : {"xyz", "lab", "rgb"}
+        What to compute.
+    wavelengths_nm : array_like, shape (K,)
+        Band wavelengths, nm.
+    illuminant, observer, method, scale, white_XYZ, space, gamut, exposure, adaptation, bit_depth, output : object, keyword-only
+        As for :func:`cube_to_xyz`, :func:`cube_to_lab` and :func:`cube_to_rgb`.
+
+    Returns
+    -------
+    ConversionPlan
+        The block function, its keywords, the output dtype and the white used.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown quantity or output, a scale or exposure that is not positive, a bit
+        depth other than 8 or 16 for codes, CIELAB of lights without ``white_XYZ``, and as
+        :func:`spectrocolor.weights`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> plan = plan_conversion("lab", np.arange(400, 701, 10), illuminant="D65")
+    >>> plan.quantity, plan.dtype.name, plan.white_XYZ.round(3).tolist()
+    ('CIELAB', 'float64', [94.94, 100.0, 108.709])
     """
     import spectrocolor as sc
 
@@ -168,6 +196,20 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     Returns
     -------
     ndarray, shape (N, ..., 3)
+        The converted values, of ``plan.dtype`` (``out`` itself when given).
+
+    Raises
+    ------
+    SpectrumError
+        For ``rows_per_block`` below 1 or an ``out`` of the wrong shape.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> plan = plan_conversion("lab", np.arange(400, 701, 10), illuminant="D65")
+    >>> lab = run_blocks(np.full((4, 2, 31), 0.5), plan, rows_per_block=1)
+    >>> lab.shape, lab[0, 0].round(3).tolist()
+    ((4, 2, 3), [76.069, 0.0, 0.0])
     """
     shape = tuple(values.shape)
     n_rows = shape[0]
