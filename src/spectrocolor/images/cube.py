@@ -54,6 +54,17 @@ def wavelengths_to_nm(values, units: str | None, source: str) -> np.ndarray:
     -------
     ndarray, shape (K,), float64
         Wavelengths in nm.
+
+    Raises
+    ------
+    SpectrumError
+        For missing or unknown units, non-numbers, an empty list, non-finite values or
+        wavelengths that are not strictly increasing.
+
+    Examples
+    --------
+    >>> wavelengths_to_nm([0.4, 0.5], "µm", "cube.tif").tolist()
+    [400.0, 500.0]
     """
     if units is None:
         raise SpectrumError(
