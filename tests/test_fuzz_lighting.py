@@ -39,9 +39,12 @@ def test_any_nonnegative_ish_spectra_give_arrays_of_the_batch_shape(values):
     cri, fidelity = colour_rendering_index(spd), colour_fidelity(spd)
     assert cri.Ri.shape == (2, 14) and fidelity.Rf_h.shape == (2, 16)
     for i in range(2):
-        if np.isfinite(fidelity.cct_K[i]) and np.isfinite(cri.cct_K[i]):
-            assert np.isfinite(cri.Ra[i])
-        assert fidelity.Rf[i] <= 100.001 or np.isnan(fidelity.Rf[i])
+        # references exist from 1000 K (Planck) to 25 000 K (CIE daylight); NaN outside
+        if 1000.0 <= cri.cct_K[i] <= 25000.0:
+            assert np.isfinite(cri.Ra[i]) and np.all(np.isfinite(cri.Ri[i]))
+            assert np.isfinite(fidelity.Rf[i]) and fidelity.Rf[i] <= 100.001
+        else:
+            assert np.isnan(cri.Ra[i]) and np.isnan(fidelity.Rf[i])
     assert alpha_opic(spd).der.shape == (2, 5)
     assert luminous_efficacy_of_radiation(spd).shape == (2,)
 

@@ -31,7 +31,7 @@ from ..coordinates import uv_1960
 from ..sampling import cmfs_on
 from ..spectrum import Spectrum
 from .reference import cri_reference
-from .spectra import light_cct, light_grid, tcs_reflectances
+from .spectra import in_chunks, light_cct, light_grid, tcs_reflectances
 
 #: CIE 13.3 §5.3: largest chromaticity distance ΔC between light and reference.
 DELTA_C_LIMIT = 5.4e-3
@@ -87,6 +87,34 @@ def _sample_XYZ100(S: np.ndarray, products: np.ndarray, V_delta: np.ndarray) -> 
         return XYZ.reshape(len(S), count, 3) * k[:, None, None]
 
 
+def _rendering_rows(S: np.ndarray, grid: np.ndarray, W: np.ndarray, products: np.ndarray) -> dict:
+    """R1–R14, CCT, Duv and the validity of lights S (N, K), for :func:`in_chunks`.
+
+    ``products`` are the test colour samples times the weights, (14, K, 3).
+    """
+    temperature = light_cct(S, grid)
+    R = cri_reference(temperature.cct_K, grid)
+    uv_test, uv_ref = uv_1960(S @ W), uv_1960(R @ W)
+    XYZ_t = _sample_XYZ100(S, products, W[:, 1])
+    XYZ_r = _sample_XYZ100(R, products, W[:, 1])
+    uv_t, uv_r = uv_1960(XYZ_t), uv_1960(XYZ_r)
+
+    # CIE 13.3 eq. (6): adapt the samples under the test light to the reference white
+    c_t, d_t = _cd(uv_test)
+    c_r, d_r = _cd(uv_ref)
+    c_i, d_i = _cd(uv_t)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        cc = (c_r / c_t)[:, None] * c_i
+        dd = (d_r / d_t)[:, None] * d_i
+        denominator = 16.518 + 1.481 * cc - dd
+        uv_adapted = np.stack([(10.872 + 0.404 * cc - 4.0 * dd) / denominator, 5.520 / denominator], axis=-1)
+
+    delta_E = np.linalg.norm(_uvw(XYZ_r, uv_r, uv_ref) - _uvw(XYZ_t, uv_adapted, uv_ref), axis=-1)
+    meaningful = np.isfinite(temperature.cct_K) & (np.abs(temperature.duv) <= DELTA_C_LIMIT)
+    return {"Ri": 100.0 - 4.6 * delta_E, "cct_K": temperature.cct_K, "duv": temperature.duv,
+            "meaningful": meaningful}
+
+
 def colour_rendering_index(spd) -> CRI:
     """CIE 13.3 colour rendering index of lights ``(..., K)``.
 
@@ -115,38 +143,13 @@ def colour_rendering_index(spd) -> CRI:
     # from 360 nm, or from the spectrum's first sample if that lies between 360 and 380 nm
     start = min(max(360.0, float(spd.wavelengths_nm[0])), 380.0) if isinstance(spd, Spectrum) else 380.0
     grid, S = light_grid(spd, start, 780.0)
-    cmfs = cmfs_on(grid, "1931")
-    delta = grid[1] - grid[0]
-    W = cmfs * delta
-    uv_test = uv_1960(S @ W)
-    temperature = light_cct(S, grid)
-    R = cri_reference(temperature.cct_K, grid)
-    uv_ref = uv_1960(R @ W)
-
-    products = tcs_reflectances(grid)[:, :, None] * W[None]  # (14, K, 3)
-    XYZ_t = _sample_XYZ100(S, products, W[:, 1])
-    XYZ_r = _sample_XYZ100(R, products, W[:, 1])
-    uv_t = uv_1960(XYZ_t)
-    uv_r = uv_1960(XYZ_r)
-
-    # CIE 13.3 eq. (6): adapt the samples under the test light to the reference white
-    c_t, d_t = _cd(uv_test)
-    c_r, d_r = _cd(uv_ref)
-    c_i, d_i = _cd(uv_t)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        cc = (c_r / c_t)[:, None] * c_i
-        dd = (d_r / d_t)[:, None] * d_i
-        denominator = 16.518 + 1.481 * cc - dd
-        uv_adapted = np.stack([(10.872 + 0.404 * cc - 4.0 * dd) / denominator, 5.520 / denominator], axis=-1)
-
-    delta_E = np.linalg.norm(_uvw(XYZ_r, uv_r, uv_ref) - _uvw(XYZ_t, uv_adapted, uv_ref), axis=-1)
-    Ri = 100.0 - 4.6 * delta_E
+    W = cmfs_on(grid, "1931") * (grid[1] - grid[0])
+    r = in_chunks(_rendering_rows, S, grid, W, tcs_reflectances(grid)[:, :, None] * W[None])
     shape = spd.batch_shape
-    meaningful = np.isfinite(temperature.cct_K) & (np.abs(temperature.duv) <= DELTA_C_LIMIT)
     return CRI(
-        Ra=Ri[:, :8].mean(axis=1).reshape(shape),
-        Ri=Ri.reshape(*shape, 14),
-        cct_K=temperature.cct_K.reshape(shape),
-        duv=temperature.duv.reshape(shape),
-        meaningful=meaningful.reshape(shape),
+        Ra=r["Ri"][:, :8].mean(axis=1).reshape(shape),
+        Ri=r["Ri"].reshape(*shape, 14),
+        cct_K=r["cct_K"].reshape(shape),
+        duv=r["duv"].reshape(shape),
+        meaningful=r["meaningful"].reshape(shape),
     )

@@ -33,7 +33,7 @@ import numpy as np
 from ..sampling import cmfs_on
 from .cam02ucs import cam02ucs_planes
 from .reference import fidelity_reference
-from .spectra import ces_reflectances, light_cct, light_grid
+from .spectra import ces_reflectances, in_chunks, light_cct, light_grid
 
 #: Scaling factor of CIE 224:2017 eq. (8).
 CF = 6.73
@@ -124,6 +124,31 @@ def _bin_means(hue_deg, test_ab, reference_ab, delta_E):
         return test, reference, mean(delta_E) / members
 
 
+def _fidelity_rows(S: np.ndarray, grid: np.ndarray, W10: np.ndarray, products: np.ndarray) -> dict:
+    """Every CIE 224 / TM-30 quantity of lights S (N, K), flat, for :func:`in_chunks`."""
+    temperature = light_cct(S, grid)
+    R = fidelity_reference(temperature.cct_K, grid)
+    J_t, a_t, b_t = _jab(S, products, W10)
+    J_r, a_r, b_r = _jab(R, products, W10)
+    delta_E = np.sqrt((J_t - J_r) ** 2 + (a_t - a_r) ** 2 + (b_t - b_r) ** 2)  # (N, 99)
+
+    hue_ref = np.degrees(np.arctan2(b_r, a_r)) % 360.0
+    test_ab, reference_ab, bin_delta_E = _bin_means(hue_ref, np.stack([a_t, b_t], axis=-1),
+                                                    np.stack([a_r, b_r], axis=-1), delta_E)
+    theta = np.radians((np.arange(HUE_BINS) + 0.5) * 360.0 / HUE_BINS)
+    shift = test_ab - reference_ab
+    norm = np.linalg.norm(reference_ab, axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        Rg = 100.0 * _polygon_area(test_ab) / _polygon_area(reference_ab)
+        Rcs = (shift[..., 0] * np.cos(theta) + shift[..., 1] * np.sin(theta)) / norm
+        Rhs = (-shift[..., 0] * np.sin(theta) + shift[..., 1] * np.cos(theta)) / norm
+    return {
+        "Rf": rf_from_delta_e(delta_E.mean(axis=1)), "Rg": Rg, "Rf_i": rf_from_delta_e(delta_E),
+        "Rf_h": rf_from_delta_e(bin_delta_E), "Rcs_h": Rcs, "Rhs_h": Rhs,
+        "cct_K": temperature.cct_K, "duv": temperature.duv, "test_ab": test_ab, "reference_ab": reference_ab,
+    }
+
+
 def colour_fidelity(spd) -> Fidelity:
     """CIE 224:2017 / ANSI/IES TM-30-20 colour fidelity and gamut of lights ``(..., K)``.
 
@@ -149,38 +174,20 @@ def colour_fidelity(spd) -> Fidelity:
     (70.1, 86.4)
     """
     grid, S = light_grid(spd, 380.0, 780.0)
-    delta = grid[1] - grid[0]
-    temperature = light_cct(S, grid)
-    R = fidelity_reference(temperature.cct_K, grid)
-    W10 = cmfs_on(grid, "1964") * delta
+    W10 = cmfs_on(grid, "1964") * (grid[1] - grid[0])
     ces = ces_reflectances(grid)
     products = (W10.T[:, None, :] * ces[None]).reshape(3 * len(ces), grid.size).T  # (K, 3·99), channel-major
-    J_t, a_t, b_t = _jab(S, products, W10)
-    J_r, a_r, b_r = _jab(R, products, W10)
-    delta_E = np.sqrt((J_t - J_r) ** 2 + (a_t - a_r) ** 2 + (b_t - b_r) ** 2)  # (N, 99)
-
-    hue_ref = np.degrees(np.arctan2(b_r, a_r)) % 360.0
-    test_ab, reference_ab, bin_delta_E = _bin_means(hue_ref, np.stack([a_t, b_t], axis=-1),
-                                                    np.stack([a_r, b_r], axis=-1), delta_E)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        Rg = 100.0 * _polygon_area(test_ab) / _polygon_area(reference_ab)
-    theta = np.radians((np.arange(HUE_BINS) + 0.5) * 360.0 / HUE_BINS)
-    shift = test_ab - reference_ab
-    norm = np.linalg.norm(reference_ab, axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        Rcs = (shift[..., 0] * np.cos(theta) + shift[..., 1] * np.sin(theta)) / norm
-        Rhs = (-shift[..., 0] * np.sin(theta) + shift[..., 1] * np.cos(theta)) / norm
-
+    r = in_chunks(_fidelity_rows, S, grid, W10, products)
     shape = spd.batch_shape
     return Fidelity(
-        Rf=rf_from_delta_e(delta_E.mean(axis=1)).reshape(shape),
-        Rg=Rg.reshape(shape),
-        Rf_i=rf_from_delta_e(delta_E).reshape(*shape, 99),
-        Rf_h=rf_from_delta_e(bin_delta_E).reshape(*shape, HUE_BINS),
-        Rcs_h=Rcs.reshape(*shape, HUE_BINS),
-        Rhs_h=Rhs.reshape(*shape, HUE_BINS),
-        cct_K=temperature.cct_K.reshape(shape),
-        duv=temperature.duv.reshape(shape),
-        test_ab=test_ab.reshape(*shape, HUE_BINS, 2),
-        reference_ab=reference_ab.reshape(*shape, HUE_BINS, 2),
+        Rf=r["Rf"].reshape(shape),
+        Rg=r["Rg"].reshape(shape),
+        Rf_i=r["Rf_i"].reshape(*shape, 99),
+        Rf_h=r["Rf_h"].reshape(*shape, HUE_BINS),
+        Rcs_h=r["Rcs_h"].reshape(*shape, HUE_BINS),
+        Rhs_h=r["Rhs_h"].reshape(*shape, HUE_BINS),
+        cct_K=r["cct_K"].reshape(shape),
+        duv=r["duv"].reshape(shape),
+        test_ab=r["test_ab"].reshape(*shape, HUE_BINS, 2),
+        reference_ab=r["reference_ab"].reshape(*shape, HUE_BINS, 2),
     )

@@ -28,6 +28,8 @@ from ..temperature import CCT, cct
 
 #: Sampling intervals (nm) the metrics accept: those of CIE 224:2017 §3 and of measured data.
 INTERVALS_NM = (1.0, 5.0)
+#: Lights computed together: bounds the temporaries (99 samples × 3 × CHUNK) to a few MB.
+CHUNK = 2048
 
 
 def light_grid(spd, start_nm: float, stop_nm: float, argument: str = "spd") -> tuple[np.ndarray, np.ndarray]:
@@ -91,6 +93,19 @@ def light_cct(S: np.ndarray, wavelengths_nm: np.ndarray) -> CCT:
     result = cct(XYZ=XYZ)
     lit = XYZ[:, 1] > 0
     return CCT(np.where(lit, result.cct_K, np.nan), np.where(lit, result.duv, np.nan))
+
+
+def in_chunks(compute, S: np.ndarray, *args) -> dict[str, np.ndarray]:
+    """``compute(S_chunk, *args)`` (a dict of arrays with the chunk's lights first) over chunks
+    of :data:`CHUNK` lights, concatenated: memory stays bounded for any number of lights.
+
+    Examples
+    --------
+    >>> in_chunks(lambda rows: {"sum": rows.sum(axis=1)}, np.ones((5000, 3)))["sum"].shape
+    (5000,)
+    """
+    parts = [compute(S[start:start + CHUNK], *args) for start in range(0, max(len(S), 1), CHUNK)]
+    return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
 
 
 @lru_cache(maxsize=16)
