@@ -114,7 +114,7 @@ function selectSetting(n, push = true) {
   document.title = `spectrocolor · ${SETTING_NAMES[n]}`;
   const count = evalSpec().spectra.length;
   buildEditors(update); buildPatches(); buildCards(count); buildPoints(count);
-  presetButtons(update, say); actionButtons();
+  presetButtons(update, say); actionButtons(); say("");
   $("emitted-box").hidden = true;
   if (push) history.pushState({setting: n}, "", stateURL());
   update();

@@ -75,7 +75,7 @@ export function buildCards(count) {
     cards.push(el("div", {class: "card de-card"},
       el("h3", {}, el("span", {class: "de-title"}), " ", el("span", {class: "de"})),
       el("div", {class: "status de-status"}),
-      el("p", {class: "explain"}, "CIEDE2000 colour difference of the two lights (under the illuminant in setting 4); below about 1 it is hardly visible side by side.")));
+      el("p", {class: "explain"}, `CIEDE2000 colour difference of the two ${S.setting === 4 ? "samples under the illuminant" : "lights"}; below about 1 it is hardly visible side by side.`)));
   }
   for (let i = 0; i < count; i++) {
     cards.push(el("div", {class: "card", "data-i": i},
