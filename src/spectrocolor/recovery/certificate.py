@@ -126,6 +126,10 @@ class Certificate:
         return Certificate(*(np.asarray(v).reshape(shape) for v in vars(self).values()))
 
 
+#: Colours per block in :func:`certify` (its arrays then stay in cache).
+_BLOCK = 2048
+
+
 def certify(W, step_nm, b, rho, mu, lower, upper, settled) -> Certificate:
     """Check ``ρ`` (N, K) with multipliers ``μ`` (N, m) for colours ``b`` (N, m).
 
@@ -133,28 +137,34 @@ def certify(W, step_nm, b, rho, mu, lower, upper, settled) -> Certificate:
     ``settled`` (N,) says whether the solver stopped normally. The multipliers of the bounds
     are recomputed here from ρ and μ, so nothing else of the solver's state is trusted.
     """
+    N = len(b)
+    out = np.empty((5, N))
+    for start in range(0, N, _BLOCK):
+        part = slice(start, start + _BLOCK)
+        out[:, part] = _measures(W, step_nm, b[part], rho[part], mu[part], lower, upper)
+    primal, violation, sign, station, ratio = out
+    passed = np.isfinite(ratio) & (violation == 0.0) & (ratio <= 1.0)
+    return Certificate(primal, violation, sign, station, ratio,
+                       np.asarray(settled, dtype=bool) & passed)
+
+
+def _measures(W, step_nm, b, rho, mu, lower, upper):
+    """Primal residual, bound violation, sign violation, stationarity and rounding ratio."""
+    tiny = np.finfo(float).tiny
     with np.errstate(invalid="ignore", over="ignore"):
         finite = np.all(np.isfinite(rho), axis=1) & np.all(np.isfinite(mu), axis=1)
         residual = np.abs(rho @ W - b)
-        primal = residual.max(axis=1)
-        ratio_p = np.max(residual / np.maximum(primal_tolerance(W, b, rho), np.finfo(float).tiny),
-                         axis=1, where=residual > 0, initial=0.0)
+        ratio_p = (residual / np.maximum(primal_tolerance(W, b, rho), tiny)).max(axis=1)
         lam = hess_times(rho, step_nm) - mu @ W.T
-        tol_d = np.maximum(dual_tolerance(W, step_nm, rho, mu), np.finfo(float).tiny)
+        tol_d = np.maximum(dual_tolerance(W, step_nm, rho, mu), tiny)
         if lower is None:
             violation = np.zeros(len(b))
-            wrong = np.zeros_like(lam)
-            free = np.ones(lam.shape, dtype=bool)
+            off, wrong = np.abs(lam), np.zeros_like(lam)
         else:
             violation = np.maximum(lower - rho, rho - upper).max(axis=1).clip(min=0.0)
             at_lower, at_upper = rho == lower, rho == upper
-            free = ~(at_lower | at_upper)
             wrong = np.where(at_lower, -lam, np.where(at_upper, lam, 0.0)).clip(min=0.0)
-        off = np.where(free, np.abs(lam), 0.0)
-        sign = wrong.max(axis=1)
-        station = off.max(axis=1)
+            off = np.where(at_lower | at_upper, 0.0, np.abs(lam))
         ratio_d = (np.maximum(off, wrong) / tol_d).max(axis=1)
-        ratio = np.maximum(ratio_p, ratio_d)
-        passed = finite & (violation == 0.0) & (ratio <= 1.0)
-    return Certificate(primal, violation, sign, station, np.where(finite, ratio, np.inf),
-                       np.asarray(settled, dtype=bool) & passed)
+        ratio = np.where(finite, np.maximum(ratio_p, ratio_d), np.inf)
+    return residual.max(axis=1), violation, wrong.max(axis=1), off.max(axis=1), ratio

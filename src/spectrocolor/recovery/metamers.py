@@ -33,7 +33,7 @@ from ..differences import delta_e_2000
 from ..errors import ColorimetryError
 from ..illuminants import canonical_illuminant_name
 from ..spectrum import Spectrum, wavelength_grid
-from . import qp
+from . import qp, zonotope
 from .certificate import Certificate, certify
 from .inputs import DEFAULT_WAVELENGTHS, grid_key, setup_for, xyz_array
 from .optimal import object_colour_membership
@@ -116,14 +116,6 @@ def _pair_problem(grid_key, observer, illuminant, second_illuminant) -> qp.Probl
     return qp.make_problem(W, grid_key[2])
 
 
-def _fibonacci_directions(n: int) -> np.ndarray:
-    i = np.arange(n) + 0.5
-    z = 1 - 2 * i / n
-    phi = np.pi * (1 + 5**0.5) * i
-    r = np.sqrt(1 - z**2)
-    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
-
-
 def _polish(x: np.ndarray, A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Make a simplex vertex exact: values left at 0 or 1 stay; the others absorb the
     rounding of ``x @ A = b`` by a minimum-norm correction (kept if it stays in bounds)."""
@@ -187,7 +179,7 @@ def metamer_mismatch_region(
     if isinstance(directions, int | np.integer):
         if directions < 4:
             raise ColorimetryError(f"directions: expected at least 4, got {directions}")
-        dirs = _fibonacci_directions(int(directions))
+        dirs = zonotope.sphere_directions(int(directions))
     else:
         dirs = np.asarray(directions, dtype=float)
         if dirs.ndim != 2 or dirs.shape[1] != 3 or not np.all(np.isfinite(dirs)):

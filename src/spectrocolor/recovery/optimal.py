@@ -2,13 +2,15 @@
 
 With weights ``W`` (K, 3) from :func:`spectrocolor.weights`, the colours of all reflectances
 ``0 ≤ ρ ≤ 1`` form the object-colour solid, a zonotope whose boundary consists of the
-*optimal colours*: for the CIE observers, reflectances that are 0 or 1 with at most two
-transitions (band-pass or band-stop "block" spectra; Schrödinger 1920, MacAdam 1935). Here a
-block may begin and end inside a sample interval (each sample counts as a bin of width one
-step, so partial bins give the continuous boundary between the discrete vertices).
-
-Membership is decided exactly from the facets of the zonotope (normals are cross products of
-pairs of generators), so it holds even where the two-transition rule fails.
+*optimal colours*. Schrödinger's rule — optimal reflectances are 0 or 1 with at most two
+transitions — holds for the continuous CIE observers only under West & Brill's conditions; on
+sampled grids it fails (e.g. 156 of the 1 640 two-transition blocks on 380–780 nm at 10 nm
+under D65 lie strictly inside the solid). Here the boundary is generated from supporting
+hyperplanes instead: for a direction ``n``, the reflectance that is 1 where ``(W n)_k > 0``
+and 0 where ``< 0`` maximises ``n · XYZ``, so its colour is on the boundary whatever the
+number of transitions (``(W n)_k = 0`` marks a face: any value there stays on it). MacAdam
+limits are the points where rays in the plane of constant Y leave the solid, found exactly
+from its facets (normals are cross products of pairs of generators), as is membership.
 
 References
 ----------
@@ -75,33 +77,70 @@ def object_colour_membership(
     )
 
 
-def _cumulative(W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Positions 0..2K and the cumulative weights over two periods (cyclic blocks)."""
-    K = W.shape[0]
-    cum = np.concatenate([np.zeros((1, 3)), np.cumsum(W, axis=0)])
-    ext = np.concatenate([cum, cum[-1] + cum[1:]])
-    return np.arange(2 * K + 1, dtype=float), ext
+@dataclass(frozen=True)
+class OptimalColours:
+    """Points on the boundary of the object-colour solid, one per supporting direction.
+
+    Attributes
+    ----------
+    normals : ndarray (M, 3)
+        Unit outward directions (XYZ100 space) of the supporting planes.
+    reflectances : ndarray (M, K)
+        The maximising reflectances: 1 where ``(W n)_k > 0``, 0 where ``< 0``, 1/2 on the face.
+    XYZ100 : ndarray (M, 3)
+        Their colours (perfect white ``Y = 100``), each on the boundary.
+    """
+
+    normals: np.ndarray
+    reflectances: np.ndarray
+    XYZ100: np.ndarray
 
 
 def optimal_colours(
-    illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS
-) -> tuple[np.ndarray, np.ndarray]:
-    """XYZ100 of every block spectrum with two transitions on the grid's sample bins.
+    illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS, directions=2000
+) -> OptimalColours:
+    """Optimal colours: the boundary of the object-colour solid from supporting hyperplanes.
+
+    Parameters
+    ----------
+    illuminant, observer, wavelengths
+        As for :func:`spectrocolor.smoothest_reflectance`.
+    directions : int or array_like (M, 3)
+        Number of directions spread evenly over the sphere, or the directions themselves.
 
     Returns
     -------
-    (starts, XYZ100) : ndarray (M, 2) int, ndarray (M, 3)
-        ``starts[i] = (first, count)``: the block covers ``count`` bins cyclically from bin
-        ``first`` (a block that wraps round is a band-stop). These are the vertices of the
-        discrete object-colour solid that lie on its two-transition boundary.
+    OptimalColours
+        For every direction the reflectance that maximises ``n · XYZ`` and its colour.
+
+    References
+    ----------
+    E. Schrödinger, Ann. Phys. 62, 603–622 (1920); G. West, M. H. Brill, J. Opt. Soc. Am. 73,
+    1223–1225 (1983).
+
+    Examples
+    --------
+    >>> o = optimal_colours(wavelengths=(400, 700, 10), directions=50)
+    >>> m = object_colour_membership(o.XYZ100, wavelengths=(400, 700, 10))
+    >>> bool(abs(m.relative_depth).max() < 1e-12)
+    True
     """
     setup, _, _ = setup_for(wavelengths, observer, illuminant)
-    K = setup.W.shape[0]
-    _, ext = _cumulative(setup.W)
-    first, count = np.meshgrid(np.arange(K), np.arange(1, K), indexing="ij")
-    first, count = first.ravel(), count.ravel()
-    XYZ = ext[first + count] - ext[first]
-    return np.stack([first, count], axis=1), XYZ
+    if isinstance(directions, int | np.integer) and not isinstance(directions, bool):
+        if directions < 1:
+            raise ColorimetryError(f"directions: expected at least 1, got {directions}")
+        normals = zonotope.sphere_directions(int(directions))
+    else:
+        normals = np.asarray(directions, dtype=float)
+        if normals.ndim != 2 or normals.shape[1] != 3 or not np.all(np.isfinite(normals)):
+            raise ColorimetryError(
+                f"directions: expected an int or finite directions of shape (M, 3), got {directions!r}")
+        norm = np.linalg.norm(normals, axis=1, keepdims=True)
+        if np.any(norm == 0):
+            raise ColorimetryError("directions: a direction of length 0 has no supporting plane")
+        normals = normals / norm
+    rho = zonotope.supporting_reflectances(setup.W, normals)
+    return OptimalColours(normals, rho, rho @ setup.W)
 
 
 def macadam_limits(
@@ -113,27 +152,38 @@ def macadam_limits(
 ) -> np.ndarray:
     """The MacAdam limit: XYZ100 of the optimal colours with luminance factor ``Y``.
 
+    Rays from the achromatic colour ``(Y / 100) · white`` in the plane of constant ``Y``, at
+    ``samples`` hue angles (directions ``(cos θ · X_w, 0, sin θ · Z_w)``), leave the solid
+    exactly where they meet its first facet plane: every returned point is on the boundary.
+
     Parameters
     ----------
     luminance_factor
         ``Y`` in percent of the perfect white, strictly between 0 and 100.
     samples
-        Number of block start positions, spread uniformly (cyclically) over the range.
+        Number of hue angles, spread uniformly over the full turn.
 
     Returns
     -------
     ndarray (samples, 3)
-        XYZ100 of two-transition block spectra (with fractional ends) of the given ``Y``,
-        ordered by block start: a closed locus; ``spectrocolor.xy`` gives the chromaticities.
+        XYZ100 of the boundary points of the given ``Y``, ordered by hue angle: a closed
+        locus; ``spectrocolor.xy`` gives the chromaticities.
+
+    Examples
+    --------
+    >>> XYZ = macadam_limits(50.0, wavelengths=(400, 700, 10), samples=8)
+    >>> bool(abs(XYZ[:, 1] - 50.0).max() < 1e-9)
+    True
     """
     Y = float(luminance_factor)
     if not 0.0 < Y < 100.0:
         raise ColorimetryError(f"luminance_factor: expected 0 < Y < 100 (percent), got {luminance_factor!r}")
+    if not isinstance(samples, int | np.integer) or samples < 3:
+        raise ColorimetryError(f"samples: expected an integer ≥ 3, got {samples!r}")
     setup, _, _ = setup_for(wavelengths, observer, illuminant)
-    K = setup.W.shape[0]
-    t, ext = _cumulative(setup.W)
-    start = np.linspace(0.0, K, samples, endpoint=False)
-    start_xyz = np.stack([np.interp(start, t, ext[:, j]) for j in range(3)], axis=1)
-    end = np.interp(start_xyz[:, 1] + Y, ext[:, 1], t)
-    end_xyz = np.stack([np.interp(end, t, ext[:, j]) for j in range(3)], axis=1)
-    return end_xyz - start_xyz
+    white = setup.white
+    origin = white * (Y / white[1])
+    theta = np.linspace(0.0, 2 * np.pi, int(samples), endpoint=False)
+    d = np.stack([np.cos(theta) * white[0], np.zeros_like(theta), np.sin(theta) * white[2]], axis=1)
+    s = zonotope.ray_exit(setup.solid, origin, d)
+    return origin + s[:, None] * d

@@ -110,3 +110,50 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
             excess[start:start + len(d)] = exc
         facet[start:start + len(d)] = k
     return ratio, excess, facet
+
+
+def sphere_directions(n: int) -> np.ndarray:
+    """``n`` unit vectors (n, 3) spread evenly over the sphere (a Fibonacci lattice).
+
+    Examples
+    --------
+    >>> d = sphere_directions(10)
+    >>> bool(np.allclose(np.linalg.norm(d, axis=1), 1.0))
+    True
+    """
+    i = np.arange(n) + 0.5
+    z = 1 - 2 * i / n
+    phi = np.pi * (1 + 5**0.5) * i
+    r = np.sqrt(1 - z**2)
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+def supporting_reflectances(W: np.ndarray, normals: np.ndarray) -> np.ndarray:
+    """The reflectances (M, K) whose colours maximise ``n · XYZ`` over ``0 ≤ ρ ≤ 1``.
+
+    For each direction ``n`` (rows of ``normals``, (M, 3)): ``ρ_k = 1`` where ``(W n)_k > 0``,
+    0 where ``< 0``, and 1/2 where it is 0 to rounding (``|(W n)_k| ≤ 4 γ_3 (|W| |n|)_k``): any
+    value there gives a colour on the same face, 1/2 its centre. Each colour ``ρ @ W`` lies on
+    the boundary of the solid, however many transitions ρ has.
+    """
+    p = normals @ W.T  # (M, K)
+    eps = np.finfo(float).eps
+    tol = 4 * (3 * eps / (1 - 3 * eps)) * (np.abs(normals) @ np.abs(W).T)
+    return np.where(p > tol, 1.0, np.where(p < -tol, 0.0, 0.5))
+
+
+def ray_exit(facets: Facets, origin: np.ndarray, directions: np.ndarray) -> np.ndarray:
+    """Largest ``s`` with ``origin + s d`` in the solid, for each direction ``d`` (M, 3).
+
+    ``origin`` (3,) must be inside. The exit point lies on the facet plane that the ray meets
+    first: ``s = min over facets with n·d > 0 of (support − n·(origin − centre)) / (n·d)``.
+    """
+    slack = facets.support - facets.normals @ (origin - facets.centre)
+    out = np.empty(len(directions))
+    chunk = max(1, _BLOCK // max(len(facets.normals), 1))
+    for start in range(0, len(directions), chunk):
+        nd = directions[start:start + chunk] @ facets.normals.T
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = np.where(nd > 0, slack / nd, np.inf)
+        out[start:start + chunk] = s.min(axis=1)
+    return out
