@@ -19,7 +19,8 @@ def register(subparsers) -> None:
         description=(
             "For every reflectance sample in FILE: X, Y, Z, x, y, dominant or complementary "
             "wavelength, excitation purity, luminance factor, CIELAB and an sRGB swatch under "
-            "the illuminant; the HTML adds a chromaticity diagram and the reflectance curves "
+            "the illuminant (Bradford-adapted to D65, desaturated toward the white at constant Y "
+            "where out of gamut); the HTML adds a chromaticity diagram and the reflectance curves "
             "in one self-contained file."
         ),
     )
