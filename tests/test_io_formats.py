@@ -180,6 +180,13 @@ def test_malformed_instrument_files_get_one_clear_line(text, message):
     assert "\n" not in str(info.value)
 
 
+def test_cgats_comments_after_values_are_ignored():
+    text = "CGATS.17 # exported\nBEGIN_DATA_FORMAT\nSPEC_400 SPEC_410 # two bands\nEND_DATA_FORMAT\n"
+    text += "BEGIN_DATA\n1 2 # first row\nEND_DATA\n"
+    s = parse_spectra(text, "f", percent=False)
+    assert s.values.tolist() == [1.0, 2.0] and s.metadata["file_identifier"] == "CGATS.17"
+
+
 def test_table_to_cgats_uses_standard_field_names_and_reads_back_its_numbers():
     text = table_to_cgats([{"name": "a", "X": 41.2, "Y": 21.3, "Z": 1.9, "L*": 53.3, "purity": 0.5}])
     assert "SAMPLE_ID SAMPLE_NAME XYZ_X XYZ_Y XYZ_Z LAB_L PURITY" in text and text.endswith("END_DATA\r\n")

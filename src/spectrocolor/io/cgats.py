@@ -56,14 +56,15 @@ def looks_like_cgats(text: str) -> bool:
 
 def _tokens(line: str) -> list[str]:
     if '"' not in line:
-        return line.split()
+        return line.split("#", 1)[0].split()  # '#' outside a string starts a comment
     return [m.group(1) if m.group(1) is not None else m.group(2) for m in _TOKEN.finditer(line)]
 
 
 def _tables(text: str, source: str):
     """Yield (identifier, keywords, fields, rows) per table; rows are (line number, tokens)."""
     lines = text.splitlines()
-    identifier = _tokens(lines[0].split("#", 1)[0])[0] if lines and _tokens(lines[0].split("#", 1)[0]) else ""
+    first = _tokens(lines[0]) if lines else []
+    identifier = first[0] if first else ""
     keywords: dict[str, str] = {}
     fields: list[str] | None = None
     rows: list[tuple[int, list[str]]] = []
@@ -73,6 +74,8 @@ def _tables(text: str, source: str):
         if not line or line.startswith("#"):
             continue
         tokens = _tokens(line)
+        if not tokens:
+            continue
         head = tokens[0]
         if state == "format":
             if head == "END_DATA_FORMAT":
