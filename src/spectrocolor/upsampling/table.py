@@ -218,11 +218,17 @@ def tetrahedron_corners() -> np.ndarray:
     return corners
 
 
+def _cell_tetrahedra(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Grid indices ``(c, c, c, 6, 4, 3)`` and flat node indices ``(c, c, c, 6, 4)`` of the
+    corners of every tetrahedron of every cell (``c = n − 1``)."""
+    base = np.stack(np.meshgrid(*(np.arange(n - 1),) * 3, indexing="ij"), axis=-1)
+    corners = base[..., None, None, :] + tetrahedron_corners()
+    return corners, (corners[..., 0] * n + corners[..., 1]) * n + corners[..., 2]
+
+
 def _excess_bound(n, XYZ, R, mu, exact):
     """Rigorous per-cell bound ``max_tet min_j max_i [R_i − R_j − μ_j · (XYZ_i − XYZ_j)]``."""
-    base = np.stack(np.meshgrid(*(np.arange(n - 1),) * 3, indexing="ij"), axis=-1)
-    corners = base[..., None, None, :] + tetrahedron_corners()  # (c, c, c, 6, 4, 3)
-    flat = (corners[..., 0] * n + corners[..., 1]) * n + corners[..., 2]
+    flat = _cell_tetrahedra(n)[1]
     X, Rf, M, E = XYZ.reshape(-1, 3), R.ravel(), mu.reshape(-1, 3), exact.ravel()
     Xc, Rc, Mc = X[flat], Rf[flat], M[flat]  # (..., 6, 4[, 3])
     # gap[..., j, i] = R_i − R_j − μ_j · (X_i − X_j)
@@ -236,9 +242,7 @@ def _excess_bound(n, XYZ, R, mu, exact):
 
 def _excess_measured(n, reflectance, exact, matrix, illuminant, observer, wavelengths, step):
     """Roughness of the interpolated ρ minus the exact optimum at every tetrahedron centroid."""
-    base = np.stack(np.meshgrid(*(np.arange(n - 1),) * 3, indexing="ij"), axis=-1)
-    corners = base[..., None, None, :] + tetrahedron_corners()
-    flat = (corners[..., 0] * n + corners[..., 1]) * n + corners[..., 2]
+    corners, flat = _cell_tetrahedra(n)
     blend = reflectance.reshape(-1, reflectance.shape[-1])[flat].mean(axis=-2)  # (c,c,c,6,K)
     XYZ = (corners.mean(axis=-2) / (n - 1)) @ matrix.T
     rho, _, result, ok = _solve_checked(XYZ.reshape(-1, 3), illuminant, observer, wavelengths)
