@@ -10,15 +10,14 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
   anything malformed gets a 4xx, and every error of every route -- 403, 404, 405, 413, 422,
   429 -- has one shape, ``{"error": "one line"}``, which the page shows;
 * it never reads or writes a path that the page sends: uploads arrive as text and are parsed
-  from a temporary file that the server itself creates, at most :data:`MAX_PARSERS` at a time
-  (in the thread pool, so other clients are answered meanwhile; 429 when all are busy).
+  from a temporary file that a worker process creates, at most :data:`MAX_PARSERS` at a time
+  (:mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay
+  busy).
 """
 
 from __future__ import annotations
 
-import csv
 import tempfile
-import threading
 from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
@@ -37,14 +36,18 @@ from spectrocolor.spreadsheet import neutralise_cell
 from . import compute
 from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
 from .lab_routes import router as lab_router
+from .uploads import Busy, UploadParser
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
 MAX_BODY_BYTES = 2_000_000
 #: Deepest JSON nesting accepted in a body or an imported file (the API needs 3).
 MAX_JSON_DEPTH = 32
-#: Imports parsed at the same time; more wait up to PARSER_WAIT_S, then get 429.
+#: Imports parsed at the same time, each in a worker process; more wait up to PARSER_WAIT_S,
+#: then get 429.
 MAX_PARSERS = 2
 PARSER_WAIT_S = 10.0
+#: Longest parse of one upload, seconds.
+PARSER_TIMEOUT_S = 60.0
 MAX_SPECTRA = 4
 #: Spectra one imported file may hold; the page lets the user choose which to edit.
 MAX_IMPORT_SPECTRA = 64
@@ -192,7 +195,8 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     """
     app = FastAPI(title="spectrocolor explorer", docs_url=None, redoc_url=None, openapi_url=None)
     static = Path(str(resources.files("spectrocolor.app") / "static"))
-    parsers = threading.BoundedSemaphore(MAX_PARSERS)
+    parsers = UploadParser(MAX_PARSERS, PARSER_WAIT_S, PARSER_TIMEOUT_S)
+    app.router.on_shutdown.append(parsers.close)
     # added last = outermost: Host/Origin first, then the body count, then FastAPI
     app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
     app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
@@ -267,25 +271,12 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
         suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
         if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
             raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
-        if not parsers.acquire(timeout=PARSER_WAIT_S):
+        try:  # in a worker process: other clients keep being answered meanwhile
+            return parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
+                                 req.method, req.scale, MAX_IMPORT_SPECTRA)
+        except Busy:
             return JSONResponse({"error": "the server is busy reading other files; try again"},
                                 status_code=429)
-        try:
-            with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
-                path = Path(folder) / f"upload{suffix}"
-                path.write_text(req.content, encoding="utf-8")
-                try:
-                    return compute.import_spectra(path, float(req.step_nm), req.method,
-                                                  req.scale, max_spectra=MAX_IMPORT_SPECTRA)
-                except (ValueError, csv.Error, RecursionError, UnicodeError) as exc:
-                    # SpectrumError, and what a reader lets through on a hostile file (a cell
-                    # over the csv module's field limit, ...): the file's fault, never a 500
-                    message = str(exc).replace(str(path), req.filename).splitlines()[0][:300]
-                    if not isinstance(exc, SpectrumError):
-                        message = f"{req.filename}: cannot be read ({message})"
-                    raise SpectrumError(message) from None
-        finally:
-            parsers.release()
 
     @app.post("/api/export")
     def export(req: ExportRequest):

@@ -1,0 +1,225 @@
+"""Load on the explorer's server, started as a user starts it, on 127.0.0.1 only.
+
+Phases (each bounded by a request count, so the script stops by itself):
+
+1. one client, keep-alive: GET /api/options, POST /api/model, POST /api/evaluate in turn;
+2. four clients at once, the same mix;
+3. hostile: four clients each streaming a 50 MiB chunked body while a fifth client times
+   GET /api/options (the body limit must refuse them early; the fifth must not wait);
+4. the largest accepted jobs: a 1 MB CSV import and an evaluation of 4 spectra at 1 nm, and
+   parallel imports beyond MAX_PARSERS (answered 429 when the parsers stay busy);
+
+and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
+memory (VmRSS) before and after, with its peak (VmHWM).
+
+Run: .venv/bin/python bench/bench_server_load.py
+"""
+
+from __future__ import annotations
+
+import collections
+import http.client
+import json
+import os
+import re
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+
+ROUNDS_ONE = 1500
+ROUNDS_EACH = 400
+CLIENTS = 4
+HOSTILE_MIB = 50
+PARALLEL_IMPORTS = 6
+
+
+def start_server() -> tuple[subprocess.Popen, int]:
+    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--port", "0",
+                             "--no-browser"], stdout=subprocess.PIPE, text=True)
+    port = int(re.search(r":(\d+)/", proc.stdout.readline()).group(1))
+    for _ in range(200):
+        try:
+            socket.create_connection(("127.0.0.1", port), timeout=1).close()
+            break
+        except OSError:
+            time.sleep(0.05)
+    return proc, port
+
+
+def memory_mib(pid: int) -> dict[str, float]:
+    """Resident and peak memory of the server, and of its upload workers, MiB."""
+    def status(p):
+        with open(f"/proc/{p}/status") as fh:
+            fields = dict(line.split(":", 1) for line in fh if ":" in line)
+        return {k: int(fields[k].split()[0]) / 1024 for k in ("VmRSS", "VmHWM")}
+
+    result = {k: round(v) for k, v in status(pid).items()}
+    workers = []
+    for entry in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{entry}/stat") as fh:
+                if entry.isdigit() and int(fh.read().rsplit(")", 1)[1].split()[1]) == pid:
+                    workers.append(status(entry))
+        except (OSError, ValueError, IndexError):
+            continue
+    if workers:
+        result["workers_RSS"] = round(sum(w["VmRSS"] for w in workers))
+        result["workers_HWM"] = round(sum(w["VmHWM"] for w in workers))
+    return result
+
+
+BODIES = {
+    "options": ("GET", "/api/options", None),
+    "model": ("POST", "/api/model", json.dumps({"step_nm": 10}).encode()),
+    "evaluate": ("POST", "/api/evaluate", json.dumps(
+        {"spectra": [list(np.linspace(0, 30, 31)), [15.0] * 31], "pairs": [[0, 1]]}).encode()),
+}
+
+
+def timed(conn: http.client.HTTPConnection, method: str, path: str, body) -> tuple[float, int]:
+    start = time.perf_counter()
+    headers = {"Content-Type": "application/json"} if body is not None else {}
+    conn.request(method, path, body=body, headers=headers)
+    response = conn.getresponse()
+    response.read()
+    return time.perf_counter() - start, response.status
+
+
+def client(port: int, rounds: int, latencies: list, statuses: collections.Counter,
+           by_name: dict | None = None) -> None:
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+    names = list(BODIES)
+    for i in range(rounds):
+        name = names[i % len(names)]
+        seconds, status = timed(conn, *BODIES[name])
+        latencies.append(seconds)
+        statuses[status] += 1
+        if by_name is not None:
+            by_name.setdefault(name, []).append(seconds)
+    conn.close()
+
+
+def report(label: str, latencies: list, statuses, wall: float) -> None:
+    ms = np.array(latencies) * 1e3
+    p50, p95, p99 = np.percentile(ms, [50, 95, 99])
+    print(f"{label:<34} {len(ms):>6} req  {len(ms) / wall:8.0f} req/s  p50 {p50:6.2f}  "
+          f"p95 {p95:6.2f}  p99 {p99:7.2f} ms  max {ms.max():7.1f} ms  {dict(statuses)}")
+
+
+def hostile_chunked(port: int, results: list) -> None:
+    head = (f"POST /api/evaluate HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+            "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n").encode()
+    chunk = b"[1," * 21846
+    framed = f"{len(chunk):x}\r\n".encode() + chunk + b"\r\n"
+    sent = 0
+    with socket.create_connection(("127.0.0.1", port), timeout=60) as sock:
+        sock.sendall(head)
+        try:
+            while sent < HOSTILE_MIB * 2**20:
+                sock.sendall(framed)
+                sent += len(chunk)
+        except OSError:
+            pass
+        try:
+            status = int(sock.recv(4096).split()[1])
+        except (OSError, IndexError, ValueError):
+            status = 0
+    results.append((status, sent))
+
+
+def main() -> None:
+    proc, port = start_server()
+    try:
+        before = memory_mib(proc.pid)
+        print(f"server pid {proc.pid} on 127.0.0.1:{port}; RSS before {before['VmRSS']:.0f} MiB; "
+              f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+
+        lat, st, by_name = [], collections.Counter(), {}
+        t0 = time.perf_counter()
+        client(port, ROUNDS_ONE, lat, st, by_name)
+        wall = time.perf_counter() - t0
+        report("1 client, keep-alive mix", lat, st, wall)
+        for name, seconds in by_name.items():  # req/s here: of this endpoint within the mix
+            report(f"  of which {name}", seconds, {}, wall)
+
+        lat, st = [], collections.Counter()
+        threads = [threading.Thread(target=client, args=(port, ROUNDS_EACH, lat, st))
+                   for _ in range(CLIENTS)]
+        t0 = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        report(f"{CLIENTS} clients at once", lat, st, time.perf_counter() - t0)
+
+        results: list = []
+        attackers = [threading.Thread(target=hostile_chunked, args=(port, results))
+                     for _ in range(4)]
+        lat, st = [], collections.Counter()
+        t0 = time.perf_counter()
+        for t in attackers:
+            t.start()
+        conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+        while any(t.is_alive() for t in attackers) and len(lat) < 5000:
+            seconds, status = timed(conn, *BODIES["options"])
+            lat.append(seconds)
+            st[status] += 1
+        for t in attackers:
+            t.join()
+        report("options during 4 x 50 MiB chunked", lat, st, time.perf_counter() - t0)
+        for status, sent in results:
+            print(f"  attacker: answered {status}, sent {sent / 2**20:.1f} MiB before the refusal")
+        print(f"  server memory now {memory_mib(proc.pid)}")
+
+        conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+        rows = "".join(f"{w:.3f},{0.5 + 0.4 * np.sin(w / 37):.6f},{0.3:.6f},{0.8:.6f},{0.1:.6f}\n"
+                       for w in np.arange(380.0, 780.001, 0.018))  # about 0.99 MB
+        csv_text = "wavelength_nm,a,b,c,d\n" + rows
+        assert len(csv_text) < 1_000_000, len(csv_text)  # ImportRequest's content limit
+        body = json.dumps({"filename": "big.csv", "content": csv_text, "step_nm": 1}).encode()
+        seconds, status = timed(conn, "POST", "/api/import", body)
+        print(f"largest import ({len(body) / 1e6:.2f} MB body): {status} in {seconds * 1e3:.0f} ms; "
+              f"memory {memory_mib(proc.pid)}")
+        big = json.dumps({"step_nm": 1, "spectra": [[15.0] * 301] * 4,
+                          "pairs": [[0, 1], [2, 3]]}).encode()
+        seconds, status = timed(conn, "POST", "/api/evaluate", big)
+        print(f"largest evaluate (4 spectra x 301 bins): {status} in {seconds * 1e3:.0f} ms")
+
+        statuses, lat = collections.Counter(), []
+
+        def importer():
+            c = http.client.HTTPConnection("127.0.0.1", port, timeout=120)
+            seconds, status = timed(c, "POST", "/api/import", body)
+            lat.append(seconds)
+            statuses[status] += 1
+
+        workers = [threading.Thread(target=importer) for _ in range(PARALLEL_IMPORTS)]
+        probe, probe_statuses = [], collections.Counter()
+        t0 = time.perf_counter()
+        for t in workers:
+            t.start()
+        while any(t.is_alive() for t in workers) and len(probe) < 5000:
+            seconds, status = timed(conn, *BODIES["options"])
+            probe.append(seconds)
+            probe_statuses[status] += 1
+        for t in workers:
+            t.join()
+        wall = time.perf_counter() - t0
+        report(f"{PARALLEL_IMPORTS} parallel 1 MB imports", lat, statuses, wall)
+        report("options during those imports", probe, probe_statuses, wall)
+
+        after = memory_mib(proc.pid)
+        print(f"RSS before {before['VmRSS']:.0f} MiB, after {after['VmRSS']:.0f} MiB, "
+              f"peak {after['VmHWM']:.0f} MiB; upload workers {after.get('workers_RSS', 0)} MiB "
+              f"(peak {after.get('workers_HWM', 0)} MiB); load average {os.getloadavg()[0]:.1f}")
+    finally:
+        proc.terminate()
+        proc.wait(10)
+
+
+if __name__ == "__main__":
+    main()
