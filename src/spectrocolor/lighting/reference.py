@@ -100,11 +100,12 @@ def fidelity_reference(cct_K, wavelengths_nm) -> np.ndarray:
     >>> round(float((S @ cmfs_on(grid, "1931")[:, 1] * 5)[0]), 12)
     1.0
     """
-    T = np.asarray(cct_K, dtype=float)
+    shape = np.shape(cct_K)
+    T = np.asarray(cct_K, dtype=float).reshape(-1)
     grid = np.asarray(wavelengths_nm, dtype=float)
     V_delta = cmfs_on(grid, "1931")[:, 1] * np.gradient(grid)
     share = np.clip((T - 4000.0) / 1000.0, 0.0, 1.0)  # daylight share: 0 below 4000 K, 1 above 5000 K
-    result = np.full((*T.shape, grid.size), np.nan)
+    result = np.full((T.size, grid.size), np.nan)
     with np.errstate(invalid="ignore", divide="ignore"):
         planckian, daylight = share < 1.0, share > 0.0  # NaN temperatures are in neither
         if np.any(planckian):
@@ -116,4 +117,4 @@ def fidelity_reference(cct_K, wavelengths_nm) -> np.ndarray:
             weight = share[daylight][..., None]
             mixed = planckian[daylight]
             result[daylight] = np.where(mixed[..., None], (1.0 - weight) * result[daylight] + weight * spd, spd)
-    return result
+    return result.reshape(*shape, grid.size)
