@@ -281,3 +281,34 @@ def test_random_bytes_never_give_a_5xx(server, route, body):
 def test_generated_uploads_never_give_a_5xx(server, filename, content):
     port, _ = server
     assert_clean(*post_json(port, "/api/import", {"filename": filename, "content": content}))
+
+
+def test_a_remote_host_needs_allow_remote_and_warns():
+    refused = subprocess.run([sys.executable, "-m", "spectrocolor", "app", "--host", "0.0.0.0",
+                              "--port", "0", "--no-browser"], capture_output=True, text=True,
+                             timeout=60)
+    assert refused.returncode == 2 and "--allow-remote" in refused.stderr
+    assert "Traceback" not in refused.stderr and refused.stdout == ""
+    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--host", "0.0.0.0",
+                             "--allow-remote", "--port", "0", "--no-browser"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert "warning" in proc.stderr.readline()
+        port = int(re.search(r":(\d+)/", proc.stdout.readline()).group(1))
+        for _ in range(100):
+            try:
+                # any Host is answered when serving the network; a foreign Origin still is not
+                status, _, _ = request(port, "GET", "/api/options", host="myhost.lan")
+                break
+            except OSError:
+                time.sleep(0.05)
+        assert status == 200
+        status, _, _ = post_json(port, "/api/model", {}, host="myhost.lan",
+                                 headers={"Origin": "http://evil.example"})
+        assert status == 403
+        status, _, _ = post_json(port, "/api/model", {}, host="myhost.lan",
+                                 headers={"Origin": "http://myhost.lan"})
+        assert status == 200
+    finally:
+        proc.terminate()
+        proc.wait(10)
