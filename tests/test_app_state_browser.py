@@ -132,6 +132,20 @@ def test_changing_bins_resamples_instead_of_resetting(browser, base_url):
         assert state(pg)["dists"][0] == coarse
 
 
+def test_work_saved_on_another_grid_is_resampled_on_the_next_visit(browser, base_url):
+    with open_page(browser, base_url) as pg:
+        choose(pg, 1)
+        key(pg, "4")
+        drag(pg, 0, 0.05, 0.2, 0.3, 0.9)
+        pg.select_option("#step", "5")
+        settle(pg)
+        fine = state(pg)["dists"][0]
+        pg.goto(base_url + "?s=2&b=10")  # a link to another setting on SPECTRA's grid
+        settle(pg)
+        choose(pg, 1)
+        assert state(pg)["dists"][0] == fine[::2]
+
+
 def test_a_dropdown_gives_the_keyboard_back_to_the_bars(browser, base_url):
     with open_page(browser, base_url) as pg:
         choose(pg, 1)

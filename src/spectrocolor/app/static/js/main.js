@@ -419,8 +419,7 @@ async function init() {
   S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
   await loadModel();
   defaults();
-  const saved = readPersisted(S.step, S.wl.length);
-  if (saved) { S.dists = saved.dists; S.names = saved.names; S.edited = saved.edited; }
+  readPersisted(S.step);  // the other settings as they were left
   const d = readURLDistributions(location.search, setting, S.wl.length);
   if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
   syncControls();

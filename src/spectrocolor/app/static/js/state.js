@@ -143,12 +143,22 @@ export function persist() {
     localStorage.setItem(WORK_KEY, JSON.stringify({step: S.step, dists: S.dists, names: S.names, edited: S.edited}));
   } catch { /* storage full or disabled: the URL still holds the current setting */ }
 }
-export function readPersisted(step, bins) {
+/** The 400–700 nm grid of a bin width (nm). */
+export const gridOf = (step) => Array.from({length: Math.round(300 / step) + 1}, (_, k) => 400 + k * step);
+
+/** Restore the work saved by an earlier visit (moved onto the grid of `step` if it was saved on
+ * another); false when there is none. */
+export function readPersisted(step) {
   try {
     const w = JSON.parse(localStorage.getItem(WORK_KEY) || "null");
-    if (!w || w.step !== step) return null;
+    if (!w || ![10, 5, 2, 1].includes(w.step)) return false;
+    const bins = gridOf(w.step).length;
     const ok = SETTINGS.every((n) => Array.isArray(w.dists[n]) && w.dists[n].length === EDITORS[n].length
+      && Array.isArray(w.names[n]) && Array.isArray(w.edited[n])
       && w.dists[n].every((d) => Array.isArray(d) && d.length === bins && d.every((v) => Number.isFinite(v) && v >= 0 && v <= FULL)));
-    return ok ? w : null;
-  } catch { return null; }
+    if (!ok) return false;
+    S.dists = w.dists; S.names = w.names; S.edited = w.edited;
+    if (w.step !== step) resampleAll(gridOf(w.step), gridOf(step), step);
+    return true;
+  } catch { return false; }
 }
