@@ -298,3 +298,9 @@ def test_the_policy_is_documented_once():
     text = (Path(__file__).parents[1] / "docs" / "robustness.md").read_text()
     assert "--force" in text and "own input" in text
     assert safe_write.__doc__ and "--force" in safe_write.__doc__
+
+
+def test_xyz_csv_names_a_spreadsheet_would_run_are_text(spectra_file, capsys):
+    assert cli.main(["xyz", str(spectra_file), "--format", "csv"]) == 0
+    names = [row[0] for row in csv.reader(capsys.readouterr().out.splitlines()[1:])]
+    assert names == ["grey", "'=HYPERLINK(\"http://x\")", "'@SUM(A1)"]

@@ -168,9 +168,12 @@ def emit(rows: list[dict], fmt: str, stream=None, keywords: dict[str, str] | Non
         return
     columns = list(rows[0])
     if fmt == "csv":
+        from ..spreadsheet import neutralise_cell  # names a spreadsheet would run become text
+
         writer = csv.DictWriter(stream, columns, lineterminator="\n")
         writer.writeheader()
-        writer.writerows(rows)
+        writer.writerows({k: neutralise_cell(v) if isinstance(v, str) else v for k, v in row.items()}
+                         for row in rows)
         return
     cells = [[_cell(row[c]) for c in columns] for row in rows]
     widths = [max(len(c), *(len(r[i]) for r in cells)) for i, c in enumerate(columns)]
