@@ -18,8 +18,8 @@ from spectrocolor.lighting import (
     light_report,
     luminous_efficacy_of_radiation,
     summary,
-    write_light_report,
 )
+from spectrocolor.lighting.report import write_light_report
 from spectrocolor.lighting.vector_graphic import normalised_graphic, write_vector_graphic
 
 

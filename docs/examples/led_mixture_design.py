@@ -96,7 +96,7 @@ def picture(best: Design, path) -> None:
     from matplotlib.figure import Figure
 
     from spectrocolor import wavelength_tint
-    from spectrocolor.lighting import vector_graphic
+    from spectrocolor.lighting.vector_graphic import vector_graphic
     from spectrocolor.safe_write import write_bytes
 
     figure = Figure(figsize=(10, 4.4))

@@ -148,8 +148,8 @@ _PUBLIC: dict[str, str] = {
     "luminous_efficacy_of_radiation": "lighting.photometry",
     "alpha_opic": "lighting.alpha_opic",
     "AlphaOpic": "lighting.alpha_opic",
-    "light_report": "lighting.report",
-    "LightReport": "lighting.report",
+    "light_report": "lighting.summary",
+    "LightReport": "lighting.summary",
     "write_light_report": "lighting.report",
 }
 

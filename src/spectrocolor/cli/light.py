@@ -79,7 +79,8 @@ def _print_table(report) -> None:
 
 
 def _light(args: argparse.Namespace) -> int:
-    from ..lighting.report import light_report, write_light_report
+    from ..lighting.report import write_light_report
+    from ..lighting.summary import light_report
     from ..spectrum_io import read_spectra
 
     fmt = _output_format(args)

@@ -8,9 +8,12 @@ Every metric takes spectral power distributions as a :class:`~spectrocolor.Spect
   (:mod:`.fidelity`, CAM02-UCS in :mod:`.cam02ucs`, reference illuminants in :mod:`.reference`)
 * :func:`luminous_quantity`, :func:`luminous_efficacy_of_radiation` — photometry (:mod:`.photometry`)
 * :func:`alpha_opic` — CIE S 026 α-opic irradiances, efficacies, EDI, DER (:mod:`.alpha_opic`)
-* :func:`summary`, :func:`light_report`, :func:`write_light_report` — per-spectrum reports
-  (:mod:`.report`); :func:`vector_graphic` — the TM-30 colour vector graphic (:mod:`.vector_graphic`,
-  needs matplotlib)
+* :func:`summary`, :func:`light_report` — every metric per light (:mod:`.summary`)
+
+Presentation sits in its own modules (the import graph of docs/design.md keeps it out of this
+package's namespace): :func:`spectrocolor.lighting.report.write_light_report` (HTML, CSV,
+JSON) and :func:`spectrocolor.lighting.vector_graphic.vector_graphic` (the TM-30 colour vector
+graphic; needs matplotlib).
 """
 
 from __future__ import annotations
@@ -19,8 +22,7 @@ from .alpha_opic import ALPHA_OPIC, AlphaOpic, alpha_opic, alpha_opic_irradiance
 from .cri import CRI, colour_rendering_index
 from .fidelity import Fidelity, colour_fidelity
 from .photometry import luminous_efficacy_of_radiation, luminous_quantity, radiant_quantity
-from .report import LightReport, light_report, summary, write_light_report
-from .vector_graphic import vector_graphic, write_vector_graphic
+from .summary import LightReport, light_report, summary
 
 __all__ = [
     "ALPHA_OPIC",
@@ -38,7 +40,4 @@ __all__ = [
     "luminous_quantity",
     "radiant_quantity",
     "summary",
-    "vector_graphic",
-    "write_light_report",
-    "write_vector_graphic",
 ]

@@ -1,13 +1,9 @@
-"""Light source reports: every metric of :mod:`spectrocolor.lighting` for each spectrum.
+"""Light source reports: :class:`~spectrocolor.lighting.summary.LightReport` as HTML, CSV or JSON.
 
-:func:`summary` gives the headline numbers of one light as plain floats (for the explorer app
-and other callers); :func:`light_report` computes everything for a batch at once;
-:func:`write_light_report` writes it as a self-contained HTML page (table, TM-30 colour vector
-graphics as inline SVG, hue-bin and R1–R14 tables), as CSV (one row per light) or as JSON.
-
-Columns: CCT (K), Duv, Ra, R9 (CIE 13.3), Rf, Rg (CIE 224:2017 / TM-30-20), luminous efficacy
-of radiation (lm/W), melanopic DER (CIE S 026), and whether CIE 13.3 considers the CCT
-meaningful (|Duv| ≤ 5.4 × 10⁻³).
+:func:`write_light_report` writes a self-contained HTML page (headline table, TM-30 colour
+vector graphics as inline SVG, hue-bin and R1–R14 tables), CSV (one row per light) or JSON
+(everything, ``null`` where undefined). Compute the report with
+:func:`~spectrocolor.lighting.light_report`.
 
 References
 ----------
@@ -21,123 +17,19 @@ import html
 import io
 import json
 import math
-from dataclasses import dataclass
 from pathlib import Path
-
-import numpy as np
 
 from ..errors import ColorimetryError
 from ..safe_write import write_text
-from ..spectrum import Spectrum
 from ..spreadsheet import neutralise_cell
-from .alpha_opic import ALPHA_OPIC, AlphaOpic, alpha_opic
-from .cri import CRI, colour_rendering_index
-from .fidelity import HUE_BINS, Fidelity, colour_fidelity
-from .photometry import luminous_efficacy_of_radiation
+from .alpha_opic import ALPHA_OPIC
+from .fidelity import HUE_BINS
+from .summary import HEADLINE, LightReport
+
+__all__ = ["FORMATS", "report_html", "write_light_report"]
 
 #: Report formats :func:`write_light_report` writes.
 FORMATS = ("html", "csv", "json")
-#: The headline columns, in order (name → description with unit).
-HEADLINE = {
-    "cct_K": "correlated colour temperature, K",
-    "duv": "distance from the Planckian locus, CIE 1960 uv",
-    "Ra": "CIE 13.3 general colour rendering index",
-    "R9": "CIE 13.3 special index of TCS09 (red)",
-    "Rf": "CIE 224:2017 / TM-30 fidelity index",
-    "Rg": "TM-30 gamut index",
-    "LER_lm_per_W": "luminous efficacy of radiation, lm/W",
-    "melanopic_DER": "CIE S 026 melanopic daylight (D65) efficacy ratio",
-}
-
-
-@dataclass(frozen=True)
-class LightReport:
-    """All lighting metrics of N lights (flattened batch), with their names.
-
-    Attributes
-    ----------
-    names : tuple of str
-    cri : CRI
-    fidelity : Fidelity
-    ler_lm_per_W : ndarray (N,)
-    alpha_opic : AlphaOpic
-    """
-
-    names: tuple
-    cri: CRI
-    fidelity: Fidelity
-    ler_lm_per_W: np.ndarray
-    alpha_opic: AlphaOpic
-
-    def __len__(self) -> int:
-        return len(self.names)
-
-    def headline(self) -> dict[str, np.ndarray]:
-        """The :data:`HEADLINE` columns as arrays (N,)."""
-        return {
-            "cct_K": self.fidelity.cct_K,
-            "duv": self.fidelity.duv,
-            "Ra": self.cri.Ra,
-            "R9": self.cri.R9,
-            "Rf": self.fidelity.Rf,
-            "Rg": self.fidelity.Rg,
-            "LER_lm_per_W": self.ler_lm_per_W,
-            "melanopic_DER": self.alpha_opic.melanopic_der,
-        }
-
-
-def _flat(spd: Spectrum) -> Spectrum:
-    return spd if spd.values.ndim == 2 else Spectrum(spd.wavelengths_nm, spd.values.reshape(-1, spd.values.shape[-1]))
-
-
-def light_report(spd) -> LightReport:
-    """Every lighting metric of lights ``(..., K)`` (flattened to N lights).
-
-    ``spd`` as for :func:`~spectrocolor.lighting.colour_fidelity` (1 or 5 nm, 380–780 nm at
-    least); CIE 13.3 uses samples from 360 nm where present.
-
-    Examples
-    --------
-    >>> from spectrocolor import illuminant
-    >>> report = light_report(illuminant("FL2"))
-    >>> len(report), round(float(report.fidelity.Rf[0]), 1)
-    (1, 70.1)
-    """
-    from .spectra import light_grid
-
-    light_grid(spd, 380.0, 780.0)  # one clear error before any work
-    flat = _flat(spd)
-    names = spd.names if spd.names and len(spd.names) == len(flat.values) else tuple(
-        f"spectrum {i + 1}" for i in range(len(flat.values)))
-    return LightReport(
-        names=tuple(names),
-        cri=colour_rendering_index(flat),
-        fidelity=colour_fidelity(flat),
-        ler_lm_per_W=luminous_efficacy_of_radiation(flat),
-        alpha_opic=alpha_opic(flat),
-    )
-
-
-def summary(spd) -> dict[str, float | bool]:
-    """Headline numbers of one light as plain Python floats: CCT, Duv, Ra, R9, Rf, Rg, LER, DER.
-
-    For the explorer app and other callers that want JSON-ready values; NaN where a metric is
-    undefined (no CCT). ``cri_meaningful`` is CIE 13.3's |Duv| ≤ 5.4 × 10⁻³.
-
-    Examples
-    --------
-    >>> from spectrocolor import illuminant
-    >>> values = summary(illuminant("FL2"))
-    >>> {key: round(values[key], 1) for key in ("cct_K", "Ra", "Rf", "Rg")}
-    {'cct_K': 4224.5, 'Ra': 64.2, 'Rf': 70.1, 'Rg': 86.4}
-    """
-    if not isinstance(spd, Spectrum) or spd.batch_shape not in ((), (1,)):
-        shape = spd.batch_shape if isinstance(spd, Spectrum) else type(spd).__name__
-        raise ColorimetryError(f"spd: summary takes one light (a Spectrum of shape (K,)), got {shape}")
-    report = light_report(spd)
-    values: dict[str, float | bool] = {key: float(column[0]) for key, column in report.headline().items()}
-    values["cri_meaningful"] = bool(report.cri.meaningful[0])
-    return values
 
 
 # ---------------------------------------------------------------------------- writers
