@@ -18,7 +18,7 @@ from fastapi import APIRouter
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 
-from . import light_lab, thinfilm_lab
+from . import light_lab, reflectance_lab, thinfilm_lab
 
 router = APIRouter()
 
@@ -95,3 +95,35 @@ def thinfilm_options():
 @router.post("/api/lab/thinfilm")
 def thinfilm(req: ThinFilmRequest):
     return _table(req.film, req.model, round(req.angle_deg, 3), req.illuminant, req.observer, req.display)
+
+
+class ReflectanceRequest(BaseModel):
+    """One colour (x, y, Y) under one light, on one grid."""
+
+    model_config = ConfigDict(extra="forbid")
+    x: Annotated[float, Field(ge=0.0, le=1.0)]
+    y: Annotated[float, Field(gt=0.0, le=1.0)]
+    Y: Annotated[float, Field(gt=0.0, le=100.0)]
+    illuminant: Annotated[str, Field(max_length=40)] = "D65"
+    observer: Literal["1931", "1964"] = "1931"
+    step_nm: Literal["5", "10"] = "5"
+
+
+@router.get("/labs/reflectance", include_in_schema=False)
+def reflectance_page():
+    return _page("reflectance")
+
+
+@router.get("/api/lab/reflectance/options")
+def reflectance_options():
+    return reflectance_lab.reflectance_lab_options()
+
+
+@router.post("/api/lab/reflectance")
+def reflectance(req: ReflectanceRequest):
+    return reflectance_lab.reflectance_lab(req.x, req.y, req.Y, req.illuminant, req.observer, req.step_nm)
+
+
+@router.post("/api/lab/reflectance/macadam")
+def macadam(req: ReflectanceRequest):
+    return {"Y": req.Y, "xy": reflectance_lab.macadam_xy(round(req.Y, 1), req.illuminant, req.observer, req.step_nm)}

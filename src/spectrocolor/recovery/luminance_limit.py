@@ -66,5 +66,5 @@ def max_luminance_factor(xy, illuminant="D65", observer="1931", wavelengths=DEFA
         direction = np.array([x / y, 1.0, (1.0 - x - y) / y])
         equality = np.hstack([W.T, -direction[:, None]])
         solved = linprog(objective, A_eq=equality, b_eq=np.zeros(3), bounds=bounds, method="highs")
-        result[i] = solved.x[-1] if solved.status == 0 else 0.0
+        result[i] = max(0.0, float(solved.x[-1])) if solved.status == 0 else 0.0  # never -0.0
     return result.reshape(points.shape[:-1])
