@@ -18,7 +18,24 @@ from .spectrum import Spectrum
 
 
 def interval_weights_nm(wavelengths_nm: np.ndarray) -> np.ndarray:
-    """Δλ for each sample: the constant step on a uniform grid, else half the span to the neighbours."""
+    """Δλ for each sample: the constant step on a uniform grid, else half the span to the neighbours.
+
+    Parameters
+    ----------
+    wavelengths_nm : numpy.ndarray, shape (K,)
+        A validated, strictly increasing grid, nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K,)
+        Δλ per sample, nm (trapezoidal weights on an irregular grid; 1 for a single sample).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> interval_weights_nm(np.array([400.0, 410.0, 430.0])).tolist()
+    [5.0, 15.0, 10.0]
+    """
     steps = np.diff(wavelengths_nm)
     if steps.size == 0:
         return np.ones(1)
@@ -31,7 +48,29 @@ def interval_weights_nm(wavelengths_nm: np.ndarray) -> np.ndarray:
 
 
 def resolve_observer(observer) -> tuple[str, Spectrum]:
-    """(label, colour-matching functions) for a name/alias or a user's (3, K) Spectrum."""
+    """(label, colour-matching functions) for a name/alias or a user's (3, K) Spectrum.
+
+    Parameters
+    ----------
+    observer : str or Spectrum
+        An observer name or alias, or colour-matching functions of shape (3, K).
+
+    Returns
+    -------
+    tuple of (str, Spectrum)
+        The canonical name (``"custom observer"`` for a Spectrum) and the functions.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown name or a Spectrum that is not (3, K).
+
+    Examples
+    --------
+    >>> name, cmfs = resolve_observer("10deg")
+    >>> name, cmfs.values.shape
+    ('CIE 1964 10°', (3, 471))
+    """
     if isinstance(observer, Spectrum):
         if observer.values.shape[:-1] != (3,):
             raise ColorimetryError(
@@ -43,7 +82,31 @@ def resolve_observer(observer) -> tuple[str, Spectrum]:
 
 
 def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
-    """The observer's x̄, ȳ, z̄ interpolated linearly at ``grid`` (nm), shape (K, 3); never extrapolated."""
+    """The observer's x̄, ȳ, z̄ interpolated linearly at ``grid`` (nm), shape (K, 3); never extrapolated.
+
+    Parameters
+    ----------
+    grid : numpy.ndarray, shape (K,)
+        The summation grid, nm.
+    observer : str or Spectrum
+        As :func:`resolve_observer`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K, 3)
+        x̄, ȳ, z̄ at the grid.
+
+    Raises
+    ------
+    ColorimetryError
+        For a grid reaching outside the observer's table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cmfs_on(np.array([555.0]), "1931").round(4).tolist()
+    [[0.5121, 1.0, 0.0057]]
+    """
     observer_name, cmfs = resolve_observer(observer)
     try:
         table = resample_linear(cmfs.wavelengths_nm, cmfs.values, grid)  # (3, K), banded
@@ -61,6 +124,29 @@ def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
 
     A name (CIE, ``"blackbody:T"``, ``"D:T"``) is evaluated at ``grid``; a Spectrum must contain
     every grid sample (its own samples are used, never interpolated behind the caller's back).
+
+    Parameters
+    ----------
+    grid : numpy.ndarray, shape (K,)
+        The summation grid, nm.
+    illuminant : str, float or Spectrum
+        Any form of :func:`~spectrocolor.canonical_illuminant` except ``None``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K,)
+        Relative SPD at the grid.
+
+    Raises
+    ------
+    ColorimetryError
+        For ``None``, an unknown illuminant, or a Spectrum without every grid sample.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> illuminant_on(np.array([560.0, 600.0]), "D65").round(3).tolist()
+    [100.0, 90.006]
     """
     resolved = canonical_illuminant(illuminant)
     if resolved is None:
@@ -83,6 +169,31 @@ def reflectance_weights(products: np.ndarray) -> np.ndarray:
 
     The CIE 015 normalisation for reflectance and transmittance factors: the perfect white
     (factor 1 everywhere) gets Y = 100.
+
+    Parameters
+    ----------
+    products : numpy.ndarray, shape (K, 3)
+        ``S(λ) x̄(λ) Δλ``, ``S ȳ Δλ``, ``S z̄ Δλ`` per sample.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K, 3)
+        The weights, column 1 summing to 100.
+
+    Raises
+    ------
+    ColorimetryError
+        If ``Σ S ȳ Δλ`` is not positive.
+
+    References
+    ----------
+    CIE 015:2018 §7.1 (the normalising constant k).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> reflectance_weights(np.array([[1.0, 2.0, 3.0], [1.0, 2.0, 1.0]])).tolist()
+    [[25.0, 50.0, 75.0], [25.0, 50.0, 25.0]]
     """
     white_Y = products[:, 1].sum()
     if not white_Y > 0:
