@@ -25,13 +25,13 @@ import numpy as np
 
 from ..coordinates import colour_array
 from ..errors import ColorimetryError
+from ..registry import Registry
 
 #: Surround parameters (F, c, N_c), CIE 159:2004 Table 1.
-SURROUNDS = {
-    "average": (1.0, 0.69, 1.0),
-    "dim": (0.9, 0.59, 0.9),
-    "dark": (0.8, 0.525, 0.8),
-}
+SURROUNDS = Registry("surround", "a CIECAM02 surround")
+SURROUNDS.add("average", (1.0, 0.69, 1.0), "F = 1.0, c = 0.69, N_c = 1.0 (surface colours, CIE 224)")
+SURROUNDS.add("dim", (0.9, 0.59, 0.9), "F = 0.9, c = 0.59, N_c = 0.9 (television)")
+SURROUNDS.add("dark", (0.8, 0.525, 0.8), "F = 0.8, c = 0.525, N_c = 0.8 (projection in a dark room)")
 
 _M_CAT02 = np.array([[0.7328, 0.4296, -0.1624], [-0.7036, 1.6975, 0.0061], [0.0030, 0.0136, 0.9834]])
 _M_HPE = np.array([[0.38971, 0.68898, -0.07868], [-0.22981, 1.18340, 0.04641], [0.0, 0.0, 1.0]])
@@ -57,8 +57,7 @@ def _compress(rgb: np.ndarray, F_L) -> np.ndarray:
 
 
 def _check_conditions(surround: str, L_A: float, Y_b: float) -> None:
-    if surround not in SURROUNDS:
-        raise ColorimetryError(f"surround: {surround!r} is not a CIECAM02 surround; choose one of {list(SURROUNDS)}")
+    SURROUNDS.get(surround)
     if not (np.isfinite(L_A) and L_A > 0 and np.isfinite(Y_b) and Y_b > 0):
         raise ColorimetryError(f"L_A and Y_b: expected positive numbers, got L_A={L_A!r}, Y_b={Y_b!r}")
 
@@ -70,7 +69,7 @@ def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
     The hue enters only through cos h and sin h = (a, b) / |(a, b)|, which saves the trigonometry
     on large batches: e_t = ¼ (cos(h + 2) + 3.8) = ¼ (cos h cos 2 − sin h sin 2 + 3.8).
     """
-    F, c, N_c = SURROUNDS[surround]
+    F, c, N_c = SURROUNDS.get(surround)
     Y_w = white[1]
     k = 1.0 / (5.0 * L_A + 1.0)
     F_L = 0.2 * k**4 * (5.0 * L_A) + 0.1 * (1.0 - k**4) ** 2 * (5.0 * L_A) ** (1.0 / 3.0)

@@ -33,30 +33,30 @@ import numpy as np
 
 from ..colorimetry import K_M_LM_PER_W
 from ..data_tables import load_table
-from ..errors import ColorimetryError, SpectrumError
+from ..errors import SpectrumError
 from ..observers import observer
+from ..registry import Registry
 from ..sampling import interval_weights_nm
 from ..spectrum import Spectrum
 
 #: Maximum luminous efficacy for scotopic vision, lm/W (ISO 23539:2005 / CIE S 010).
 K_M_SCOTOPIC_LM_PER_W = 1700.0
 
-#: The visions a luminous quantity can be computed for.
-VISIONS = ("photopic", "scotopic")
+
+def _photopic() -> tuple[np.ndarray, np.ndarray]:
+    cmfs = observer("1931")
+    return cmfs.wavelengths_nm, cmfs.values[1]
 
 
-def _table(vision: str) -> tuple[np.ndarray, np.ndarray]:
-    if vision == "photopic":
-        cmfs = observer("1931")
-        return cmfs.wavelengths_nm, cmfs.values[1]
+def _scotopic() -> tuple[np.ndarray, np.ndarray]:
     header, table = load_table("lighting/cie_s026_alpha_opic.csv")
     return table[:, 0], table[:, header.index("s_rh")]
 
 
-def _efficacy(vision: str) -> float:
-    if vision not in VISIONS:
-        raise ColorimetryError(f"vision: {vision!r} is not a vision; choose one of {VISIONS}")
-    return K_M_LM_PER_W if vision == "photopic" else K_M_SCOTOPIC_LM_PER_W
+#: Visions: name → (K_m in lm/W, loader of the tabulated (wavelengths_nm, V)).
+VISIONS = Registry("vision", "a vision")
+VISIONS.add("photopic", (K_M_LM_PER_W, _photopic), "V(λ) = ȳ(λ) of CIE 1931, K_m = 683 lm/W")
+VISIONS.add("scotopic", (K_M_SCOTOPIC_LM_PER_W, _scotopic), "V'(λ) (CIE 1951), K'_m = 1700 lm/W")
 
 
 def weighting_on(wavelengths_nm, table_nm: np.ndarray, table: np.ndarray) -> np.ndarray:
@@ -73,7 +73,7 @@ def weighting_on(wavelengths_nm, table_nm: np.ndarray, table: np.ndarray) -> np.
 @lru_cache(maxsize=32)
 def _weights(grid_key: bytes, vision: str) -> np.ndarray:
     grid = np.frombuffer(grid_key, dtype=float)
-    result = weighting_on(grid, *_table(vision)) * interval_weights_nm(grid)
+    result = weighting_on(grid, *VISIONS.get(vision)[1]()) * interval_weights_nm(grid)
     result.setflags(write=False)
     return result
 
@@ -121,7 +121,8 @@ def luminous_quantity(spd, vision: str = "photopic") -> np.ndarray:
     72.983
     """
     values = spectral_values(spd)
-    K_m = _efficacy(vision)
+    vision = VISIONS.canonical(vision)
+    K_m = VISIONS.get(vision)[0]
     return K_m * (values @ _weights(np.ascontiguousarray(spd.wavelengths_nm).tobytes(), vision))
 
 
