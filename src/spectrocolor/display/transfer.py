@@ -96,14 +96,56 @@ class SRGBCurve:
     name: str = "sRGB (IEC 61966-2-1)"
 
     def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded 0-1."""
+        """Linear 0-1 -> encoded 0-1.
+
+        Parameters
+        ----------
+        rgb_linear : array_like
+            Linear drive values in [0, 1] (NaN passes through as NaN).
+
+        Returns
+        -------
+        numpy.ndarray
+            Encoded signal values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
+
+        Examples
+        --------
+        >>> SRGBCurve().encode([0.0, 0.18, 1.0]).round(4).tolist()
+        [0.0, 0.4614, 1.0]
+        """
         x = _check_unit_range(rgb_linear, "rgb_linear")
         with np.errstate(invalid="ignore"):
             power = 1.055 * np.power(np.maximum(x, self.threshold), 1 / 2.4) - 0.055
         return np.where(x <= self.threshold, 12.92 * x, power)
 
     def decode(self, rgb_encoded):
-        """Encoded 0-1 -> linear 0-1."""
+        """Encoded 0-1 -> linear 0-1.
+
+        Parameters
+        ----------
+        rgb_encoded : array_like
+            Encoded signal values in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            Linear drive values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1].
+
+        Examples
+        --------
+        >>> SRGBCurve().decode([0.04045, 0.5]).round(4).tolist()
+        [0.0031, 0.214]
+        """
         v = _check_unit_range(rgb_encoded, "rgb_encoded")
         knee = 12.92 * self.threshold
         with np.errstate(invalid="ignore"):
@@ -146,11 +188,53 @@ class PowerLaw:
             object.__setattr__(self, "name", f"gamma {self.gamma:g}")
 
     def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded 0-1."""
+        """Linear 0-1 -> encoded 0-1.
+
+        Parameters
+        ----------
+        rgb_linear : array_like
+            Linear drive values in [0, 1] (NaN passes through as NaN).
+
+        Returns
+        -------
+        numpy.ndarray
+            Encoded signal values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
+
+        Examples
+        --------
+        >>> PowerLaw(2.2).encode([0.18]).round(4).tolist()
+        [0.4587]
+        """
         return np.power(_check_unit_range(rgb_linear, "rgb_linear"), 1.0 / self.gamma)
 
     def decode(self, rgb_encoded):
-        """Encoded 0-1 -> linear 0-1."""
+        """Encoded 0-1 -> linear 0-1.
+
+        Parameters
+        ----------
+        rgb_encoded : array_like
+            Encoded signal values in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            Linear drive values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1].
+
+        Examples
+        --------
+        >>> PowerLaw(2.2).decode([0.5]).round(4).tolist()
+        [0.2176]
+        """
         return np.power(_check_unit_range(rgb_encoded, "rgb_encoded"), self.gamma)
 
 
@@ -186,14 +270,56 @@ class BT2020Curve:
     beta: float = 0.018053968510807
 
     def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded 0-1."""
+        """Linear 0-1 -> encoded 0-1.
+
+        Parameters
+        ----------
+        rgb_linear : array_like
+            Linear drive values in [0, 1] (NaN passes through as NaN).
+
+        Returns
+        -------
+        numpy.ndarray
+            Encoded signal values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
+
+        Examples
+        --------
+        >>> BT2020Curve().encode([0.01, 0.18]).round(4).tolist()
+        [0.045, 0.4088]
+        """
         x = _check_unit_range(rgb_linear, "rgb_linear")
         with np.errstate(invalid="ignore"):
             power = self.alpha * np.power(np.maximum(x, self.beta), 0.45) - (self.alpha - 1)
         return np.where(x < self.beta, 4.5 * x, power)
 
     def decode(self, rgb_encoded):
-        """Encoded 0-1 -> linear 0-1."""
+        """Encoded 0-1 -> linear 0-1.
+
+        Parameters
+        ----------
+        rgb_encoded : array_like
+            Encoded signal values in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            Linear drive values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1].
+
+        Examples
+        --------
+        >>> BT2020Curve().decode([0.5]).round(4).tolist()
+        [0.2597]
+        """
         v = _check_unit_range(rgb_encoded, "rgb_encoded")
         knee = 4.5 * self.beta
         with np.errstate(invalid="ignore"):
