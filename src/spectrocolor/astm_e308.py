@@ -134,6 +134,29 @@ def lagrange_matrix(reference_nm: np.ndarray, fine_nm: np.ndarray) -> np.ndarray
     Cubic Lagrange through the two neighbours on each side inside, quadratic through the three
     end wavelengths in the first and last interval; fine wavelengths beyond the reference grid
     take the end value.
+
+    Parameters
+    ----------
+    reference_nm : numpy.ndarray, shape (N,)
+        Uniform reference wavelengths, nm (N >= 3).
+    fine_nm : numpy.ndarray, shape (M,)
+        Target wavelengths, nm (normally whole nanometres).
+
+    Returns
+    -------
+    numpy.ndarray, shape (M, N)
+        Interpolation weights; each row sums to 1.
+
+    References
+    ----------
+    ASTM E2022-11 §7 (Lagrange interpolation).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> P = lagrange_matrix(np.arange(400.0, 431.0, 10.0), np.array([405.0, 415.0]))
+    >>> (P + 0.0).round(4).tolist()  # quadratic in the first interval, cubic inside
+    [[0.375, 0.75, -0.125, 0.0], [-0.0625, 0.5625, 0.5625, -0.0625]]
     """
     N = reference_nm.size
     step = reference_nm[1] - reference_nm[0]
@@ -166,9 +189,32 @@ def illuminant_at_1nm(fine_nm: np.ndarray, illuminant) -> np.ndarray:
       C, D50, D55 and D75.
     * a :class:`Spectrum`: its own samples, which must include every wavelength of ``fine_nm``.
 
+    Parameters
+    ----------
+    fine_nm : numpy.ndarray, shape (M,)
+        Whole-nanometre wavelengths.
+    illuminant : str or Spectrum
+        A CIE name or a Spectrum containing every wavelength of ``fine_nm``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (M,)
+        Relative SPD (100 at 560 nm for the CIE tables).
+
+    Raises
+    ------
+    ColorimetryError
+        For wavelengths outside a table, or a Spectrum that lacks some of them.
+
     References
     ----------
     ASTM E2022-11 §7 (Lagrange interpolation to 1 nm); CIE S 014-2/E:2006 (1 nm D65).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> illuminant_at_1nm(np.array([560.0, 561.0]), "D65").round(4).tolist()
+    [100.0, 99.6334]
     """
     if isinstance(illuminant, str) and canonical_illuminant_name(illuminant) not in ("A", "D65", "E"):
         table = named_illuminant(illuminant)
