@@ -85,3 +85,21 @@ def test_non_spectra_are_refused_by_name(argument):
     for metric in (colour_rendering_index, colour_fidelity, alpha_opic, luminous_efficacy_of_radiation):
         with pytest.raises((SpectrumError, ColorimetryError), match="Spectrum"):
             metric(argument)
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(start=st.floats(300, 420), step=st.floats(0.3, 12), count=st.integers(2, 150),
+       method=st.sampled_from(["linear", "sprague", "cubic"]), graphic=st.sampled_from(["g.png", "g.svg", "g.gif"]))
+def test_light_command_resample_and_graphic_options_on_any_grid(tmp_path, capsys, start, step, count, method, graphic):
+    grid = start + step * np.arange(count)
+    source = tmp_path / "lamp.csv"
+    rows = "\n".join(f"{w:.6f},{1.0 + 0.5 * np.sin(w / 40.0):.6f}" for w in grid)
+    source.write_text(f"wavelength_nm,lamp\n{rows}\n", encoding="utf-8")
+    code = main(["light", str(source), "--out", str(tmp_path / "r.csv"), "--resample", method,
+                 "--graphic", str(tmp_path / graphic), "--force"])
+    captured = capsys.readouterr()
+    assert code in (0, 2)
+    if code == 2:
+        assert captured.err.startswith("spectrocolor light: error:") and captured.err.count("\n") == 1
+    else:
+        assert (tmp_path / "r.csv").exists() and graphic != "g.gif"
