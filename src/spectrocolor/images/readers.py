@@ -302,10 +302,33 @@ def read_envi_header(path) -> dict[str, str]:
 
     Multi-line ``{...}`` values are joined; ``;`` comment lines are skipped.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The ``.hdr`` file.
+
+    Returns
+    -------
+    dict of str to str
+        Field name (lower case) → value as written (braces kept).
+
     Raises
     ------
     SpectrumError
         The file does not start with the line ``ENVI``, or a ``{`` is never closed.
+
+    References
+    ----------
+    L3Harris Geospatial, *ENVI Header Files* (file format description).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     header = pathlib.Path(folder) / "cube.hdr"
+    ...     _ = header.write_text("ENVI\\nsamples = 4\\nwavelength = {400,\\n 500}\\n; a comment\\n")
+    ...     read_envi_header(header)
+    {'samples': '4', 'wavelength': '{400, 500}'}
     """
     path = Path(path)
     lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
