@@ -111,6 +111,17 @@ class MappedArray:
         Bytes to skip at the start of the file (a header).
     axes : tuple of int
         Transposition from the stored order to (rows, columns, bands).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     raw = pathlib.Path(folder) / "cube.raw"
+    ...     np.arange(24, dtype="<f4").tofile(raw)  # 2 bands of 3 x 4 pixels, band-sequential
+    ...     cube = MappedArray(str(raw), "<f4", (2, 3, 4), 0, (1, 2, 0))
+    ...     print(cube.shape, cube[0, 0].tolist())
+    (3, 4, 2) [0.0, 12.0]
     """
 
     path: str
