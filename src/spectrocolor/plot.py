@@ -103,10 +103,34 @@ def horseshoe_image(kind: str = "xy", observer=DEFAULT_OBSERVER, space="sRGB", r
     holds ``space``'s encoded values; PNG files and browsers assume sRGB, so pictures meant for
     files use ``space="sRGB"``.
 
+    Parameters
+    ----------
+    kind : {"xy", "uv"}, default "xy"
+        CIE 1931 (x, y) or CIE 1976 (u', v').
+    observer : str, default DEFAULT_OBSERVER
+        Observer of the spectral locus.
+    space : str or RGBSpace, default "sRGB"
+        The space whose encoded values the image holds.
+    resolution : int, default 400
+        Pixels across the locus's x extent.
+
     Returns
     -------
     image : ndarray (H, W, 4) float in [0, 1] (transparent outside the locus)
+        RGBA, for ``matplotlib``'s ``imshow``.
     extent : (left, right, bottom, top) in the diagram's coordinates
+        The bounding box of the spectral locus.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown kind, observer or space.
+
+    Examples
+    --------
+    >>> image, extent = horseshoe_image(resolution=50)
+    >>> image.shape, [round(float(e), 4) for e in extent]
+    ((56, 50, 4), [0.0036, 0.7347, 0.0048, 0.8341])
     """
     from matplotlib.path import Path
 
