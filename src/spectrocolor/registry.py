@@ -33,7 +33,22 @@ from .errors import ColorimetryError
 
 @dataclass(frozen=True)
 class RegistryEntry:
-    """One named choice: its name, the object that implements it and a one-line description."""
+    """One named choice: its name, the object that implements it and a one-line description.
+
+    Attributes
+    ----------
+    name : str
+        The canonical name.
+    value : object
+        The implementing object.
+    description : str
+        One line for help texts and option lists.
+
+    Examples
+    --------
+    >>> RegistryEntry("nearest", round, "round half to even").description
+    'round half to even'
+    """
 
     name: str
     value: Any
