@@ -43,6 +43,13 @@ class OutputError(OSError):
 
     A subclass of :class:`OSError` so that callers handling file errors handle it; its message
     is one line that names the file and says what to do.
+
+    Examples
+    --------
+    >>> import errno
+    >>> error = OutputError(errno.EEXIST, "out.png exists; give --force to replace it")
+    >>> str(error), isinstance(error, OSError)
+    ('out.png exists; give --force to replace it', True)
     """
 
     def __str__(self) -> str:
