@@ -402,7 +402,7 @@ async function init() {
     $("menu").setAttribute("aria-expanded", String(open));
   });
   document.querySelectorAll("#tabs [role=tab]").forEach((b) => b.addEventListener("click", (ev) => {
-    selectSetting(Number(b.dataset.setting));
+    if (Number(b.dataset.setting) !== S.setting) selectSetting(Number(b.dataset.setting));
     if (ev.detail > 0) focusBars();  // a mouse or finger choice gives the keys back to the bars
   }));
   document.querySelectorAll("#touch [data-command]").forEach((b) => b.addEventListener("click", () => COMMANDS[b.dataset.command]()));
