@@ -18,7 +18,7 @@ from fastapi import APIRouter
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 
-from . import light_lab, reflectance_lab, thinfilm_lab
+from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
 
 router = APIRouter()
 
@@ -127,3 +127,34 @@ def reflectance(req: ReflectanceRequest):
 @router.post("/api/lab/reflectance/macadam")
 def macadam(req: ReflectanceRequest):
     return {"Y": req.Y, "xy": reflectance_lab.macadam_xy(round(req.Y, 1), req.illuminant, req.observer, req.step_nm)}
+
+
+class SolidRequest(BaseModel):
+    """The solid under one light, drawn for one display; a section at Y; a sample's mismatch."""
+
+    model_config = ConfigDict(extra="forbid")
+    illuminant: Annotated[str, Field(max_length=40)] = "D65"
+    display: Annotated[str, Field(max_length=40)] = "sRGB"
+    Y: Annotated[float, Field(gt=0.0, lt=100.0)] = 50.0
+    sample: Annotated[int, Field(ge=1, le=14)] = 1
+    second_illuminant: Annotated[str, Field(max_length=40)] = "A"
+
+
+@router.get("/labs/solid", include_in_schema=False)
+def solid_page():
+    return _page("solid")
+
+
+@router.post("/api/lab/solid")
+def solid(req: SolidRequest):
+    return solid_lab.solid(req.illuminant, req.display)
+
+
+@router.post("/api/lab/solid/section")
+def solid_section(req: SolidRequest):
+    return solid_lab.section(round(req.Y, 1), req.illuminant, req.display)
+
+
+@router.post("/api/lab/solid/mismatch")
+def solid_mismatch(req: SolidRequest):
+    return solid_lab.mismatch(req.sample, req.illuminant, req.second_illuminant, req.display)

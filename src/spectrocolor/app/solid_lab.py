@@ -1,0 +1,175 @@
+"""The explorer's object-colour solid lab: optimal colours, MacAdam limits, a display's gamut and
+metamer mismatch, every number from :mod:`spectrocolor.recovery`.
+
+The object-colour solid holds every colour a reflectance 0 ≤ ρ ≤ 1 can have under a light. The
+page draws it in CIELAB (against the light's white) as stacked MacAdam limits — the optimal colours
+of constant luminance factor Y — with the edges of a display's RGB cube inside it, and a section at
+a chosen Y in the chromaticity diagram. For a test-colour sample it adds the metamer mismatch
+region: where all the reflectances that match the sample under this light can land under a
+second light.
+
+References
+----------
+D. L. MacAdam, J. Opt. Soc. Am. 25, 361 (1935); C. van Trigt, J. Opt. Soc. Am. A 7, 1891 (1990);
+A. D. Logvinenko, B. Funt and C. Godau, "Metamer mismatching", IEEE Trans. Image Process. 23, 34
+(2014).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import ColorimetryError
+from ..illuminants import canonical_illuminant, illuminant_label
+
+GRID = (380.0, 780.0, 10.0)
+LEVELS_Y = tuple(float(y) for y in range(5, 100, 5))
+HUES = 72
+CUBE_EDGE_SAMPLES = 16
+
+
+def _light(illuminant, argument: str = "illuminant") -> str:
+    light = canonical_illuminant(illuminant, argument)
+    if light is None or not isinstance(light, str):
+        raise ColorimetryError(f"{argument}: the lab takes a named light (e.g. 'D65', 'A'), got {illuminant!r:.60}")
+    return light
+
+
+def _shown(XYZ100: np.ndarray, white: np.ndarray, display: str) -> np.ndarray:
+    """Display codes of colours seen under a light of white ``white`` (Bradford to the display's white)."""
+    from ..display.adaptation import adapt
+    from ..display.render import render
+    from ..display.spaces import rgb_space
+
+    space = rgb_space(display)
+    return np.asarray(render(adapt(XYZ100, white, space.white_XYZ), space, gamut="desaturate").codes).astype(int)
+
+
+@lru_cache(maxsize=8)
+def solid(illuminant="D65", display: str = "sRGB") -> dict:
+    """The solid as MacAdam limits at Y = 5, 10, …, 95 in CIELAB, with display codes, and the
+    edges of the display's RGB cube (its colours adapted to the light's white) in CIELAB.
+
+    Parameters
+    ----------
+    illuminant : str
+        A named light.
+    display : str
+        A built-in RGB space.
+
+    Returns
+    -------
+    dict
+        ``levels``: [{``Y``, ``lab`` (72 × 3), ``rgb8`` (72 × 3)}]; ``cube_edges_lab``: 12 edges of
+        16 points each; ``white_XYZ``; ``illuminant``; ``display``.
+
+    Examples
+    --------
+    >>> s = solid("D65")
+    >>> len(s["levels"]), len(s["levels"][0]["lab"]), len(s["cube_edges_lab"])
+    (19, 72, 12)
+    """
+    from ..colorimetry import white_point
+    from ..coordinates import lab
+    from ..display.adaptation import adapt
+    from ..display.spaces import rgb_space
+    from ..recovery.optimal import macadam_limits
+    from ..spectrum import wavelength_grid
+
+    light = _light(illuminant)
+    white = white_point(light, wavelengths_nm=wavelength_grid(*GRID))
+    levels = []
+    for Y in LEVELS_Y:
+        XYZ = macadam_limits(Y, light, "1931", GRID, samples=HUES)
+        levels.append({"Y": Y, "lab": np.round(lab(XYZ, white), 3).tolist(),
+                       "rgb8": _shown(XYZ, white, display).tolist()})
+    space = rgb_space(display)
+    t = np.linspace(0.0, 1.0, CUBE_EDGE_SAMPLES)[:, None]
+    corners = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)], dtype=float)
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if np.abs(corners[a] - corners[b]).sum() == 1]
+    cube = []
+    for a, b in edges:
+        rgb = corners[a] + t * (corners[b] - corners[a])
+        to_Y100 = 100.0 / space.white_XYZ[1]  # the display's white as Y = 100, adapted to the light's white
+        XYZ = adapt(space.XYZ_from_rgb_linear(rgb) * to_Y100, space.white_XYZ * to_Y100, white)
+        cube.append(np.round(lab(XYZ, white), 3).tolist())
+    return {"levels": levels, "cube_edges_lab": cube, "white_XYZ": np.round(white, 6).tolist(),
+            "illuminant": illuminant_label(light), "display": space.name}
+
+
+def section(Y: float, illuminant="D65", display: str = "sRGB") -> dict:
+    """The solid's section at luminance factor ``Y`` (%) in the chromaticity diagram.
+
+    Returns
+    -------
+    dict
+        ``macadam_xy`` (180 × 2), ``display_xy`` (the display's primaries), ``white_xy``,
+        ``locus_xy``.
+
+    Examples
+    --------
+    >>> len(section(50.0)["macadam_xy"])
+    180
+    """
+    from ..chromaticity import spectral_locus
+    from ..colorimetry import white_point
+    from ..coordinates import xy
+    from ..display.spaces import rgb_space
+    from ..recovery.optimal import macadam_limits
+    from ..spectrum import wavelength_grid
+
+    if not (np.isfinite(Y) and 0 < Y < 100):
+        raise ColorimetryError(f"Y: a section needs 0 < Y < 100 (percent of the perfect white), got {Y!r}")
+    light = _light(illuminant)
+    white = white_point(light, wavelengths_nm=wavelength_grid(*GRID))
+    return {
+        "Y": float(Y),
+        "macadam_xy": np.round(xy(macadam_limits(float(Y), light, "1931", GRID, samples=180)), 5).tolist(),
+        "display_xy": np.round(rgb_space(display).primaries_xy, 5).tolist(),
+        "white_xy": np.round(xy(white), 5).tolist(),
+        "locus_xy": np.round(spectral_locus("1931").xy, 5).tolist(),
+    }
+
+
+@lru_cache(maxsize=64)
+def mismatch(sample: int, illuminant="D65", second_illuminant="A", display: str = "sRGB") -> dict:
+    """Metamer mismatch region of CIE test-colour sample ``sample`` (1-14) for a change of light.
+
+    Returns
+    -------
+    dict
+        ``sample_xy`` and ``sample_lab`` under the second light; ``region_xy`` and
+        ``region_lab`` (100 boundary colours of the region under the second light, CIELAB
+        against its white); ``rgb8`` of the sample under each light; the labels.
+
+    Examples
+    --------
+    >>> region = mismatch(1, "D65", "A")
+    >>> len(region["region_lab"]), region["second_illuminant"]
+    (100, 'A')
+    """
+    from ..colorimetry import weights
+    from ..coordinates import lab, xy
+    from ..lighting.spectra import tcs_reflectances
+    from ..recovery.metamers import metamer_mismatch_region
+    from ..spectrum import wavelength_grid
+
+    if isinstance(sample, bool) or not isinstance(sample, int | np.integer) or not 1 <= sample <= 14:
+        raise ColorimetryError(f"sample: expected a CIE test-colour sample number 1-14, got {sample!r}")
+    first, second = _light(illuminant), _light(second_illuminant, "second_illuminant")
+    grid = wavelength_grid(*GRID)
+    W1, W2 = weights(grid, illuminant=first), weights(grid, illuminant=second)
+    reflectance = tcs_reflectances(grid)[sample - 1]
+    XYZ1, XYZ2 = reflectance @ W1, reflectance @ W2
+    region = metamer_mismatch_region(XYZ1, first, second, "1931", GRID, directions=100)
+    white2 = W2.sum(axis=0)
+    return {
+        "sample": int(sample), "illuminant": illuminant_label(first), "second_illuminant": illuminant_label(second),
+        "sample_xy": np.round(xy(XYZ2), 5).tolist(), "sample_lab": np.round(lab(XYZ2, white2), 3).tolist(),
+        "region_xy": np.round(xy(region.boundary_XYZ100), 5).tolist(),
+        "region_lab": np.round(lab(region.boundary_XYZ100, white2), 3).tolist(),
+        "rgb8_first": _shown(XYZ1[None], W1.sum(axis=0), display)[0].tolist(),
+        "rgb8_second": _shown(XYZ2[None], white2, display)[0].tolist(),
+    }
