@@ -146,6 +146,25 @@ def _sync_folder(folder: Path) -> None:
 def write_bytes(path, data: bytes, verify: Callable[[Path], None] | None = None) -> Path:
     """Write ``data`` to ``path`` atomically (see :func:`atomic_path`); returns the path.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The final file.
+    data : bytes
+        The content.
+    verify : callable, optional
+        Check of the temporary file before it replaces ``path`` (see :func:`atomic_path`).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    OutputError
+        As :func:`atomic_path`; a previous file at ``path`` is left unchanged.
+
     Examples
     --------
     >>> import tempfile, pathlib
@@ -162,6 +181,23 @@ def write_bytes(path, data: bytes, verify: Callable[[Path], None] | None = None)
 def write_text(path, text: str) -> Path:
     """Write ``text`` to ``path`` as UTF-8, atomically, with a size check; returns the path.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The final file.
+    text : str
+        The content, encoded as UTF-8.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    OutputError
+        As :func:`atomic_path`; a previous file at ``path`` is left unchanged.
+
     Examples
     --------
     >>> import tempfile, pathlib
@@ -174,7 +210,28 @@ def write_text(path, text: str) -> Path:
 
 
 def verify_size(path: Path, expected: int) -> None:
-    """Raise :class:`OutputError` unless the file at ``path`` holds ``expected`` bytes."""
+    """Raise :class:`OutputError` unless the file at ``path`` holds ``expected`` bytes.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file written.
+    expected : int
+        Its size in bytes.
+
+    Raises
+    ------
+    OutputError
+        If the size on disk differs.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "a.bin"
+    ...     _ = path.write_bytes(b"abc")
+    ...     verify_size(path, 3)  # silent when right
+    """
     found = os.stat(path).st_size
     if found != expected:
         raise OutputError(errno.EIO, f"{path}: {found} bytes on disk, {expected} written")
@@ -184,6 +241,27 @@ def verify_png(path: Path, width: int, height: int) -> None:
     """Raise :class:`OutputError` unless ``path`` is a complete PNG of ``width`` x ``height``.
 
     Pillow's ``verify`` checks every chunk's CRC, so a truncated or damaged file is caught.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The PNG written.
+    width, height : int
+        Its size in pixels.
+
+    Raises
+    ------
+    OutputError
+        If the file does not read back as a PNG of that size.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from spectrocolor.pictures import save_image
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = save_image(np.zeros((2, 3, 3), np.uint8), pathlib.Path(folder) / "a.png")
+    ...     verify_png(path, 3, 2)  # silent when right
     """
     from PIL import Image
 
@@ -199,7 +277,31 @@ def verify_png(path: Path, width: int, height: int) -> None:
 
 
 def verify_tiff(path: Path, shape: tuple[int, ...], nbytes: int) -> None:
-    """Raise :class:`OutputError` unless ``path`` is a TIFF of ``shape`` holding ``nbytes``."""
+    """Raise :class:`OutputError` unless ``path`` is a TIFF of ``shape`` holding ``nbytes``.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The TIFF written.
+    shape : tuple of int
+        The array shape written.
+    nbytes : int
+        The array's size in bytes (the file holds at least this many).
+
+    Raises
+    ------
+    OutputError
+        If the file does not read back as a TIFF of that shape and size.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from spectrocolor.images import write_image
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_image(pathlib.Path(folder) / "a.tif", np.zeros((2, 3, 3)))
+    ...     verify_tiff(path, (2, 3, 3), 144)  # silent when right
+    """
     import tifffile
 
     try:
