@@ -84,7 +84,7 @@ def test_max_luminance_factor_is_where_rho_reaches_one(illuminant):
         smoothest_reflectance(b, illuminant, wavelengths=GRID, bounds=None).spectrum.values,
         atol=1e-12)
     # the white of the same weights reaches Y/Y0 = 1 (the constant reflectance 1)
-    white = np.asarray(sc.weights(sc.wavelength_grid(*GRID), "1931", illuminant)).sum(axis=0)
+    white = np.asarray(sc.weights(sc.wavelength_grid(*GRID), observer="1931", illuminant=illuminant)).sum(axis=0)
     assert d.max_luminance_factor(sc.xy(white)) == pytest.approx(1.0, abs=1e-12)
     assert np.isnan(d.max_luminance_factor([0.7, 0.25]))
 
@@ -93,3 +93,38 @@ def test_bad_chromaticities():
     d = domain_of_validity("D65", wavelengths=GRID)
     with pytest.raises(sc.ColorimetryError, match="xy"):
         d.nonnegative([0.3, 0.3, 0.4])
+
+
+@pytest.mark.parametrize("illuminant", ["A", "D65"])
+def test_generating_functions_touch_zero_with_zero_slope_and_stay_below_the_optimal_colour(illuminant):
+    """ρ(λ; λ₁): the unconstrained smoothest reflectance of its chromaticity (independently
+    recomputed), maximum 1, zero at the two samples around λ₁ (zero slope there); its
+    luminance factor Y(λ₁) never exceeds Y_M(λ₁), which is on the boundary of the solid."""
+    from spectrocolor.recovery.optimal import object_colour_membership
+    from spectrocolor.recovery.validity import generating_functions
+
+    g = generating_functions(illuminant, wavelengths=GRID)
+    XYZ = g.luminance_factor[:, None] * 100 * _xyz(g.xy, 1.0)
+    rho = smoothest_reflectance(XYZ, illuminant, wavelengths=GRID, bounds=None).spectrum.values
+    np.testing.assert_allclose(rho, g.reflectance, atol=1e-9)
+    np.testing.assert_allclose(g.reflectance.max(axis=1), 1.0, atol=1e-12)
+    interior = g.solution_class == "1"
+    assert interior.sum() > 20 and (~interior).sum() >= 2
+    k = np.searchsorted(g.wavelengths_nm, g.touch_nm[interior])
+    rows = g.reflectance[interior]
+    around = np.abs(np.stack([rows[np.arange(len(k)), k - 1], rows[np.arange(len(k)), k]]))
+    assert around.max() < 1e-9 and rows.min() > -1e-9
+    assert np.all(g.luminance_factor <= g.max_luminance_factor + 1e-12)
+    optimal = g.max_luminance_factor[:, None] * 100 * _xyz(g.xy, 1.0)
+    depth = object_colour_membership(optimal, illuminant, wavelengths=GRID).relative_depth
+    assert np.abs(depth).max() < 1e-12
+
+
+def test_boundary_locus_branches_run_from_the_ends_to_the_white():
+    from spectrocolor.recovery.validity import boundary_locus
+
+    loc = boundary_locus("D65", wavelengths=GRID)
+    np.testing.assert_allclose(loc.left_xy[-1], loc.white_xy, atol=1e-12)
+    np.testing.assert_allclose(loc.right_xy[0], loc.white_xy, atol=1e-12)
+    first = sc.xy(np.asarray(sc.weights(sc.wavelength_grid(*GRID), observer="1931", illuminant="D65"))[0])
+    np.testing.assert_allclose(loc.left_xy[0], first, atol=1e-12)

@@ -150,3 +150,51 @@ def _second_white(region):
 
     grid = region.extreme_metamers.wavelengths_nm
     return np.asarray(weights(grid, observer=region.observer, illuminant=region.second_illuminant)).sum(axis=0)
+
+
+def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = None):
+    """Van Trigt's boundary locus (Figs. 3–4): left and right branches on the xy diagram.
+
+    ``locus`` is a :class:`~spectrocolor.recovery.validity.BoundaryLocus`; with
+    ``generating`` (:class:`~spectrocolor.recovery.validity.GeneratingFunctions`) the
+    chromaticities of the generating functions (the boundary of the domain of validity) are
+    drawn too, with λ₁ marked every 50 nm.
+    """
+    from ..plot import chromaticity_diagram
+
+    ax = chromaticity_diagram(spaces=(), whites=(), planckian=False, fill=False,
+                              ax=_axes(ax, (6.4, 6.4)), title=title or "Boundary locus")
+    ax.plot(*locus.left_xy.T, color="C0", lw=1.5, zorder=5, label="left branch: λ_b … λ")
+    ax.plot(*locus.right_xy.T, color="C3", lw=1.5, zorder=5, label="right branch: λ … λ_e")
+    ax.plot(*locus.white_xy, "o", color="black", ms=5, zorder=6, label="white")
+    for branch, color in ((locus.left_xy, "C0"), (locus.right_xy, "C3")):
+        for nm in range(450, 701, 50):
+            k = int(np.argmin(np.abs(locus.wavelengths_nm - nm)))
+            if np.all(np.isfinite(branch[k])):
+                ax.annotate(f"{nm}", branch[k], fontsize=6, color=color, zorder=7)
+    if generating is not None:
+        ax.plot(*generating.xy.T, color="0.2", lw=1.0, ls="--", zorder=5,
+                label="domain of validity (ρ(λ; λ₁) chromaticities)")
+    ax.legend(loc="upper right", fontsize=7, framealpha=0.9)
+    return ax
+
+
+def generating_luminance_plot(generating, ax=None, title: str | None = None):
+    """``Y(λ₁)/Y₀`` (solid) and ``Y_M(λ₁)/Y₀`` (dashed) against λ₁ (van Trigt Figs. 9–10)."""
+    ax = _axes(ax, (6.4, 4.0))
+    interior = generating.solution_class == "1"
+    ax.plot(generating.touch_nm[interior], generating.luminance_factor[interior], color="C0",
+            lw=1.6, label="Y(λ₁)/Y₀: ρ(λ; λ₁) at most 1")
+    ax.plot(generating.touch_nm[interior], generating.max_luminance_factor[interior], color="C0",
+            lw=1.2, ls="--", label="Y_M(λ₁)/Y₀: optimal colour")
+    ends = ~interior
+    ax.plot(generating.touch_nm[ends], generating.luminance_factor[ends], "s", color="C3", ms=4,
+            label="zero at λ_b or λ_e")
+    ax.set_xlabel("λ₁ (nm): where ρ(λ; λ₁) touches 0")
+    ax.set_ylabel("luminance factor Y/Y₀")
+    ax.set_ylim(0, 1.02)
+    ax.grid(True, lw=0.3, color="0.85")
+    ax.legend(fontsize=7)
+    if title is not None:
+        ax.set_title(title)
+    return ax

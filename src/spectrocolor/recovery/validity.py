@@ -156,3 +156,127 @@ def domain_of_validity(
         illuminant=ill,
         observer=obs,
     )
+
+
+@dataclass(frozen=True)
+class BoundaryLocus:
+    """Van Trigt's boundary locus (Figs. 3–4): chromaticities of the cumulative weights.
+
+    Attributes
+    ----------
+    wavelengths_nm : ndarray (K,)
+    left_xy : ndarray (K, 2)
+        Chromaticity of ``f(λ) = Σ_{λ_b ≤ λ_k ≤ λ} w_k`` (the block from λ_b to λ; van
+        Trigt's ``x_b(λ), y_b(λ)``), NaN where it is black.
+    right_xy : ndarray (K, 2)
+        Chromaticity of ``g(λ) = Σ_{λ ≤ λ_k ≤ λ_e} w_k`` (the block from λ to λ_e).
+    white_xy : ndarray (2,)
+        Chromaticity of the white (every sample 1).
+    """
+
+    wavelengths_nm: np.ndarray
+    left_xy: np.ndarray
+    right_xy: np.ndarray
+    white_xy: np.ndarray
+
+
+def _xy(XYZ):
+    total = XYZ.sum(axis=-1, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(total > 0, XYZ[..., :2] / np.where(total > 0, total, 1.0), np.nan)
+
+
+def boundary_locus(illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS) -> BoundaryLocus:
+    """The left and right branches of van Trigt's boundary locus for one illuminant.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 3–4 and Eq. (8).
+
+    Examples
+    --------
+    >>> loc = boundary_locus("D65", wavelengths=(400, 700, 10))
+    >>> bool(abs(loc.left_xy[-1] - loc.white_xy).max() < 1e-12)
+    True
+    """
+    setup, _, _ = setup_for(wavelengths, observer, illuminant)
+    left = np.cumsum(setup.W, axis=0)
+    right = np.cumsum(setup.W[::-1], axis=0)[::-1]
+    return BoundaryLocus(setup.grid, _xy(left), _xy(right), _xy(setup.white))
+
+
+@dataclass(frozen=True)
+class GeneratingFunctions:
+    """Van Trigt's generating functions ``ρ(λ; λ₁)`` on the sampled grid (Figs. 5–6, 9–10).
+
+    On the boundary of the domain of validity the unconstrained smoothest reflectance
+    touches 0 somewhere. Where two consecutive samples' lines ``ρ_k = 0`` and ``ρ_{k+1} = 0``
+    meet (a vertex of :attr:`DomainOfValidity.region_xy`), ρ vanishes at both, so it touches
+    zero with zero slope at ``λ₁ = (λ_k + λ_{k+1}) / 2``: the discrete form of van Trigt's
+    condition ``ρ(λ₁) = dρ/dλ(λ₁) = 0`` for his Class 1 (an interior zero). Vertices on an
+    end line (``ρ(λ_b) = 0`` or ``ρ(λ_e) = 0``) give his Class 2 (zero at an end). Each
+    function is scaled so that its maximum is 1; its luminance factor is then van Trigt's
+    ``Y(λ₁)/Y₀``, the largest for which the unconstrained solution at that chromaticity is a
+    reflectance (Fig. 9–10, solid), and ``Y_M(λ₁)/Y₀`` is the largest luminance factor of any
+    object colour of that chromaticity (Fig. 9–10, dashed: the optimal colour).
+
+    Attributes
+    ----------
+    wavelengths_nm : ndarray (K,)
+    touch_nm : ndarray (P,)
+        λ₁ for each vertex: where ρ touches 0 (an end sample for Class 2).
+    solution_class : ndarray of str (P,)
+        ``"1"`` (interior zero with zero slope) or ``"2"`` (zero at λ_b or λ_e).
+    xy : ndarray (P, 2)
+        Chromaticity of each vertex.
+    reflectance : ndarray (P, K)
+        ``ρ(λ; λ₁)``, maximum 1, minimum 0.
+    luminance_factor : ndarray (P,)
+        ``Y(λ₁)/Y₀`` (0–1).
+    max_luminance_factor : ndarray (P,)
+        ``Y_M(λ₁)/Y₀`` (0–1).
+    """
+
+    wavelengths_nm: np.ndarray
+    touch_nm: np.ndarray
+    solution_class: np.ndarray
+    xy: np.ndarray
+    reflectance: np.ndarray
+    luminance_factor: np.ndarray
+    max_luminance_factor: np.ndarray
+
+
+def generating_functions(illuminant="D65", observer="1931",
+                         wavelengths=DEFAULT_WAVELENGTHS) -> GeneratingFunctions:
+    """Van Trigt's generating functions ``ρ(λ; λ₁)`` with ``Y(λ₁)`` and ``Y_M(λ₁)``.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Eq. (23)–(26), Figs. 5–6, 9–10.
+
+    Examples
+    --------
+    >>> g = generating_functions("D65", wavelengths=(380, 780, 10))
+    >>> bool(abs(g.reflectance.max(axis=1) - 1).max() < 1e-12 and abs(g.reflectance.min(axis=1)).max() < 1e-9)
+    True
+    """
+    from . import zonotope
+
+    domain = domain_of_validity(illuminant, observer, wavelengths)
+    setup, _, _ = setup_for(wavelengths, observer, illuminant)
+    grid, labels, poly = domain.wavelengths_nm, domain.edge_wavelengths_nm, domain.region_xy
+    before = np.roll(labels, 1)  # the edge that ends at vertex i
+    keep = np.isfinite(labels) & np.isfinite(before)
+    xy, a, b = poly[keep], before[keep], labels[keep]
+    end = np.isin(a, grid[[0, -1]]) | np.isin(b, grid[[0, -1]])
+    touch = np.where(end, np.where(np.isin(a, grid[[0, -1]]), a, b), 0.5 * (a + b))
+    order = np.argsort(touch)
+    xy, touch, end = xy[order], touch[order], end[order]
+    XYZ = np.stack([xy[:, 0] / xy[:, 1], np.ones(len(xy)), (1 - xy.sum(axis=1)) / xy[:, 1]], axis=1)
+    rho = XYZ @ setup.problem.unconstrained
+    scale = rho.max(axis=1)
+    rho = rho / scale[:, None]
+    Y = 1.0 / scale / setup.white[1]
+    # the optimal colour of each chromaticity: where the ray from black leaves the solid
+    YM = zonotope.ray_exit(setup.solid, np.zeros(3), XYZ) / setup.white[1]
+    return GeneratingFunctions(grid, touch, np.where(end, "2", "1"), xy, rho, Y, YM)
