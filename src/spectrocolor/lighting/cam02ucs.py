@@ -66,7 +66,7 @@ def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
     """J, M and the hue direction (cos h, sin h) of CIECAM02 (CIE 159:2004 steps 1–10).
 
     Colours and white are channel-first, ``(3, ...)``, so every step works on contiguous planes.
-    The hue enters only through cos h and sin h = (a, b) / |(a, b)|, which saves the trigonometry
+    The hue enters only through cos h and sin h = (a, b) / ‖(a, b)‖, which saves the trigonometry
     on large batches: e_t = ¼ (cos(h + 2) + 3.8) = ¼ (cos h cos 2 − sin h sin 2 + 3.8).
     """
     F, c, N_c = SURROUNDS.get(surround)

@@ -12,7 +12,7 @@ The sums run over the spectrum's own samples from 360 nm (or its first sample, w
 (CIE 167) between their tabulated points.
 
 CIE 13.3 asks that the light be close to the Planckian locus: the chromaticity distance to the
-reference, ΔC = |Duv| in the 1960 diagram, should be at most 5.4 × 10⁻³. Results are returned
+reference, ΔC = ``|Duv|`` in the 1960 diagram, should be at most 5.4 × 10⁻³. Results are returned
 for every light; ``meaningful`` says which lights meet this (and have a CCT at all).
 
 References
@@ -50,7 +50,7 @@ class CRI:
     cct_K, duv : ndarray
         Correlated colour temperature (K) and Duv of the light (CIE 1960 UCS).
     meaningful : ndarray of bool
-        A CCT exists and |Duv| ≤ 5.4 × 10⁻³ (CIE 13.3 §5.3).
+        A CCT exists and ``|Duv|`` ≤ 5.4 × 10⁻³ (CIE 13.3 §5.3).
     """
 
     Ra: np.ndarray

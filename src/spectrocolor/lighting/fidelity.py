@@ -11,8 +11,8 @@ J'a'b' (:mod:`~spectrocolor.lighting.cam02ucs`); the colour differences ΔE_i;
 * the hue bins j = 1…16 of 22.5° by the sample's hue under the reference; per bin the mean
   a'b' under test and reference; Rg = 100 × area of the test polygon / area of the reference
   polygon (TM-30-20 eq. 7); Rf,hj from the bin's mean ΔE; the chroma shift
-  Rcs,hj = (Δa' cos θj + Δb' sin θj) / |ref_j| and the hue shift
-  Rhs,hj = (−Δa' sin θj + Δb' cos θj) / |ref_j| with θj the bin's middle angle (TM-30-20
+  Rcs,hj = (Δa' cos θj + Δb' sin θj) / ‖ref_j‖ and the hue shift
+  Rhs,hj = (−Δa' sin θj + Δb' cos θj) / ‖ref_j‖ with θj the bin's middle angle (TM-30-20
   §4.6; Rcs,hj is returned as a fraction, multiply by 100 for the per cent TM-30 prints).
 
 TM-30-18/20/24 compute Rf exactly as CIE 224:2017. The spectrum's own samples from 380 to

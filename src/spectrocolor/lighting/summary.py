@@ -6,7 +6,7 @@ writers of :mod:`spectrocolor.lighting.report`.
 
 Headline: CCT (K), Duv, Ra, R9 (CIE 13.3), Rf, Rg (CIE 224:2017 / TM-30-20), luminous
 efficacy of radiation (lm/W), melanopic DER (CIE S 026), and whether CIE 13.3 considers the
-CCT meaningful (|Duv| ≤ 5.4 × 10⁻³).
+CCT meaningful (``|Duv|`` ≤ 5.4 × 10⁻³).
 
 References
 ----------
@@ -110,7 +110,7 @@ def summary(spd) -> dict[str, float | bool]:
     """Headline numbers of one light as plain Python floats: CCT, Duv, Ra, R9, Rf, Rg, LER, DER.
 
     For the explorer app and other callers that want JSON-ready values; NaN where a metric is
-    undefined (no CCT). ``cri_meaningful`` is CIE 13.3's |Duv| ≤ 5.4 × 10⁻³.
+    undefined (no CCT). ``cri_meaningful`` is CIE 13.3's ``|Duv|`` ≤ 5.4 × 10⁻³.
 
     Examples
     --------
