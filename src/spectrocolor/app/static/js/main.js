@@ -221,6 +221,7 @@ function nextDistribution() {
   drawEditors();
   if (document.activeElement && document.activeElement.closest("#editors")) focusBars();
 }
+/** One level on SPECTRA's grid; on the fine grids one level, or a tenth with Shift. */
 const levelStep = (fine) => (S.step === 10 ? 1 : fine ? 0.1 : 1);
 
 const COMMANDS = {
@@ -228,7 +229,6 @@ const COMMANDS = {
   up: () => stepLevel(levelStep(false)), down: () => stepLevel(-levelStep(false)),
   next: nextDistribution, save: saveSlot, recall: () => recall(S.setting),
   pair: () => (S.setting === 1 ? say("key 9 loads a pair: use it in settings 2–5") : recall(pairSource())),
-  undo: () => doUndo(true), redo: () => doUndo(false),
 };
 
 function onKey(ev) {
@@ -247,8 +247,8 @@ function onKey(ev) {
   switch (ev.key) {
     case "ArrowLeft": moveCursor(-1); break;
     case "ArrowRight": moveCursor(1); break;
-    case "ArrowUp": stepLevel(S.step === 10 ? 1 : ev.shiftKey ? 0.1 : 1); break;
-    case "ArrowDown": stepLevel(-(S.step === 10 ? 1 : ev.shiftKey ? 0.1 : 1)); break;
+    case "ArrowUp": stepLevel(levelStep(ev.shiftKey)); break;
+    case "ArrowDown": stepLevel(-levelStep(ev.shiftKey)); break;
     case " ": if (onButton) handled = false; else nextDistribution(); break;
     case "x": case "X": toggleNorm(); break;
     case "s": case "S": saveSlot(); break;
