@@ -105,21 +105,40 @@ async function loadTable() {
 }
 
 // ---- drawing ----------------------------------------------------------------------------
+// The canvas's backing store follows its CSS size (reallocated only when that changes), cleared.
 function context(canvas) {
   const ratio = window.devicePixelRatio || 1;
-  const { width, height } = canvas.getBoundingClientRect();
-  canvas.width = Math.max(1, Math.round(width * ratio));
-  canvas.height = Math.max(1, Math.round(height * ratio));
+  const width = canvas.clientWidth, height = canvas.clientHeight;
+  const w = Math.max(1, Math.round(width * ratio)), h = Math.max(1, Math.round(height * ratio));
+  if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
   const ctx = canvas.getContext("2d");
   ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  ctx.clearRect(0, 0, width, height);
   return { ctx, width, height };
+}
+
+// A layer drawn once per table and size (axes, curves), copied under each repaint's marker.
+const layers = new Map();
+function layer(name, canvas, draw) {
+  const key = `${name}:${canvas.clientWidth}x${canvas.clientHeight}`;
+  if (!layers.has(key)) {
+    const off = document.createElement("canvas");
+    off.style.width = `${canvas.clientWidth}px`;
+    const ratio = window.devicePixelRatio || 1;
+    off.width = Math.max(1, Math.round(canvas.clientWidth * ratio));
+    off.height = Math.max(1, Math.round(canvas.clientHeight * ratio));
+    const ctx = off.getContext("2d");
+    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    draw(ctx, canvas.clientWidth, canvas.clientHeight);
+    layers.set(key, off);
+  }
+  return layers.get(key);
 }
 
 const hex = (rgb) => "#" + rgb.map((c) => c.toString(16).padStart(2, "0")).join("");
 const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
 
 let stripImage = null;
-let diagramBackground = null;
 let spectrumTop = 1;
 
 function drawStatic() {
@@ -132,7 +151,7 @@ function drawStatic() {
   table.rgb8.forEach((rgb, i) => pixels.data.set([rgb[0], rgb[1], rgb[2], 255], 4 * i));
   sctx.putImageData(pixels, 0, 0);
   spectrumTop = Math.max(1e-9, ...table.reflectance.map((row) => Math.max(...row)));
-  diagramBackground = null;
+  layers.clear();
   const relative = table.model === "two-beam";
   $("spectrum-caption").textContent = relative
     ? "Two-beam factor 1 + β² − 2β cos(2πs/λ) against wavelength (nm): relative, not a reflectance."
@@ -184,15 +203,15 @@ function drawSpectrum(i) {
   ctx.stroke();
 }
 
-function drawStrip(i) {
-  const { ctx, width, height } = context($("strip"));
-  const box = { x: 8, y: 6, w: width - 16, h: height - 40 };
+function stripBox(width, height) { return { x: 8, y: 6, w: width - 16, h: height - 40 }; }
+
+function drawStripLayer(ctx, width, height) {
+  const box = stripBox(width, height);
   ctx.imageSmoothingEnabled = false;
   ctx.drawImage(stripImage, box.x, box.y, box.w, box.h);
   ctx.fillStyle = "#1b1b1f";
   ctx.strokeStyle = "#1b1b1f";
   ctx.font = "11px system-ui, sans-serif";
-  ctx.textAlign = "center";
   const max = table.thickness_nm[table.thickness_nm.length - 1];
   for (let d = 0; d <= max; d += 250) {
     const x = box.x + (d / max) * box.w;
@@ -201,6 +220,15 @@ function drawStrip(i) {
     ctx.fillText(d, x, box.y + box.h + 15);
   }
   ctx.textAlign = "center";
+  ctx.fillText("thickness (nm)", box.x + box.w / 2, box.y + box.h + 30);
+}
+
+function drawStrip(i) {
+  const canvas = $("strip");
+  const { ctx, width, height } = context(canvas);
+  ctx.drawImage(layer("strip", canvas, drawStripLayer), 0, 0, width, height);
+  const box = stripBox(width, height);
+  const max = table.thickness_nm[table.thickness_nm.length - 1];
   const x = box.x + (table.thickness_nm[i] / max) * box.w;
   ctx.lineWidth = 3;
   ctx.strokeStyle = "#ffffff";
@@ -208,16 +236,16 @@ function drawStrip(i) {
   ctx.lineWidth = 1.5;
   ctx.strokeStyle = "#000000";
   ctx.strokeRect(x - 3, box.y - 2, 6, box.h + 4);
-  ctx.fillText("thickness (nm)", box.x + box.w / 2, box.y + box.h + 30);
 }
 
-function drawDiagram(i) {
-  const canvas = $("diagram");
-  const { ctx, width, height } = context(canvas);
+function diagramScale(width, height) {
   const size = Math.min(width - 56, height - 44);
   const box = { x: 48, y: 8, w: size, h: size };
-  const X = (x) => box.x + (x / 0.8) * box.w;
-  const Y = (y) => box.y + box.h - (y / 0.9) * box.h;
+  return { box, X: (x) => box.x + (x / 0.8) * box.w, Y: (y) => box.y + box.h - (y / 0.9) * box.h };
+}
+
+function drawDiagramLayer(ctx, width, height) {
+  const { box, X, Y } = diagramScale(width, height);
   const ticks = (values, f) => values.map((v) => [v.toFixed(1), f(v)]);
   axes(ctx, box, ticks([0, 0.2, 0.4, 0.6, 0.8], X), ticks([0, 0.2, 0.4, 0.6, 0.8], Y), "x", "y");
   ctx.strokeStyle = "#5b5b66";
@@ -226,7 +254,6 @@ function drawDiagram(i) {
   table.locus_xy.forEach(([x, y], k) => (k ? ctx.lineTo(X(x), Y(y)) : ctx.moveTo(X(x), Y(y))));
   ctx.closePath();
   ctx.stroke();
-  ctx.lineWidth = 1.5;
   let previous = null;
   table.xy.forEach(([x, y], k) => {
     if (x < 0) { previous = null; return; } // no chromaticity (black)
@@ -240,6 +267,13 @@ function drawDiagram(i) {
   ctx.strokeStyle = "#1b1b1f";
   ctx.beginPath(); ctx.moveTo(X(wx) - 5, Y(wy)); ctx.lineTo(X(wx) + 5, Y(wy));
   ctx.moveTo(X(wx), Y(wy) - 5); ctx.lineTo(X(wx), Y(wy) + 5); ctx.stroke();
+}
+
+function drawDiagram(i) {
+  const canvas = $("diagram");
+  const { ctx, width, height } = context(canvas);
+  ctx.drawImage(layer("diagram", canvas, drawDiagramLayer), 0, 0, width, height);
+  const { X, Y } = diagramScale(width, height);
   const [x, y] = table.xy[i];
   if (x >= 0) {
     ctx.lineWidth = 3; ctx.strokeStyle = "#ffffff";
@@ -297,8 +331,12 @@ let startedAt = 0;
 function drawDrain(timeS) {
   if (!table) return;
   const canvas = $("drain");
+  const ratio = window.devicePixelRatio || 1;
+  const width = Math.max(1, Math.round(canvas.clientWidth * ratio));
+  const height = Math.max(1, Math.round(canvas.clientHeight * ratio));
+  if (canvas.width !== width || canvas.height !== height) { canvas.width = width; canvas.height = height; }
   const ctx = canvas.getContext("2d");
-  const rows = canvas.height;
+  const rows = canvas.height; // one thickness per pixel row, at the screen's resolution
   for (let row = 0; row < rows; row++) {
     const d = drainThicknessNm(((row + 0.5) / rows) * DRAIN.heightM, timeS);
     const i = Math.min(table.rgb8.length - 1, Math.round(d));
@@ -315,6 +353,13 @@ function frame(now) {
   lastDrainTime = TIME_START_S * (TIME_END_S / TIME_START_S) ** phase;
   drawDrain(lastDrainTime);
   requestAnimationFrame(frame);
+}
+
+function toggleFullWindow(on = !$("drain").classList.contains("full-window")) {
+  $("drain").classList.toggle("full-window", on);
+  $("full").textContent = on ? "Exit full window (Esc)" : "Full window";
+  $("full").classList.toggle("floating", on);
+  drawDrain(lastDrainTime);
 }
 
 function togglePlay() {
@@ -375,6 +420,9 @@ async function start() {
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
   $("play").addEventListener("click", togglePlay);
+  $("full").addEventListener("click", () => toggleFullWindow());
+  $("drain").addEventListener("click", togglePlay);
+  document.addEventListener("keydown", (e) => { if (e.key === "Escape") toggleFullWindow(false); });
   $("error-close").addEventListener("click", () => { $("error").hidden = true; });
   document.addEventListener("keydown", (e) => {
     if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") {
