@@ -13,7 +13,10 @@ from __future__ import annotations
 import numpy as np
 
 import spectrocolor as sc
+from spectrocolor.display.emission import emission_sources, excitation_function, primary_emission
+from spectrocolor.display.explain import explain, out_of_gamut_channels
 from spectrocolor.display.gamut import DEFAULT_TOLERANCE
+from spectrocolor.display.spectra_exact import spectra_channel_factors, spectra_scale
 from spectrocolor.display.transfer import LevelTable, PowerLaw, SRGBCurve
 
 from . import presets as P
@@ -24,9 +27,25 @@ STEPS_NM = (10.0, 5.0, 2.0, 1.0)
 OBSERVERS = {"1931": "CIE 1931 2°", "1964": "CIE 1964 10°", "2015-2": "CIE 2015 2°",
              "2015-10": "CIE 2015 10°"}
 DISPLAYS = ("sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy")
-GAMUTS = ("flag", "clip", "preserve-luminance", "desaturate")
-NORMALISATIONS = ("fixed", "per-colour")
-CHANNELS = ("R", "G", "B")
+#: Gamut strategies, the default first: never a bare black patch; "flag" is SPECTRA's strict one.
+GAMUTS = ("desaturate", "flag", "clip", "preserve-luminance")
+#: Normalisations: A exact (largest object channel), B per colour ("Optimised!"), and A as the
+#: program computed it (one k per channel, 1.32 × R_white; display/spectra_exact.py).
+NORMALISATIONS = ("fixed", "per-colour", "spectra-exact")
+#: How the reference white E is shown, the default first: adapted to the display's white
+#: (Bradford, or SPECTRA's matris.equ way: scaling the display's own R, G, B), or as it is.
+ADAPTATIONS = {
+    "bradford": ("Bradford (E → display white)",
+                 "the equal-energy white E is shown as the display's white; colours adapted by "
+                 "the Bradford transform, so a neutral looks neutral"),
+    "display rgb": ("SPECTRA matris.equ",
+                    "the display's own R, G, B scaled so that E gives R = G = B (seed 002, "
+                    "'Why not include the effect of chromatic adaptation?')"),
+    "none": ("none (unadapted)",
+             "colorimetrically exact for a viewer adapted to E, not to the screen: E looks "
+             "pinkish on a D65 display"),
+}
+DEFAULT_GAMUT, DEFAULT_NORMALISE, DEFAULT_ADAPTATION = GAMUTS[0], NORMALISATIONS[0], "bradford"
 
 
 def grid(step_nm: float) -> np.ndarray:
@@ -41,7 +60,7 @@ def _reference(wavelengths_nm: np.ndarray, illuminant_levels):
     return sc.Spectrum(wavelengths_nm, np.asarray(illuminant_levels, dtype=float))
 
 
-def fixed_scale(space: str, W: np.ndarray) -> float:
+def fixed_scale(space, W: np.ndarray) -> float:
     """SPECTRA's alternative A: the largest channel any 0 <= f <= full can drive (note 10)."""
     return float(sc.max_object_rgb(space, W).max())
 
@@ -61,89 +80,165 @@ def _transfer_description(space) -> dict:
     return {"kind": "server", "name": getattr(t, "name", type(t).__name__)}
 
 
-def model(step_nm: float, observer: str, display: str, illuminant_levels=None) -> dict:
+def pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels=None) -> dict:
+    """The linear part of the display chain for one set of choices, shared by the API answers.
+
+    Returns ``W`` (K x 3 weights, the reference white has Y = 100), ``to_display`` (3 x 3: the
+    page's XYZ -> the XYZ the display is asked to show: SPECTRA's per-channel k for
+    ``"spectra-exact"``, then the adaptation of E to the display's white), ``matrix`` (the
+    effective XYZ -> linear RGB, display matrix @ to_display), ``scale`` (the divisor of
+    normalisation A, None for per-colour) and ``space``.
+    """
+    if adaptation not in ADAPTATIONS:
+        raise sc.ColorimetryError(
+            f"adaptation {adaptation!r} is unknown; accepted: {', '.join(ADAPTATIONS)}")
+    if normalise not in NORMALISATIONS:
+        raise sc.ColorimetryError(
+            f"normalise {normalise!r} is unknown; accepted: {', '.join(NORMALISATIONS)}")
+    wl = grid(step_nm)
+    space = sc.rgb_space(display)
+    W = np.asarray(sc.weights(wl, observer=observer,
+                              illuminant=_reference(wl, illuminant_levels)))
+    W_E = np.asarray(sc.weights(wl, observer=observer, illuminant="E"))
+    factors = spectra_channel_factors(W_E) if normalise == "spectra-exact" else np.ones(3)
+    source_white = factors * W_E.sum(axis=0)  # E on the page's scale (Y = 100)
+    if adaptation == "none":
+        adapt = np.eye(3)
+    else:
+        target = space.white_XYZ * (source_white[1] / space.white_XYZ[1])
+        adapt = sc.adaptation_matrix(source_white, target, adaptation,
+                                     space if adaptation == "display rgb" else None)
+    to_display = adapt @ np.diag(factors)
+    matrix = np.asarray(space.matrix_from_XYZ) @ to_display
+    if normalise == "fixed":
+        scale = fixed_scale(space, W @ to_display.T)
+    elif normalise == "spectra-exact":
+        scale = spectra_scale(np.asarray(space.matrix_from_XYZ) @ adapt)
+    else:
+        scale = None
+    return {"W": W, "to_display": to_display, "adaptation_matrix": adapt,
+            "channel_factors": factors, "matrix": matrix, "scale": scale, "space": space}
+
+
+def model(step_nm: float, observer: str, display: str, illuminant_levels=None,
+          normalise: str = DEFAULT_NORMALISE, adaptation: str = DEFAULT_ADAPTATION) -> dict:
     """Everything the page needs to draw and to repaint a drag without a round trip.
 
-    ``weights`` (K x 3) and ``matrix_from_XYZ`` (3 x 3) reproduce :func:`evaluate`'s XYZ and
-    linear RGB; ``fixed_scale`` is the divisor of normalisation A; ``transfer`` names the
-    encoding. The locus, gamut triangle, white and bar tints are for drawing only.
+    ``weights`` (K x 3) and ``matrix_from_XYZ`` (3 x 3, the effective matrix: display matrix
+    times the adaptation and SPECTRA's per-channel k where chosen) reproduce :func:`evaluate`'s
+    XYZ and linear RGB; ``fixed_scale`` is the divisor of normalisation A (exact or SPECTRA's);
+    ``transfer`` names the encoding. ``display_white`` gives the display's white point and
+    CCT; ``emission`` the primaries' spectra (seed 002 Fig. 9, in levels per unit drive) and
+    ``excitation`` the function γ (Fig. 10). The locus, gamut triangle, white and bar tints are
+    for drawing only.
     """
     from spectrocolor.pictures import wavelength_tint
 
     wl = grid(step_nm)
-    reference = _reference(wl, illuminant_levels)
-    W = sc.weights(wl, observer, reference)
-    space = sc.rgb_space(display)
+    chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
+    W, space = chain["W"], chain["space"]
     white_XYZ = np.ones(len(wl)) @ W
     locus = sc.spectral_locus(observer)
     keep = (locus.wavelengths_nm >= 380) & (locus.wavelengths_nm <= 700)
     tints = np.asarray(wavelength_tint(wl), dtype=float) / 255.0  # rgb8 → 0–1 for the canvas
+    temperature = sc.cct(space.white_xy)
+    codes, gamma = excitation_function(space)
+    ybar = np.asarray(sc.observer("1931").resample(wl).values)[1]
     return {
         "wavelengths_nm": wl.tolist(),
         "full_level": FULL_LEVEL,
         "observer": observer,
         "display": space.name,
-        "weights": (np.asarray(W) / FULL_LEVEL).tolist(),
+        "normalise": normalise,
+        "adaptation": adaptation,
+        "weights": (W / FULL_LEVEL).tolist(),
         "weights_per": "level",
-        "matrix_from_XYZ": np.asarray(space.matrix_from_XYZ).tolist(),
-        "fixed_scale": fixed_scale(display, W),
+        "matrix_from_XYZ": chain["matrix"].tolist(),
+        "display_matrix_from_XYZ": np.asarray(space.matrix_from_XYZ).tolist(),
+        "adaptation_matrix": chain["adaptation_matrix"].tolist(),
+        "channel_factors": chain["channel_factors"].tolist(),
+        "fixed_scale": chain["scale"],
         "tolerance": DEFAULT_TOLERANCE,
         "transfer": _transfer_description(space),
         "bit_depth": 6 if isinstance(space.transfer, LevelTable) else 8,
         "white_XYZ": white_XYZ.tolist(),
         "white_xy": sc.xy(white_XYZ).tolist(),
         "display_white_xy": np.asarray(space.white_xy).tolist(),
+        "display_white": {"XYZ": np.asarray(space.white_XYZ).tolist(),
+                          "xy": np.asarray(space.white_xy).tolist(),
+                          "cct_K": _none_nan(float(temperature.cct_K)),
+                          "duv": _none_nan(float(temperature.duv))},
         "primaries_xy": np.asarray(space.primaries_xy).tolist(),
+        "luminance_row": np.asarray(space.luminance_row).tolist(),
+        "emission": {"levels_per_drive": (FULL_LEVEL * primary_emission(space, wl).values)
+                     .tolist(),
+                     "sources": list(emission_sources(space, wl)),
+                     "ybar": ybar.tolist()},
+        "excitation": {"codes": codes.tolist(), "emission": gamma.tolist()},
         "locus": {"wavelengths_nm": locus.wavelengths_nm[keep].tolist(),
                   "xy": np.round(np.asarray(locus.xy)[keep], 6).tolist()},
         "tints": tints.tolist(),
     }
 
 
+def _dominant(xy: np.ndarray, white_xy: np.ndarray, observer: str, lit: np.ndarray):
+    """Dominant wavelengths and purities, or None and the reason where they are undefined."""
+    n = len(xy)
+    dom_nm, purity = np.full(n, np.nan), np.full(n, np.nan)
+    dom_comp = np.zeros(n, bool)
+    if not lit.any():
+        return dom_nm, dom_comp, purity, None
+    try:
+        d = sc.dominant_wavelength(xy[lit], white_xy, observer)
+    except sc.ColorimetryError as exc:  # e.g. a single-line illuminant: its white is on the locus
+        return dom_nm, dom_comp, purity, f"dominant wavelength undefined: {exc}"
+    dom_nm[lit], dom_comp[lit], purity[lit] = d.wavelength_nm, d.complementary, \
+        d.excitation_purity
+    return dom_nm, dom_comp, purity, None
+
+
 def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_levels=None,
-             pairs=()) -> dict:
+             pairs=(), adaptation: str = DEFAULT_ADAPTATION) -> dict:
     """Colorimetry and display rendering of up to a few distributions (bin levels).
 
     Returns per distribution: XYZ (Y = 100 for the full spectrum / perfect white), xy,
     dominant or complementary wavelength and excitation purity relative to the reference
-    white, CIELAB, the rendering (linear RGB, codes, flags) and a status line; per pair, ΔE00.
+    white (None, with ``dominant_note``, where undefined), CIELAB, the XYZ the display is asked
+    to show (after SPECTRA's per-channel k and the adaptation), the rendering (linear RGB,
+    codes, flags, the gamut strategy applied and the library's explanation), the light the
+    screen emits for those codes (seed 002 STEP 4) and a status line; per pair, ΔE00.
     """
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     levels = np.asarray(spectra, dtype=float)
-    XYZ = sc.tristimulus(sc.Spectrum(wl, levels / FULL_LEVEL), observer, reference)
-    white_XYZ = sc.tristimulus(sc.Spectrum.constant(1.0, wl), observer, reference)
+    XYZ = sc.tristimulus(sc.Spectrum(wl, levels / FULL_LEVEL), observer=observer,
+                         illuminant=reference)
+    white_XYZ = sc.tristimulus(sc.Spectrum.constant(1.0, wl), observer=observer,
+                               illuminant=reference)
     xy = sc.xy(XYZ)
     white_xy = sc.xy(white_XYZ)
     lit = XYZ[:, 1] > 0
-    dom_nm = np.full(len(levels), np.nan)
-    dom_comp = np.zeros(len(levels), bool)
-    purity = np.full(len(levels), np.nan)
-    if lit.any():
-        d = sc.dominant_wavelength(xy[lit], white_xy, observer)
-        dom_nm[lit] = d.wavelength_nm
-        dom_comp[lit] = d.complementary
-        purity[lit] = d.excitation_purity
-    W = sc.weights(wl, observer, reference)
-    scale = fixed_scale(display, W) if normalise == "fixed" else None
-    r = sc.render(XYZ, display, normalise=normalise, gamut=gamut, scale=scale)
+    dom_nm, dom_comp, purity, dom_note = _dominant(xy, white_xy, observer, lit)
+    chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
+    space = chain["space"]
+    shown_XYZ = XYZ @ chain["to_display"].T
+    r = sc.render(shown_XYZ, space, normalise="per-colour" if normalise == "per-colour"
+                  else "fixed", gamut=gamut, scale=chain["scale"])
+    explanations = explain(r)
+    negative, over = out_of_gamut_channels(r)
+    scales = np.broadcast_to(np.asarray(r.scale, dtype=float), (len(levels),))
+    primaries = primary_emission(space, wl).values
+    _, gamma = excitation_function(space)
+    drive = gamma[r.codes]  # γ(code): the fraction of full emission of each primary
+    emitted_levels = FULL_LEVEL * scales[:, None] * (drive @ primaries)
+    emitted_XYZ = scales[:, None] * (drive @ np.asarray(space.matrix_to_XYZ).T)
     lab = sc.lab(XYZ, white_XYZ)
     colours = []
     for i in range(len(levels)):
-        negative = [c for c, n in zip(CHANNELS, r.negative[i], strict=True) if n]
-        over = [c for c, o in zip(CHANNELS, r.over[i], strict=True) if o]
         if not lit[i]:
             status = "black"
         elif not r.in_gamut[i]:
-            what = []
-            if negative:
-                what.append(f"{', '.join(negative)} negative")
-            if over:
-                what.append(f"{', '.join(over)} above 1")
-            shown = {"flag": "shown black", "clip": "channels clipped",
-                     "preserve-luminance": "negative channels zeroed at constant Y",
-                     "desaturate": "desaturated at constant Y"}[gamut]
-            status = f"cannot be reproduced ({'; '.join(what)}): {shown}"
+            status = explanations[i]
         elif normalise == "per-colour":
             status = "Optimised!"
         else:
@@ -154,21 +249,26 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
             "dominant_nm": _none_nan(dom_nm[i]),
             "complementary": bool(dom_comp[i]),
             "purity": _none_nan(purity[i]),
+            "dominant_note": dom_note if lit[i] else None,
             "lab": [_none_nan(v) for v in lab[i]],
+            "XYZ_displayed": shown_XYZ[i].tolist(),
             "rgb_unmapped": r.rgb_unmapped[i].tolist(),
             "rgb_linear": r.rgb_linear[i].tolist(),
             "rgb_encoded": r.rgb_encoded[i].tolist(),
             "codes": [int(c) for c in r.codes[i]],
             "in_gamut": bool(r.in_gamut[i]),
-            "negative": negative,
-            "over": over,
-            "scale": float(np.asarray(r.scale).reshape(-1)[i if np.ndim(r.scale) else 0]),
+            "negative": negative[i],
+            "over": over[i],
+            "gamut_applied": None if r.in_gamut[i] else gamut,
+            "explanation": explanations[i],
+            "scale": float(scales[i]),
+            "emitted_levels": emitted_levels[i].tolist(),
+            "emitted_XYZ": emitted_XYZ[i].tolist(),
             "status": status,
         })
     delta = [float(sc.delta_e_2000(lab[a], lab[b])) for a, b in pairs]
     # The lights as the display is asked to show them (after normalisation A or B, before any
     # gamut strategy), relative to the display's own white: what the split patch compares.
-    space = sc.rgb_space(display)
     shown_lab = sc.lab(space.XYZ_from_rgb_linear(r.rgb_unmapped), space.white_XYZ)
     delta_shown = [float(sc.delta_e_2000(shown_lab[a], shown_lab[b])) for a, b in pairs]
     return {
@@ -177,7 +277,8 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "delta_e_2000_shown": delta_shown,
         "white_XYZ": white_XYZ.tolist(),
         "white_xy": white_xy.tolist(),
-        "normalise": r.normalise,
+        "normalise": normalise,
+        "adaptation": adaptation,
         "gamut": r.gamut,
         "display": r.space,
         "bit_depth": r.bit_depth,
@@ -193,7 +294,7 @@ def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     target = np.asarray(target_levels, dtype=float) / FULL_LEVEL
-    XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer, reference)
+    XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer=observer, illuminant=reference)
     result = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
                                       wavelengths=(START_NM, STOP_NM, float(step_nm)),
                                       bounds="unit")
@@ -206,17 +307,29 @@ def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     if rho.wavelengths_nm.shape != wl.shape or not np.allclose(rho.wavelengths_nm, wl):
         values = rho.resample(wl).values
     levels = values * FULL_LEVEL
-    got = sc.tristimulus(sc.Spectrum(wl, values), observer, reference)
+    got = sc.tristimulus(sc.Spectrum(wl, values), observer=observer, illuminant=reference)
     return {"levels": levels.tolist(), "XYZ_target": XYZ.tolist(), "XYZ_metamer": got.tolist()}
+
+
+def level_step(wavelengths_nm: np.ndarray) -> float:
+    """The smallest level change the page makes: 1 on SPECTRA's 31 bins, 0.1 on finer grids."""
+    return 1.0 if len(wavelengths_nm) == 31 else 0.1
+
+
+def quantise(levels, wavelengths_nm: np.ndarray) -> np.ndarray:
+    """Levels rounded to the page's level step (SPECTRA: integers 0-30 at 10 nm)."""
+    q = level_step(wavelengths_nm)
+    return np.round(np.round(np.asarray(levels, dtype=float) / q) * q, 10)
 
 
 def resolve(values, wavelengths_nm: np.ndarray) -> list:
     """A preset's levels on the grid: listed data (resampled if the grid is finer), or a
-    named generated distribution (CIE D65/A scaled to a peak of 30, E, a constant level)."""
+    named generated distribution (CIE D65/A scaled to a peak of 30 and rounded to the level
+    step, E, a constant level)."""
     if isinstance(values, str):
         if values in ("D65", "A"):
             s = sc.illuminant(values, wavelengths_nm).values
-            return (s * FULL_LEVEL / s.max()).tolist()
+            return quantise(s * FULL_LEVEL / s.max(), wavelengths_nm).tolist()
         if values == "E":
             return [float(FULL_LEVEL)] * len(wavelengths_nm)
         raise sc.ColorimetryError(
@@ -226,6 +339,14 @@ def resolve(values, wavelengths_nm: np.ndarray) -> list:
     return coarse.resample(wavelengths_nm, "linear").values.tolist()
 
 
+def _moves(moves, wavelengths_nm: np.ndarray) -> list:
+    """The seed's suggested edits of a setting-3 pair as [bin index, new left level] on the grid
+    (on finer grids the bin nearest the 10 nm bin's wavelength)."""
+    coarse = grid(10.0)
+    return [[int(np.abs(wavelengths_nm - coarse[k]).argmin()), float(level)]
+            for k, level in moves]
+
+
 def presets(step_nm: float) -> dict:
     """All five settings' defaults on the grid of ``step_nm`` (see :mod:`.presets`)."""
     wl = grid(step_nm)
@@ -233,7 +354,8 @@ def presets(step_nm: float) -> dict:
     def one(key, name, values):
         if values == "sunset":
             return {"key": key, "name": name, "cycle": [
-                {"d": d, "levels": P.sunset(d, wl).tolist()} for d in P.SUNSET_D]}
+                {"d": d, "levels": quantise(P.sunset(d, wl), wl).tolist()}
+                for d in P.SUNSET_D]}
         if values == "level":
             return {"key": key, "name": name, "cycle": [
                 {"level": v, "levels": [float(v)] * len(wl)} for v in range(FULL_LEVEL + 1)]}
@@ -245,7 +367,8 @@ def presets(step_nm: float) -> dict:
         "setting1": [one(*p) for p in P.SETTING1],
         "setting2": {"left": [one(*p) for p in P.SETTING2_LEFT],
                      "right": [one(*p) for p in P.SETTING2_RIGHT]},
-        "setting3": [{"key": k, "name": n, "left": resolve(a, wl), "right": resolve(b, wl)}
+        "setting3": [{"key": k, "name": n, "left": resolve(a, wl), "right": resolve(b, wl),
+                      "moves": _moves(P.SETTING3_MOVES.get(k, ()), wl)}
                      for k, n, a, b in P.SETTING3],
         "setting4": {"illuminants": [one(*p) for p in P.SETTING4_ILLUMINANTS],
                      "samples": [{"key": k, "name": n, "left": resolve(a, wl),
@@ -260,7 +383,8 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
 
     ``scale``: ``"peak"`` (each spectrum scaled so its peak in 400-700 nm is the full level),
     ``"unit"`` (values are factors 0-1) or ``"levels"`` (values are already 0-30). At most
-    ``max_spectra`` spectra (the page shows no more), as one spectrum (K,) or a list (N, K).
+    ``max_spectra`` spectra (the page lets the user choose which to edit), as one spectrum (K,)
+    or a list (N, K).
     """
     s = sc.read_spectra(path)
     if s.values.ndim > 2:
@@ -270,8 +394,8 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
     count = 1 if s.values.ndim == 1 else s.values.shape[0]
     if count > max_spectra:
         raise sc.SpectrumError(
-            f"the file holds {count} spectra; the explorer shows at most {max_spectra} at a "
-            "time: import a file with fewer")
+            f"the file holds {count} spectra; the explorer reads at most {max_spectra} from "
+            "one file: import a file with fewer")
     wl = grid(step_nm)
     lo, hi = float(s.wavelengths_nm[0]), float(s.wavelengths_nm[-1])
     if lo > START_NM or hi < STOP_NM:

@@ -9,11 +9,15 @@ setting 4 (illuminants on keys 1-4, metameric samples on keys 5-8) and setting 5
 The seed names and describes each default but prints no numbers except the sunset formula,
 so the levels below were written for this program to have the described shape on SPECTRA's
 grid: 31 bins, 400-700 nm at 10 nm, integer levels 0-30 (30 = the full spectrum, or 100 %
-reflectance/transmittance). The metameric pairs were found by an integer search that
-minimises CIEDE2000 under the stated illuminant (CIE 1931 observer, summation at the 31
-samples); ``tests/test_app_api.py`` checks every property claimed here with the library.
-CIE D65 and A are not data here: they are the CIE tables, evaluated on the requested grid by
-:func:`spectrocolor.illuminant` and scaled to a peak of 30.
+reflectance/transmittance). Where a hand-drawn shape did not show what the seed's words
+promise on the default display (sRGB and SPECTRA's monitor, E adapted to the display's white,
+normalisation A), the levels were retuned by the integer search in ``tools/tune_presets.py``
+(objectives and every difference from the seed's words: ``docs/app.md``, "Presets"); the
+metameric pairs minimise CIEDE2000 under the stated illuminant (CIE 1931 observer, summation
+at the 31 samples). ``tests/test_app_demonstrations.py`` and ``tests/test_app_api.py`` check
+every property claimed here through the app's compute path. CIE D65 and A are not data here:
+they are the CIE tables, evaluated on the requested grid by :func:`spectrocolor.illuminant`,
+scaled to a peak of 30 and rounded to whole levels (SPECTRA's model has no fractions).
 """
 
 from __future__ import annotations
@@ -30,21 +34,26 @@ def _c(level: int) -> list[int]:
 
 
 # --- setting 1 (and the shapes reused below) -----------------------------------------
-STRAW = [10, 11, 11, 12, 12, 13, 13, 14, 14, 15, 15, 16, 16, 17, 17, 18,
-         19, 19, 20, 20, 21, 21, 22, 22, 23, 23, 24, 24, 25, 25, 26]
-LIGHT_BLUE = [26, 26, 25, 25, 24, 24, 23, 23, 22, 22, 21, 21, 20, 20, 19, 19,
-              19, 18, 18, 17, 17, 16, 16, 15, 15, 14, 14, 13, 13, 12, 12]
+STRAW = [3, 6, 9, 12, 13, 14, 15, 15, 16, 17, 18, 19, 19, 19, 19, 19,
+         19, 19, 19, 19, 20, 21, 22, 23, 23, 23, 23, 23, 24, 25, 26]
+LIGHT_BLUE = [28, 27, 26, 26, 26, 26, 25, 24, 23, 22, 21, 20, 20, 20, 20, 20,
+              20, 19, 18, 17, 16, 15, 15, 15, 15, 15, 15, 14, 13, 12, 11]
 GREY = _c(15)
 GREEN = [8, 8, 8, 9, 9, 10, 12, 13, 16, 19, 21, 24, 25, 26, 25, 24,
          21, 19, 16, 13, 12, 10, 9, 9, 8, 8, 8, 8, 8, 8, 8]
-MAGENTA = [26, 26, 25, 25, 24, 23, 22, 21, 19, 16, 14, 12, 9, 8, 6, 6,
-           6, 8, 9, 12, 14, 16, 19, 21, 22, 23, 24, 25, 25, 26, 26]
+# round(30 · 7 / GREEN): a magenta that, as a filter after GREEN, leaves a flat (grey) light
+MAGENTA = [26, 26, 26, 23, 23, 21, 18, 16, 13, 11, 10, 9, 8, 8, 8, 9,
+           10, 11, 13, 16, 18, 21, 23, 23, 26, 26, 26, 26, 26, 26, 26]
 YELLOW = [1, 1, 1, 1, 1, 6, 10, 14, 19, 24, 28, 28, 28, 28, 28, 28,
           28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28]
 BLUE = [23, 27, 28, 27, 23, 19, 14, 10, 6, 4, 3, 2, 2, 2, 2, 2,
         2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2]
 
 # --- setting 2 ----------------------------------------------------------------------
+# The intense blue of the right box, key 2: light blue's hue (λd 470 vs 480 nm), much more
+# chroma, displayable on sRGB and SPECTRA's monitor (setting 1's blue is violet, λd 453).
+DEEP_BLUE = [28, 28, 28, 28, 28, 28, 28, 27, 24, 20, 15, 10, 7, 5, 4, 3,
+             3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3]
 # Grey metameric (as a light) with the constant 15: wavy and spiky versions.
 GREY_WAVY = [15, 16, 18, 17, 17, 16, 14, 13, 12, 11, 10, 10, 11, 13, 15, 17,
              18, 19, 19, 18, 16, 14, 12, 10, 8, 7, 6, 8, 9, 11, 14]
@@ -54,13 +63,18 @@ GREY_SPIKY = [5, 1, 0, 3, 26, 26, 27, 6, 4, 7, 8, 9, 8, 8, 30, 30,
 BLUE_BANDS = [16, 13, 30, 30, 13, 12, 13, 30, 15, 0, 0, 0, 0, 0, 0, 0,
               15, 0, 0, 0, 0, 0, 2, 2, 6, 6, 7, 10, 8, 9, 4]
 # "Three-band" light: narrow bands near 450, 540-550 and 610 nm (seed note 13: the red band
-# at or near 610 nm), with the same chromaticity as D65 on this grid.
-THREE_BAND = [0, 0, 1, 2, 16, 30, 16, 3, 1, 1, 2, 1, 1, 9, 30, 30,
-              9, 1, 2, 1, 13, 23, 13, 1, 1, 1, 1, 0, 0, 0, 0]
+# at or near 610 nm), with the chromaticity of D65 (rounded to integer levels) on this grid.
+THREE_BAND = [0, 0, 2, 2, 16, 30, 16, 3, 1, 1, 2, 1, 1, 9, 30, 30,
+              9, 1, 2, 1, 13, 23, 13, 1, 1, 0, 2, 0, 0, 0, 0]
 
 # --- setting 3: complementary pairs ---------------------------------------------------
-ORANGE_YELLOW = [1, 1, 1, 1, 1, 1, 1, 2, 4, 8, 13, 18, 22, 25, 27, 28,
-                 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28]
+# Setting 3, default 2 (Fig. 12): a dark neutral (level 2) plus a block around 575 nm. Moving
+# FIG12_MOVES to the right (580 and 570 nm fully, 590 and 560 nm partly: (bin, new left
+# level)) leaves two metameric yellows (CIEDE2000 0.06), one with no light at 570-580 nm.
+# Found by an exhaustive integer search (docs/app.md, "Presets").
+ORANGE_YELLOW = [2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 20,
+                 26, 27, 27, 30, 22, 11, 2, 2, 2, 2, 2, 2, 2, 2, 2]
+FIG12_MOVES = ((18, 0), (17, 0), (19, 16), (16, 23))
 
 
 def _ideal(inside: int, outside: int, start_nm: float, stop_nm: float) -> list[int]:
@@ -69,35 +83,48 @@ def _ideal(inside: int, outside: int, start_nm: float, stop_nm: float) -> list[i
 
 
 def _smooth_yellow() -> list[int]:
+    """A logistic step from 3 to 27 around 500 nm (40 nm wide): it and its complement are
+    both displayable on sRGB and on SPECTRA's monitor."""
     wl = np.arange(START_NM, STOP_NM + 1, STEP_NM)
-    return [int(v) for v in np.round(FULL_LEVEL / (1 + np.exp(-(wl - 500) / 25)))]
+    return [int(v) for v in np.round(3 + 24 / (1 + np.exp(-(wl - 500) / 40)))]
 
 
 # --- setting 4: reflectances metameric under D65 (grey, yellow, green, blue) -----------
 S4_GREY = (_c(15), [14, 21, 25, 26, 24, 19, 12, 6, 2, 2, 2, 5, 11, 16, 21, 24,
                     23, 21, 17, 11, 8, 7, 8, 12, 17, 22, 25, 27, 25, 20, 14])
-S4_YELLOW = ([3, 3, 3, 3, 3, 3, 7, 11, 15, 19, 23, 27, 27, 27, 27, 27,
+S4_YELLOW = ([30, 24, 18, 12, 6, 3, 7, 11, 13, 15, 17, 20, 24, 27, 27, 27,
               27, 27, 27, 27, 27, 27, 27, 27, 27, 27, 27, 27, 27, 27, 27],
-             [10, 14, 12, 13, 8, 5, 3, 4, 6, 12, 14, 21, 23, 28, 30, 30,
-              30, 30, 30, 30, 30, 25, 21, 18, 17, 16, 20, 24, 29, 30, 30])
-S4_GREEN = ([4, 4, 4, 4, 5, 6, 7, 9, 11, 15, 18, 21, 23, 24, 23, 21,
-             18, 15, 11, 9, 7, 6, 5, 4, 4, 4, 4, 4, 4, 4, 4],
-            [1, 0, 0, 0, 0, 0, 7, 15, 22, 27, 28, 29, 29, 26, 20, 15,
-             10, 6, 8, 9, 10, 13, 12, 13, 10, 2, 0, 0, 0, 0, 0])
-S4_BLUE = ([10, 14, 17, 20, 22, 23, 22, 20, 17, 14, 10, 8, 6, 5, 4, 3,
-            3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3],
-           [0, 11, 17, 23, 26, 26, 23, 19, 9, 4, 0, 2, 3, 6, 10, 8,
-            8, 5, 2, 0, 0, 0, 0, 0, 3, 7, 10, 12, 6, 0, 3])
+             [30, 30, 27, 17, 8, 6, 6, 6, 7, 10, 11, 11, 24, 27, 30, 29,
+              30, 28, 30, 30, 30, 27, 23, 19, 15, 18, 20, 22, 24, 26, 28])
+S4_GREEN = ([1, 2, 3, 4, 5, 6, 7, 5, 4, 4, 10, 16, 22, 21, 20, 19,
+             18, 14, 10, 9, 8, 7, 4, 1, 2, 3, 4, 4, 4, 4, 4],
+            [0, 0, 0, 0, 0, 0, 5, 11, 16, 18, 20, 24, 28, 23, 18, 13,
+             8, 6, 7, 8, 10, 12, 13, 13, 8, 3, 1, 0, 0, 0, 0])
+S4_BLUE = ([11, 14, 17, 20, 22, 23, 23, 23, 19, 14, 10, 8, 6, 5, 4, 3,
+            3, 4, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3],
+           [9, 14, 19, 24, 29, 28, 22, 16, 11, 6, 0, 2, 3, 5, 8, 11,
+            9, 5, 2, 1, 2, 0, 0, 0, 0, 1, 5, 9, 7, 4, 1])
 
 # --- setting 5: filters ---------------------------------------------------------------
-TURQUOISE = [3, 3, 5, 9, 15, 21, 25, 27, 27, 27, 27, 27, 25, 21, 15, 9,
+TURQUOISE = [2, 4, 6, 9, 15, 21, 25, 27, 27, 27, 27, 27, 25, 21, 15, 9,
              5, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3]
 ORANGE = [3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 6,
           9, 13, 18, 22, 25, 27, 27, 28, 28, 28, 28, 28, 28, 28, 28]
+# Setting 5, keys 2-4 (found by tools/tune_presets.py s5-yellow, see docs/app.md): a yellow
+# filter with a sharper edge near 490 nm than setting 1's yellow, a blue filter that passes
+# the blue and part of the green (seed 002: "what shape of distributions will give the best
+# green"), and a magenta filter with a deep notch over 470-570 nm, so that the products are a
+# green, a dark green and a red.
+YELLOW_FILTER = [1, 1, 1, 1, 1, 1, 1, 3, 8, 17, 25, 28, 28, 28, 28, 28,
+                 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28]
+BLUE_FILTER = [30, 30, 30, 30, 29, 27, 25, 23, 21, 18, 15, 15, 15, 14, 11, 8,
+               5, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]
+MAGENTA_FILTER = [28, 28, 28, 28, 22, 15, 8, 2, 0, 0, 0, 0, 0, 0, 0, 0,
+                  0, 2, 7, 13, 19, 25, 28, 28, 28, 28, 28, 28, 28, 28, 28]
 # Dichroic "moss green": a low green pass band and a high deep-red window. One filter looks
 # green; two in series leave mostly the red window (seed 002, setting 5, default 7).
-MOSS_GREEN = [0, 0, 0, 0, 0, 1, 2, 4, 6, 9, 10, 9, 6, 4, 2, 1,
-              0, 0, 0, 0, 0, 0, 0, 1, 5, 15, 24, 28, 29, 29, 29]
+MOSS_GREEN = [0, 0, 0, 0, 0, 0, 1, 3, 5, 7, 6, 6, 6, 4, 2, 1,
+              0, 0, 0, 0, 0, 0, 0, 1, 5, 14, 23, 28, 29, 29, 29]
 
 
 def sunset(d: float, wavelengths_nm: np.ndarray) -> np.ndarray:
@@ -130,7 +157,7 @@ SETTING2_LEFT = [
 ]
 SETTING2_RIGHT = [
     ("1", "yellow", YELLOW),
-    ("2", "blue", BLUE),
+    ("2", "blue", DEEP_BLUE),
     ("3", "neutral", _c(10)),
     ("4", "magenta", MAGENTA),
     ("5", "blue", BLUE_BANDS),
@@ -146,9 +173,11 @@ SETTING3 = [
     ("3", "yellow / blue", _smooth_yellow(), [FULL_LEVEL - v for v in _smooth_yellow()]),
     ("4", "ideal yellow / ideal blue", _ideal(30, 0, 500, 700), _ideal(0, 30, 500, 700)),
     ("5", "ideal magenta / ideal green, with neutral",
-     _ideal(5, 25, 500, 570), _ideal(25, 5, 500, 570)),
+     _ideal(7, 23, 500, 570), _ideal(23, 7, 500, 570)),
     ("6", "full spectrum / darkness", _c(30), _c(0)),
 ]
+#: The seed's suggested edits per setting-3 default: (bin index, new level of the left).
+SETTING3_MOVES = {"1": ((18, 0), (17, 0)), "2": FIG12_MOVES}
 SETTING4_ILLUMINANTS = [
     ("1", "E", "E"),
     ("2", "D65", "D65"),
@@ -163,9 +192,9 @@ SETTING4_SAMPLES = [
 ]
 SETTING5 = [
     ("1", "straw and light blue: a faint green", STRAW, LIGHT_BLUE),
-    ("2", "yellow and turquoise: green", YELLOW, TURQUOISE),
-    ("3", "yellow and blue: dark green", YELLOW, BLUE),
-    ("4", "yellow and magenta: red", YELLOW, MAGENTA),
+    ("2", "yellow and turquoise: green", YELLOW_FILTER, TURQUOISE),
+    ("3", "yellow and blue: dark green", YELLOW_FILTER, BLUE_FILTER),
+    ("4", "yellow and magenta: red", YELLOW_FILTER, MAGENTA_FILTER),
     ("5", "green and magenta: grey", GREEN, MAGENTA),
     ("6", "two orange filters: a deeper, redder orange", ORANGE, ORANGE),
     ("7", "two moss-green filters: a dark red (dichroism)", MOSS_GREEN, MOSS_GREEN),
