@@ -61,8 +61,11 @@ def grid_key(wavelengths) -> tuple[float, float, float]:
         if all(isinstance(v, Real) for v in wavelengths):
             wavelength_grid(*wavelengths)  # validates
             return tuple(float(v) for v in wavelengths)
-    grid = np.asarray(wavelengths, dtype=float)
-    if grid.ndim == 1 and grid.size >= 3:
+    try:
+        grid = np.asarray(wavelengths, dtype=float)
+    except (TypeError, ValueError):
+        grid = np.zeros(0)
+    if grid.ndim == 1 and grid.size >= 3 and np.all(np.isfinite(grid)):
         steps = np.diff(grid)
         if np.all(steps > 0) and np.allclose(steps, steps[0], rtol=1e-9, atol=0):
             return (float(grid[0]), float(grid[-1]), float(steps[0]))

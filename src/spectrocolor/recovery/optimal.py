@@ -131,7 +131,10 @@ def optimal_colours(
             raise ColorimetryError(f"directions: expected at least 1, got {directions}")
         normals = zonotope.sphere_directions(int(directions))
     else:
-        normals = np.asarray(directions, dtype=float)
+        try:
+            normals = np.asarray(directions, dtype=float)
+        except (TypeError, ValueError):
+            normals = np.zeros(0)
         if normals.ndim != 2 or normals.shape[1] != 3 or not np.all(np.isfinite(normals)):
             raise ColorimetryError(
                 f"directions: expected an int or finite directions of shape (M, 3), got {directions!r}")
@@ -175,7 +178,10 @@ def macadam_limits(
     >>> bool(abs(XYZ[:, 1] - 50.0).max() < 1e-9)
     True
     """
-    Y = float(luminance_factor)
+    try:
+        Y = float(luminance_factor)
+    except (TypeError, ValueError):
+        Y = np.nan
     if not 0.0 < Y < 100.0:
         raise ColorimetryError(f"luminance_factor: expected 0 < Y < 100 (percent), got {luminance_factor!r}")
     if not isinstance(samples, int | np.integer) or samples < 3:
