@@ -223,3 +223,48 @@ def test_touch_drag_edits_bars_on_a_tablet(browser, base_url, artifacts_dir):
         assert "(edited)" in pg.locator("#editors .pname").inner_text()
     finally:
         context.close()
+
+
+def test_self_explaining_numbers_diagram_and_step4(page):
+    """Units and explanations on every number, hex beside the codes, a diagram with tick values
+    and a legend in the patch colours, the emitted light of step 4 and the display's white."""
+    choose(page, 1)
+    key(page, "4")
+    st = state(page)
+    lib = library(st)["colours"][0]
+    card = page.locator("#numbers .card[data-i='0']")
+    heads = card.locator("th")
+    assert heads.count() == 6
+    for i in range(heads.count()):
+        assert len(heads.nth(i).get_attribute("title")) > 20  # an explanation, not just a label
+    assert "Y = 100 for the full spectrum" in card.locator("th").first.get_attribute("title")
+    assert card.locator("td.hex").inner_text() == "#" + "".join(f"{c:02x}" for c in lib["codes"])
+    # the diagram: tick values on both axes, a legend whose swatch is the patch colour
+    ticks = page.eval_on_selector_all("#chroma text.tick", "es => es.map((e) => e.textContent)")
+    assert [f"{v / 10:.1f}" for v in range(9)] == sorted(set(ticks))
+    swatch = page.locator("#legend li[data-i='0'] .key").evaluate(
+        "e => getComputedStyle(e).backgroundColor")
+    assert swatch == page.locator("#patches .patch[data-i='0']").evaluate(
+        "e => getComputedStyle(e).backgroundColor")
+    assert st["names"][0] in page.locator("#legend").inner_text()
+    page.check("#locus-fill")
+    assert page.locator("#chroma .locus.filled").count() == 1
+    page.uncheck("#locus-fill")
+    # step 4: the emitted light is drawn beside the patch (non-blank canvas)
+    assert page.locator("#emitted-box").is_visible()
+    drawn = page.evaluate("""() => { const c = document.getElementById('emitted');
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let n = 0; for (let i = 3; i < d.length; i += 4) if (d[i] > 0) n++; return n; }""")
+    assert drawn > 200
+    # the display's white point and correlated colour temperature, from the library
+    for display in ("sRGB", "SPECTRA 7000K"):
+        page.select_option("#display", display)
+        settle(page)
+        model = compute.model(10.0, "1931", display)
+        note = page.locator("#white-note").inner_text()
+        assert f"CCT {round(model['display_white']['cct_K'])} K" in note
+        assert f"x {model['display_white']['xy'][0]:.4f}" in note
+    page.select_option("#display", "sRGB")
+    settle(page)
+    choose(page, 2)
+    assert not page.locator("#emitted-box").is_visible()  # step 4's graph belongs to setting 1
