@@ -71,7 +71,8 @@ def _coordinates(t, argument: str = "rgb_linear") -> np.ndarray:
     try:
         a = np.asarray(t, dtype=np.float64)
     except (TypeError, ValueError):
-        raise ColorimetryError(f"{argument}: expected numbers of shape (..., 3), got {t!r}") from None
+        raise ColorimetryError(
+            f"{argument}: expected numbers of shape (..., 3), got {type(t).__name__}") from None
     if a.ndim == 0 or a.shape[-1] != 3:
         raise ColorimetryError(f"{argument}: expected shape (..., 3), got {a.shape}")
     if not np.all(np.isfinite(a)):
@@ -90,7 +91,9 @@ def _path_offsets(n: int) -> np.ndarray:
     """Flat offsets of the 2nd, 3rd and 4th tetrahedron corner from the cell's base node, per
     comparison code: cumulative sums of the strides ``(n², n, 1)`` in the code's axis order."""
     strides = np.array([n * n, n, 1], dtype=np.intp)
-    return np.cumsum(strides[_ORDER_OF_CODE], axis=-1)
+    offsets = np.cumsum(strides[_ORDER_OF_CODE], axis=-1)
+    offsets.setflags(write=False)
+    return offsets
 
 
 @dataclass(frozen=True)
