@@ -33,9 +33,10 @@ SURROUNDS.add("average", (1.0, 0.69, 1.0), "F = 1.0, c = 0.69, N_c = 1.0 (surfac
 SURROUNDS.add("dim", (0.9, 0.59, 0.9), "F = 0.9, c = 0.59, N_c = 0.9 (television)")
 SURROUNDS.add("dark", (0.8, 0.525, 0.8), "F = 0.8, c = 0.525, N_c = 0.8 (projection in a dark room)")
 
-_M_CAT02 = np.array([[0.7328, 0.4296, -0.1624], [-0.7036, 1.6975, 0.0061], [0.0030, 0.0136, 0.9834]])
+#: CAT02 matrix (XYZ → sharpened RGB), CIE 159:2004.
+M_CAT02 = np.array([[0.7328, 0.4296, -0.1624], [-0.7036, 1.6975, 0.0061], [0.0030, 0.0136, 0.9834]])
 _M_HPE = np.array([[0.38971, 0.68898, -0.07868], [-0.22981, 1.18340, 0.04641], [0.0, 0.0, 1.0]])
-_CAT02_TO_HPE = _M_HPE @ np.linalg.inv(_M_CAT02)
+_CAT02_TO_HPE = _M_HPE @ np.linalg.inv(M_CAT02)
 
 
 class JMh(NamedTuple):
@@ -62,15 +63,15 @@ def _check_conditions(surround: str, L_A: float, Y_b: float) -> None:
         raise ColorimetryError(f"L_A and Y_b: expected positive numbers, got L_A={L_A!r}, Y_b={Y_b!r}")
 
 
-def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
+def _forward(rgb, rgb_w, Y_w, L_A, Y_b, surround, discount_illuminant):
     """J, M and the hue direction (cos h, sin h) of CIECAM02 (CIE 159:2004 steps 1–10).
 
-    Colours and white are channel-first, ``(3, ...)``, so every step works on contiguous planes.
-    The hue enters only through cos h and sin h = (a, b) / ‖(a, b)‖, which saves the trigonometry
-    on large batches: e_t = ¼ (cos(h + 2) + 3.8) = ¼ (cos h cos 2 − sin h sin 2 + 3.8).
+    Colours and white are CAT02 RGB (:data:`M_CAT02` applied to XYZ), channel-first, ``(3, ...)``,
+    so every step works on contiguous planes; ``Y_w`` is the white's Y. The hue enters only
+    through cos h and sin h = (a, b) / ‖(a, b)‖, which saves the trigonometry on large batches:
+    e_t = ¼ (cos(h + 2) + 3.8) = ¼ (cos h cos 2 − sin h sin 2 + 3.8).
     """
     F, c, N_c = SURROUNDS.get(surround)
-    Y_w = white[1]
     k = 1.0 / (5.0 * L_A + 1.0)
     F_L = 0.2 * k**4 * (5.0 * L_A) + 0.1 * (1.0 - k**4) ** 2 * (5.0 * L_A) ** (1.0 / 3.0)
     D = 1.0 if discount_illuminant else F * (1.0 - np.exp((-L_A - 42.0) / 92.0) / 3.6)
@@ -78,9 +79,8 @@ def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
         n = Y_b / Y_w
         z = 1.48 + np.sqrt(n)
         N_bb = 0.725 * n**-0.2
-        rgb_w = _times(_M_CAT02, white)
         gain = D * Y_w / rgb_w + 1.0 - D
-        R, G, B = _compress(_times(_CAT02_TO_HPE, _times(_M_CAT02, XYZ) * gain), F_L)
+        R, G, B = _compress(_times(_CAT02_TO_HPE, rgb * gain), F_L)
         R_w, G_w, B_w = _compress(_times(_CAT02_TO_HPE, rgb_w * gain), F_L)
         a = R - 12.0 * G / 11.0 + B / 11.0
         b = (R + G - 2.0 * B) / 9.0
@@ -97,29 +97,32 @@ def _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant):
     return J, C * F_L**0.25, cos_h, sin_h
 
 
-def _channels(XYZ100, white_XYZ100) -> tuple[np.ndarray, np.ndarray]:
+def _channels(XYZ100, white_XYZ100) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CAT02 RGB of colours and white, channel-first and broadcast, and the white's Y."""
     XYZ = colour_array(XYZ100, "XYZ100", 3, "tristimulus values")
     white = colour_array(white_XYZ100, "white_XYZ100", 3, "tristimulus values")
     XYZ, white = np.broadcast_arrays(XYZ, white)
-    return np.moveaxis(XYZ, -1, 0), np.moveaxis(white, -1, 0)
+    white = np.moveaxis(white, -1, 0)
+    return _times(M_CAT02, np.moveaxis(XYZ, -1, 0)), _times(M_CAT02, white), white[1]
 
 
-def cam02ucs_planes(XYZ, white, L_A: float = 100.0, Y_b: float = 20.0, surround: str = "average",
-                    discount_illuminant: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """CAM02-UCS J', a', b' as three arrays from channel-first XYZ and white ``(3, ...)``.
+def cam02ucs_planes(rgb_cat02, white_cat02, white_Y, L_A: float = 100.0, Y_b: float = 20.0,
+                    surround: str = "average", discount_illuminant: bool = True) -> tuple[np.ndarray, ...]:
+    """CAM02-UCS J', a', b' as three arrays from channel-first CAT02 RGB ``(3, ...)``.
 
-    The layout for large batches (CIE 224: 99 samples × many lights); :func:`cam02ucs_jab`
-    is the same for ``(..., 3)`` arrays.
+    The layout for large batches (CIE 224: 99 samples × many lights), where :data:`M_CAT02`
+    is folded into the spectral weights so the sharpened RGB come straight out of one matrix
+    product; ``white_Y`` is the white's Y. :func:`cam02ucs_jab` is the same from XYZ ``(..., 3)``.
 
     Examples
     --------
-    >>> J, a, b = cam02ucs_planes(np.array([[19.31], [23.93], [10.14]]), np.array([98.88, 90.0, 32.03])[:, None],
-    ...                           200.0, 18.0)
-    >>> [round(float(v[0]), 3) for v in (J, a, b)]
+    >>> XYZ, white = np.array([19.31, 23.93, 10.14]), np.array([98.88, 90.0, 32.03])
+    >>> J, a, b = cam02ucs_planes(M_CAT02 @ XYZ, M_CAT02 @ white, white[1], 200.0, 18.0)
+    >>> [round(float(v), 3) for v in (J, a, b)]
     [61.122, -27.426, -5.769]
     """
     _check_conditions(surround, L_A, Y_b)
-    J, M, cos_h, sin_h = _forward(XYZ, white, L_A, Y_b, surround, discount_illuminant)
+    J, M, cos_h, sin_h = _forward(rgb_cat02, white_cat02, white_Y, L_A, Y_b, surround, discount_illuminant)
     M_prime = np.log1p(0.0228 * M) / 0.0228
     return 1.7 * J / (1.0 + 0.007 * J), M_prime * cos_h, M_prime * sin_h
 

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..sampling import cmfs_on
-from .cam02ucs import cam02ucs_planes
+from .cam02ucs import M_CAT02, cam02ucs_planes
 from .reference import fidelity_reference
 from .spectra import ces_reflectances, in_chunks, light_cct, light_grid
 
@@ -87,13 +87,17 @@ def rf_from_delta_e(delta_E):
 def _jab(S: np.ndarray, products: np.ndarray, W10: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """CAM02-UCS J', a', b' (each (N, 99)) of the samples under lights S (N, K).
 
-    ``products`` is (K, 3·99), channel-major, so the XYZ come out as three contiguous planes.
+    ``products`` (3, K, 99) are the samples' weights in CAT02 RGB (``M_CAT02`` folded in), so
+    each sharpened channel is one contiguous matrix product; each light is scaled to Y₁₀ = 100.
     """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         k = 100.0 / (S @ W10[:, 1])
-        white = (S @ W10).T * k  # (3, N)
-        XYZ = (S @ products).reshape(len(S), 3, -1).transpose(1, 0, 2) * k[:, None]  # (3, N, 99)
-    return cam02ucs_planes(XYZ, white[:, :, None])
+        white = (S @ (W10 @ M_CAT02.T)).T * k  # CAT02 RGB of the white, (3, N)
+        rgb = np.empty((3, len(S), products.shape[-1]))
+        for channel in range(3):
+            np.matmul(S, products[channel], out=rgb[channel])
+        rgb *= k[:, None]
+    return cam02ucs_planes(rgb, white[:, :, None], 100.0)
 
 
 def _polygon_area(ab: np.ndarray) -> np.ndarray:
@@ -176,7 +180,7 @@ def colour_fidelity(spd) -> Fidelity:
     grid, S = light_grid(spd, 380.0, 780.0)
     W10 = cmfs_on(grid, "1964") * (grid[1] - grid[0])
     ces = ces_reflectances(grid)
-    products = (W10.T[:, None, :] * ces[None]).reshape(3 * len(ces), grid.size).T  # (K, 3·99), channel-major
+    products = np.ascontiguousarray(((W10 @ M_CAT02.T).T[:, None, :] * ces[None]).transpose(0, 2, 1))  # (3, K, 99)
     r = in_chunks(_fidelity_rows, S, grid, W10, products)
     shape = spd.batch_shape
     return Fidelity(
