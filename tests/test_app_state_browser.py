@@ -160,6 +160,21 @@ def test_a_dropdown_gives_the_keyboard_back_to_the_bars(browser, base_url):
         assert st["dists"][0][k] == before["dists"][0][k] + 1
         focused = pg.evaluate("document.activeElement.getAttribute('role')")
         assert focused == "slider"
+        # after clicking a default, space is SPECTRA's "next distribution", not a second click
+        choose(pg, 2)
+        button = pg.locator("#presets button[data-group=left][data-key='4']")
+        button.click()
+        settle(pg)
+        key(pg, " ")
+        assert pg.evaluate("window.__spectra.active[2]") == 1
+        assert state(pg)["names"][0] == button.get_attribute("data-name")
+        # on the fine grids Shift+↑ raises a bar by a tenth of a level
+        pg.select_option("#step", "5")
+        settle(pg)
+        k = pg.evaluate("window.__spectra.cursor['2:1'] ?? 30")
+        level = state(pg)["dists"][1][k]
+        key(pg, "Shift+ArrowDown")
+        assert state(pg)["dists"][1][k] == pytest.approx(level - 0.1)
 
 
 def csv_with(names):

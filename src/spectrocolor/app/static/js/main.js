@@ -413,6 +413,9 @@ async function init() {
     if (b) { $("gamut").value = b.dataset.gamut; option("gamut", b.dataset.gamut); }
   });
   document.addEventListener("keydown", onKey);
+  document.addEventListener("click", (ev) => {  // after a mouse or finger press, space and arrows go to the bars again
+    if (ev.detail > 0 && ev.target.closest("#presets button, #touch button, #actions button")) focusBars();
+  });
   window.addEventListener("resize", () => drawEditors());
   window.addEventListener("popstate", onPopState);
 
