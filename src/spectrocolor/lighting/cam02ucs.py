@@ -53,8 +53,16 @@ def _times(matrix: np.ndarray, channels: np.ndarray) -> np.ndarray:
 
 
 def _compress(rgb: np.ndarray, F_L) -> np.ndarray:
-    power = (F_L / 100.0 * np.abs(rgb)) ** 0.42
-    return np.sign(rgb) * 400.0 * power / (27.13 + power) + 0.1
+    """400 (F_L |x| / 100)^0.42 / (27.13 + (F_L |x| / 100)^0.42) with the sign of x, + 0.1 (in place)."""
+    power = np.abs(rgb)
+    power *= F_L / 100.0
+    np.power(power, 0.42, out=power)
+    result = 400.0 * power
+    power += 27.13
+    result /= power
+    result = np.copysign(result, rgb, out=result)
+    result += 0.1
+    return result
 
 
 def _check_conditions(surround: str, L_A: float, Y_b: float) -> None:
