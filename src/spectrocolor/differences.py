@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .arguments import real_number
 from .coordinates import colour_array
 from .errors import ColorimetryError
 
@@ -107,10 +108,7 @@ def delta_e_2000(lab1, lab2, *, k_L: float = 1.0, k_C: float = 1.0, k_H: float =
     2.0425
     """
     for name, k in (("k_L", k_L), ("k_C", k_C), ("k_H", k_H)):
-        if isinstance(k, bool) or not isinstance(k, int | float | np.floating | np.integer) or not (
-                np.isfinite(k) and k > 0):
-            raise ColorimetryError(f"{name}: expected a positive, finite weighting factor (1 for "
-                                   f"the reference conditions), got {k!r:.40}")
+        real_number(k, name, "a weighting factor (1 for the reference conditions)", positive=True)
     lab1, lab2 = _lab_pair(lab1, lab2)
     L1, a1, b1 = lab1[..., 0], lab1[..., 1], lab1[..., 2]
     L2, a2, b2 = lab2[..., 0], lab2[..., 1], lab2[..., 2]

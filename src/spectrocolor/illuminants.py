@@ -170,7 +170,10 @@ def canonical_illuminant(illuminant, argument: str = "illuminant"):
                 ) from None
             temperature = _temperature(value, argument)
             if kind in ("d", "daylight"):
-                daylight_xy(temperature)  # validates the 4000–25000 K range
+                try:
+                    daylight_xy(temperature)  # validates the 4000–25000 K range
+                except ColorimetryError as exc:  # name the caller's argument, not daylight's
+                    raise ColorimetryError(f"{argument}: {illuminant!r:.40}: {exc}") from None
                 return f"D:{temperature:g}"
             return f"blackbody:{temperature:g}"
         try:

@@ -183,7 +183,10 @@ def measurement_report(spectra: Spectrum, illuminant=DEFAULT_ILLUMINANT, observe
     XYZ = np.atleast_2d(tristimulus(samples, observer=observer, illuminant=illuminant, method=method))
     white = white_point(illuminant, observer=observer, wavelengths_nm=samples.wavelengths_nm, method=method)
     chromaticity = xy(XYZ)
-    dominant = dominant_wavelength(chromaticity, xy(white), observer)
+    try:
+        dominant = dominant_wavelength(chromaticity, xy(white), observer)
+    except ColorimetryError as exc:  # e.g. a very cold blackbody: name this function's argument
+        raise ColorimetryError(f"illuminant: {illuminant!r:.40} has a white where {exc}") from None
     purity = np.asarray(dominant.excitation_purity, dtype=float)
     wavelength = np.asarray(dominant.wavelength_nm, dtype=float)  # NaN at the white (no hue)
     complementary = np.asarray(dominant.complementary, dtype=bool)

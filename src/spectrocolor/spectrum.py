@@ -68,8 +68,12 @@ def wavelength_grid(start_nm: float, stop_nm: float, step_nm: float) -> np.ndarr
     (31, 400.0, 700.0)
     """
     for name, value in (("start_nm", start_nm), ("stop_nm", stop_nm), ("step_nm", step_nm)):
-        if not isinstance(value, Real) or isinstance(value, bool) or not np.isfinite(value):
-            raise SpectrumError(f"{name}: expected a finite number of nanometres, got {value!r}")
+        try:  # float() first: np.isfinite refuses Python ints beyond 64 bits
+            finite = isinstance(value, Real) and not isinstance(value, bool) and np.isfinite(float(value))
+        except OverflowError:
+            finite = False
+        if not finite:
+            raise SpectrumError(f"{name}: expected a finite number of nanometres, got {value!r:.40}")
     # in float64: float16/float32 arithmetic would round the count and pass a step that does
     # not divide the range (np.float16(0.1) is 0.09998 nm)
     start_nm, stop_nm, step_nm = float(start_nm), float(stop_nm), float(step_nm)

@@ -580,8 +580,8 @@ def transfer(spec) -> Transfer:
 def _check_bit_depth(bit_depth) -> None:
     """Refuse anything but a whole number of bits 1-32 (NaN, inf, 8.5, "8", True)."""
     ok = isinstance(bit_depth, int | float | np.integer | np.floating) and not isinstance(
-        bit_depth, bool) and np.isfinite(bit_depth) and int(bit_depth) == bit_depth
-    if not (ok and 1 <= bit_depth <= 32):
+        bit_depth, bool | np.bool_)
+    if not (ok and 1 <= bit_depth <= 32 and float(bit_depth).is_integer()):  # NaN fails 1 <= NaN
         raise ColorimetryError(f"bit_depth must be an integer from 1 to 32, got {bit_depth!r}")
 
 
