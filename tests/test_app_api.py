@@ -420,3 +420,14 @@ def test_single_line_illuminant_works_in_setting4(client):
     np.testing.assert_allclose(yellow["xy"], white["xy"], atol=1e-12)
     assert yellow["XYZ"][1] == pytest.approx(100 * P.S4_YELLOW[0][19] / 30)
     assert blue["XYZ"][1] < yellow["XYZ"][1]
+
+
+def test_a_deep_red_line_illuminant_has_no_cielab_but_still_answers(client):
+    # a line at 650 nm: z̄ = 0 there, so the white has Z = 0 and CIELAB (hence ΔE00) is
+    # undefined; the colours are still computed and shown (found by tests/test_fuzz_app_colour)
+    red = [0.0] * 31
+    red[25] = 30.0
+    r = evaluate(client, [[30] * 31, [15] * 31], illuminant=red, pairs=[[0, 1]])
+    assert r["white_XYZ"][2] == 0 and "undefined" in r["lab_note"]
+    assert r["delta_e_2000"] == [None] and r["colours"][0]["lab"] == [None, None, None]
+    assert max(r["colours"][1]["codes"]) > 0 and r["colours"][1]["XYZ"][1] == pytest.approx(50)

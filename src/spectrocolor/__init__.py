@@ -100,6 +100,13 @@ _PUBLIC: dict[str, str] = {
     "spectra_excitation_table": "display.transfer",
     "to_codes": "display.transfer",
     "from_codes": "display.transfer",
+    "primary_emission": "display.emission",
+    "emitted_light": "display.emission",
+    "excitation_function": "display.emission",
+    # mixing (seed 002: superposition, filters in series, complementary distributions)
+    "additive_mix": "mixing",
+    "subtractive_mix": "mixing",
+    "complement": "mixing",
     # pictures and plots (Pillow / matplotlib imported only when called)
     "wavelength_tint": "pictures",
     "write_swatches": "pictures",

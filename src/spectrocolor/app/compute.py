@@ -232,7 +232,13 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     drive = gamma[r.codes]  # γ(code): the fraction of full emission of each primary
     emitted_levels = FULL_LEVEL * scales[:, None] * (drive @ primaries)
     emitted_XYZ = scales[:, None] * (drive @ np.asarray(space.matrix_to_XYZ).T)
-    lab = sc.lab(XYZ, white_XYZ)
+    lab_note = None
+    if np.all(white_XYZ > 0):
+        lab = sc.lab(XYZ, white_XYZ)
+    else:  # e.g. a single line beyond 650 nm: its white has Z = 0, CIELAB is undefined
+        lab = np.full_like(XYZ, np.nan)
+        lab_note = (f"CIELAB and ΔE00 undefined: the reference white has X, Y, Z = "
+                    f"{np.round(white_XYZ, 3).tolist()} (CIELAB needs all three > 0)")
     colours = []
     for i in range(len(levels)):
         if not lit[i]:
@@ -266,7 +272,8 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
             "emitted_XYZ": emitted_XYZ[i].tolist(),
             "status": status,
         })
-    delta = [float(sc.delta_e_2000(lab[a], lab[b])) for a, b in pairs]
+    delta = [_none_nan(float(sc.delta_e_2000(lab[a], lab[b]))) if lab_note is None else None
+             for a, b in pairs]
     # The lights as the display is asked to show them (after normalisation A or B, before any
     # gamut strategy), relative to the display's own white: what the split patch compares.
     shown_lab = sc.lab(space.XYZ_from_rgb_linear(r.rgb_unmapped), space.white_XYZ)
@@ -277,6 +284,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "delta_e_2000_shown": delta_shown,
         "white_XYZ": white_XYZ.tolist(),
         "white_xy": white_xy.tolist(),
+        "lab_note": lab_note,
         "normalise": normalise,
         "adaptation": adaptation,
         "gamut": r.gamut,
