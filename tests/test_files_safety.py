@@ -304,3 +304,17 @@ def test_xyz_csv_names_a_spreadsheet_would_run_are_text(spectra_file, capsys):
     assert cli.main(["xyz", str(spectra_file), "--format", "csv"]) == 0
     names = [row[0] for row in csv.reader(capsys.readouterr().out.splitlines()[1:])]
     assert names == ["grey", "'=HYPERLINK(\"http://x\")", "'@SUM(A1)"]
+
+
+def test_new_files_get_the_usual_permissions_and_replaced_files_keep_theirs(tmp_path):
+    mask = os.umask(0o022)
+    try:
+        fresh = write_bytes(tmp_path / "new.bin", b"x")
+        old = tmp_path / "old.bin"
+        old.write_bytes(b"old")
+        old.chmod(0o640)
+        write_bytes(old, b"new")
+    finally:
+        os.umask(mask)
+    assert fresh.stat().st_mode & 0o777 == 0o666 & ~safe_write._UMASK  # as open(path, "w")
+    assert old.stat().st_mode & 0o777 == 0o640 and old.read_bytes() == b"new"

@@ -30,6 +30,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import stat
 import tempfile
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
@@ -116,6 +117,7 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
             os.fsync(handle.fileno())
         if verify is not None:
             verify(temporary)
+        os.chmod(temporary, _mode_for(target))  # mkstemp made it 0600
         os.replace(temporary, target)
     except OSError as exc:
         temporary.unlink(missing_ok=True)
@@ -127,6 +129,23 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
         temporary.unlink(missing_ok=True)
         raise
     _sync_folder(folder)
+
+
+def _mode_for(target: Path) -> int:
+    """Permissions of the file being replaced, or what ``open(target, "w")`` would give."""
+    try:
+        return stat.S_IMODE(os.stat(target).st_mode)
+    except OSError:
+        return 0o666 & ~_UMASK
+
+
+def _current_umask() -> int:
+    mask = os.umask(0)  # the only portable way to read it; set back at once, at import time
+    os.umask(mask)
+    return mask
+
+
+_UMASK = _current_umask()
 
 
 def _sync_folder(folder: Path) -> None:
