@@ -77,3 +77,11 @@ def test_the_routes_answer_and_refuse_in_the_servers_shape():
         bad = client.post("/api/lab/reflectance", json=body)
         assert bad.status_code == 422 and isinstance(bad.json()["error"], str), body
     assert client.get("/labs/reflectance").status_code == 200
+
+
+@pytest.mark.parametrize("xyY", [(0.0, 0.5, 1e-5), (0.0, 0.5, 3.9e-256), (0.7, 0.29, 50.0), (0.33, 0.33, 100.0)])
+def test_edge_colours_give_strict_json(xyY):
+    """NaN and infinity are not JSON: an edge colour's answer never contains them."""
+    import json
+
+    json.dumps(lab.reflectance_lab(*xyY, step_nm="10"), allow_nan=False)

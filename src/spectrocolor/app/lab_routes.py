@@ -102,8 +102,8 @@ class ReflectanceRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     x: Annotated[float, Field(ge=0.0, le=1.0)]
-    y: Annotated[float, Field(gt=0.0, le=1.0)]
-    Y: Annotated[float, Field(gt=0.0, le=100.0)]
+    y: Annotated[float, Field(ge=1e-6, le=1.0)]
+    Y: Annotated[float, Field(ge=1e-6, le=100.0)]
     illuminant: Annotated[str, Field(max_length=40)] = "D65"
     observer: Literal["1931", "1964"] = "1931"
     step_nm: Literal["5", "10"] = "5"
@@ -136,7 +136,7 @@ class SolidRequest(BaseModel):
     illuminant: Annotated[str, Field(max_length=40)] = "D65"
     display: Annotated[str, Field(max_length=40)] = "sRGB"
     Y: Annotated[float, Field(gt=0.0, lt=100.0)] = 50.0
-    sample: Annotated[int, Field(ge=1, le=14)] = 1
+    sample: Annotated[int, Field(ge=1, le=14, strict=True)] = 1
     second_illuminant: Annotated[str, Field(max_length=40)] = "A"
 
 

@@ -31,6 +31,12 @@ BOUNDS = (("unconstrained", None), ("nonnegative", "nonnegative"), ("unit", "uni
 DOMAIN_GRID = 72  # chromaticity cells per side of the domain picture
 
 
+def _number(value, digits: int):
+    """A JSON-ready float, or None where the library answers NaN or infinity."""
+    value = float(value)
+    return round(value, digits) if np.isfinite(value) else None
+
+
 def _intervals(wavelengths_nm: np.ndarray, mask: np.ndarray) -> list[list[float]]:
     """[[start, stop], …] nm of the runs where ``mask`` holds."""
     runs, start = [], None
@@ -107,16 +113,19 @@ def reflectance_lab(x: float, y: float, Y: float, illuminant="D65", observer: st
     grid = (380.0, 780.0, step)
     wavelengths = wavelength_grid(*grid)
     XYZ = XYZ_from_xyY(values)
+    if not np.all(np.isfinite(XYZ)):
+        raise ColorimetryError(f"x, y, Y: y = {y!r} is too small: X and Z = Y·x/y, Y·z/y overflow")
     solutions = {}
     for name, bounds in BOUNDS:
         result = smoothest_reflectance(XYZ[None], illuminant=light, observer=observer, wavelengths=grid,
                                        bounds=bounds)
         rho = result.spectrum.values[0]
-        feasible = bool(result.feasible[0])
+        # a colour the solver could not turn into a finite reflectance is shown as not feasible
+        feasible = bool(result.feasible[0]) and bool(np.all(np.isfinite(rho)))
         solutions[name] = {
             "reflectance": np.round(rho, 6).tolist() if feasible else None,
             "feasible": feasible,
-            "distance_outside": round(float(result.distance_outside[0]), 6),
+            "distance_outside": _number(result.distance_outside[0], 6),
             "roughness": round(float(result.roughness[0]), 8) if feasible else None,
             "converged": bool(result.certificate.converged[0]),
             "method": str(result.method[0]),
