@@ -16,9 +16,10 @@ from hypothesis import strategies as st  # noqa: E402
 
 from spectrocolor.app.server import create_app  # noqa: E402
 
-SCALARS = st.one_of(st.none(), st.booleans(), st.integers(-10**20, 10**20), st.floats(allow_nan=False, allow_infinity=False),
-                    st.text(max_size=30), st.sampled_from(["D65", "A", "FL11", "blackbody:3000", "D:5000", "sRGB",
-                                                           "soap", "tio2", "airy", "two-beam", "5", "10", "1931"]))
+FINITE = st.floats(allow_nan=False, allow_infinity=False)  # JSON has no NaN or infinity
+NAMES = st.sampled_from(["D65", "A", "FL11", "blackbody:3000", "D:5000", "sRGB", "soap", "tio2", "airy", "two-beam",
+                         "5", "10", "1931"])
+SCALARS = st.one_of(st.none(), st.booleans(), st.integers(-10**20, 10**20), FINITE, st.text(max_size=30), NAMES)
 VALUES = st.recursive(SCALARS, lambda inner: st.lists(inner, max_size=5) | st.dictionaries(st.text(max_size=8), inner,
                                                                                           max_size=4), max_leaves=12)
 FIELDS = {
