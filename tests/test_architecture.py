@@ -21,7 +21,8 @@ DATA = {"data_tables"}
 SPECTRA = {"spectrum", "interpolation", "sampling", "observers", "illuminants", "spectrum_io", "io"}
 COLOUR = {"coordinates", "differences", "display"}
 COLORIMETRY = {"colorimetry", "astm_e308", "chromaticity", "temperature"}
-APPLICATIONS = {"recovery", "thinfilm", "images", "lighting", "mixing", "upsampling"}
+APPLICATIONS = {"recovery", "thinfilm", "images", "lighting", "mixing", "upsampling",
+                "display_emission"}
 PRESENTATION = {"plot", "pictures", "report", "labels"}
 PRESENTATION_MODULES = {"plots", "vector_graphic", "report", "pictures", "figures"}
 INTERFACES = {"cli", "app"}

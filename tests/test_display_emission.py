@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import spectrocolor as sc
-from spectrocolor.display.emission import (
+from spectrocolor.display_emission import (
     emission_sources,
     emitted_light,
     excitation_function,

@@ -100,9 +100,9 @@ _PUBLIC: dict[str, str] = {
     "spectra_excitation_table": "display.transfer",
     "to_codes": "display.transfer",
     "from_codes": "display.transfer",
-    "primary_emission": "display.emission",
-    "emitted_light": "display.emission",
-    "excitation_function": "display.emission",
+    "primary_emission": "display_emission",
+    "emitted_light": "display_emission",
+    "excitation_function": "display_emission",
     # mixing (seed 002: superposition, filters in series, complementary distributions)
     "additive_mix": "mixing",
     "subtractive_mix": "mixing",

@@ -13,11 +13,11 @@ from __future__ import annotations
 import numpy as np
 
 import spectrocolor as sc
-from spectrocolor.display.emission import emission_sources, excitation_function, primary_emission
 from spectrocolor.display.explain import explain, out_of_gamut_channels
 from spectrocolor.display.gamut import DEFAULT_TOLERANCE
 from spectrocolor.display.spectra_exact import spectra_channel_factors, spectra_scale
 from spectrocolor.display.transfer import LevelTable, PowerLaw, SRGBCurve
+from spectrocolor.display_emission import emission_sources, excitation_function, primary_emission
 
 from . import presets as P
 

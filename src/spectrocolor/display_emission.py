@@ -1,5 +1,8 @@
 """What the screen emits: the primaries' emission spectra and the light C(λ) for a code (step 4).
 
+An application of the display layer (it needs spectra and colorimetry, which the colour trunk
+under ``display/`` never imports).
+
 SPECTRA's fourth step (seed 002): the integer codes (r, g, b) select excitation levels γ(code)
 of the three phosphors, and the screen emits
 
@@ -45,9 +48,9 @@ from functools import cache
 
 import numpy as np
 
-from ..errors import ColorimetryError
-from .spaces import RGBSpace, rgb_space
-from .transfer import LevelTable, from_codes
+from .display.spaces import RGBSpace, rgb_space
+from .display.transfer import LevelTable, from_codes
+from .errors import ColorimetryError
 
 __all__ = ["MEASURED_PRIMARIES", "measured_primaries", "primary_emission", "emission_sources",
            "emitted_light", "excitation_function"]
@@ -61,7 +64,7 @@ _NEAR_XY = 1e-3  # ... and is refused above this one
 
 
 def _grid(wavelengths_nm) -> np.ndarray:
-    from ..spectrum import wavelength_grid
+    from .spectrum import wavelength_grid
 
     if wavelengths_nm is None:
         return wavelength_grid(400.0, 700.0, 10.0)
@@ -95,8 +98,8 @@ def measured_primaries(wavelengths_nm=None):
     >>> [int(v) for v in s.values.argmax(axis=1)]   # red peaks at 630, green 530, blue 450
     [2, 1, 0]
     """
-    from ..data_tables import load_table
-    from ..spectrum import Spectrum
+    from .data_tables import load_table
+    from .spectrum import Spectrum
 
     wl = _grid(wavelengths_nm)
     _, table = load_table("display_crt_brainard1997.csv")
@@ -121,8 +124,8 @@ def _reshape(base: np.ndarray, W: np.ndarray, basis: np.ndarray, target: np.ndar
 
 @cache
 def _fit(space: RGBSpace, grid: tuple) -> tuple[np.ndarray, tuple[str, ...]]:
-    from ..chromaticity import dominant_wavelength
-    from ..colorimetry import weights
+    from .chromaticity import dominant_wavelength
+    from .colorimetry import weights
 
     wl = np.asarray(grid)
     W = np.asarray(weights(wl, observer=_FIT_OBSERVER, illuminant="E"))
@@ -178,7 +181,7 @@ def primary_emission(space="SPECTRA 7000K", wavelengths_nm=None):
     >>> np.round(XYZ[0], 3).tolist()      # the seed's red phosphor: X, Y, Z = 44.68, 24.81, 2.586
     [44.68, 24.81, 2.586]
     """
-    from ..spectrum import Spectrum
+    from .spectrum import Spectrum
 
     sp = rgb_space(space)
     wl = _grid(wavelengths_nm)
@@ -259,7 +262,7 @@ def emitted_light(codes, space="SPECTRA 7000K", wavelengths_nm=None, bit_depth=N
     >>> np.round(c.values @ weights(c.wavelengths_nm, illuminant="E"), 2).tolist()
     [98.88, 106.83, 121.11]
     """
-    from ..spectrum import Spectrum
+    from .spectrum import Spectrum
 
     _, table = excitation_function(space, bit_depth)
     try:
