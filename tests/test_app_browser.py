@@ -225,6 +225,11 @@ def test_touch_drag_edits_bars_on_a_tablet(browser, base_url, artifacts_dir):
         context.close()
 
 
+BLANK = """() => { const c = document.getElementById('ID');  // how many pixels are drawn
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0; for (let i = 3; i < d.length; i += 4) if (d[i] > 0) n++; return n; }"""
+
+
 def test_self_explaining_numbers_diagram_and_step4(page):
     """Units and explanations on every number, hex beside the codes, a diagram with tick values
     and a legend in the patch colours, the emitted light of step 4 and the display's white."""
@@ -252,10 +257,7 @@ def test_self_explaining_numbers_diagram_and_step4(page):
     page.uncheck("#locus-fill")
     # step 4: the emitted light is drawn beside the patch (non-blank canvas)
     assert page.locator("#emitted-box").is_visible()
-    drawn = page.evaluate("""() => { const c = document.getElementById('emitted');
-        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-        let n = 0; for (let i = 3; i < d.length; i += 4) if (d[i] > 0) n++; return n; }""")
-    assert drawn > 200
+    assert page.evaluate(BLANK.replace("ID", "emitted")) > 200
     # the display's white point and correlated colour temperature, from the library
     for display in ("sRGB", "SPECTRA 7000K"):
         page.select_option("#display", display)
@@ -264,6 +266,14 @@ def test_self_explaining_numbers_diagram_and_step4(page):
         note = page.locator("#white-note").inner_text()
         assert f"CCT {round(model['display_white']['cct_K'])} K" in note
         assert f"x {model['display_white']['xy'][0]:.4f}" in note
+        # SPECTRA's Figs. 9 and 10 for this display: primaries' spectra and excitation function
+        page.evaluate("document.getElementById('display-light').open = true")
+        page.wait_for_function("document.getElementById('primary-sources').textContent.length > 0")
+        assert page.locator("#primary-sources").inner_text() == "; ".join(
+            dict.fromkeys(model["emission"]["sources"]))
+        for canvas in ("primaries", "excitation"):
+            assert page.evaluate(BLANK.replace("ID", canvas)) > 100
+        page.evaluate("document.getElementById('display-light').open = false")
     page.select_option("#display", "sRGB")
     settle(page)
     choose(page, 2)

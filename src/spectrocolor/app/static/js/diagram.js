@@ -73,3 +73,39 @@ export function drawPoints(colours, labels, server) {
     if (li.lastChild.textContent !== labels[i]) li.lastChild.textContent = labels[i];
   }
 }
+
+function curve(g, w, h, values, top, colour, dash = []) {
+  g.strokeStyle = colour; g.lineWidth = 1.5; g.setLineDash(dash); g.beginPath();
+  values.forEach((v, k) => {
+    const x = 4 + (w - 8) * k / (values.length - 1), y = h - 14 - (h - 24) * v / top;
+    if (k === 0) g.moveTo(x, y); else g.lineTo(x, y);
+  });
+  g.stroke(); g.setLineDash([]);
+}
+
+function canvasOf(id) {
+  const cv = $(id), dpr = window.devicePixelRatio || 1, w = cv.clientWidth, h = cv.clientHeight;
+  cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr);
+  const g = cv.getContext("2d");
+  g.setTransform(dpr, 0, 0, dpr, 0, 0); g.clearRect(0, 0, w, h);
+  g.font = "10px system-ui, sans-serif"; g.fillStyle = "#cfd4de";
+  return [g, w, h];
+}
+
+/** SPECTRA's Figs. 9 and 10 for the current display, from /api/model: the primaries' emission
+ * spectra (with ȳ) and the excitation function. Drawn while the panel is open. */
+export function drawDisplayLight() {
+  const m = S.model;
+  if (!$("display-light").open || !m.emission) return;
+  const P = m.emission.levels_per_drive;
+  let [g, w, h] = canvasOf("primaries");
+  const top = Math.max(...P.flat());
+  ["#ff6b6b", "#7ad69b", "#6aa9ff"].forEach((c, i) => curve(g, w, h, P[i], top, c));
+  curve(g, w, h, m.emission.ybar, Math.max(...m.emission.ybar), "#cfd4de", [3, 3]);
+  g.fillText("400", 2, h - 2); g.fillText("700 nm", w - 40, h - 2); g.fillText(`peak ${top.toFixed(0)} levels`, 4, 10);
+  fill($("primary-sources"), [...new Set(m.emission.sources)].join("; "));
+  [g, w, h] = canvasOf("excitation");
+  curve(g, w, h, m.excitation.emission, 1, "#ffd166");
+  const codes = m.excitation.codes;
+  g.fillText("0", 2, h - 2); g.fillText(`code ${codes[codes.length - 1]}`, w - 56, h - 2); g.fillText("γ = 1", 4, 10);
+}

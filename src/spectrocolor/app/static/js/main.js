@@ -9,7 +9,7 @@ import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stat
 import {localColour, localWeights, whiteOf, emitted} from "./colour.js";
 import {buildPatches, buildCards, paint, evalSpec, markStale, gamutLabel, NORMALISE_TEXT} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
-import {drawDiagram, buildPoints, drawPoints} from "./diagram.js";
+import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
 import {applyPreset, presetButtons} from "./presets.js";
 
 window.__spectra = S;  // for the browser tests and the latency bench
@@ -132,6 +132,7 @@ async function loadModel() {
   S.model = await apiJSON("/api/model", body);
   S.wl = S.model.wavelengths_nm;
   drawDiagram();
+  drawDisplayLight();
 }
 
 /** A chosen option: reload what depends on it, then give the keyboard back to the bars. */
@@ -396,6 +397,7 @@ async function init() {
   $("file").addEventListener("change", (e) => { if (e.target.files[0]) loadFile(e.target.files[0]); e.target.value = ""; });
   $("about-open").addEventListener("click", () => $("about").showModal());
   $("error-close").addEventListener("click", dismissError);
+  $("display-light").addEventListener("toggle", drawDisplayLight);
   $("locus-fill").addEventListener("change", (e) => { S.filledLocus = e.target.checked; drawDiagram(); });
   $("menu").addEventListener("click", () => {
     const open = document.body.classList.toggle("tools-open");
