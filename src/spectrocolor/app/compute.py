@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 import spectrocolor as sc
-from spectrocolor.display.explain import explain, out_of_gamut_channels
+from spectrocolor.display.explain import out_of_gamut_channels
 from spectrocolor.display.gamut import DEFAULT_TOLERANCE
 from spectrocolor.display.spectra_exact import spectra_channel_factors, spectra_scale
 from spectrocolor.display.transfer import LevelTable, PowerLaw, SRGBCurve
@@ -224,7 +224,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     shown_XYZ = XYZ @ chain["to_display"].T
     r = sc.render(shown_XYZ, space, normalise="per-colour" if normalise == "per-colour"
                   else "fixed", gamut=gamut, scale=chain["scale"])
-    explanations = explain(r)
+    explanations = r.explain()
     negative, over = out_of_gamut_channels(r)
     scales = np.broadcast_to(np.asarray(r.scale, dtype=float), (len(levels),))
     primaries = primary_emission(space, wl).values

@@ -70,6 +70,20 @@ class Rendering:
     space: str
     bit_depth: int
 
+    def explain(self) -> list[str]:
+        """One line per colour: "in gamut" or "cannot be reproduced (…): what was done".
+
+        See :func:`spectrocolor.display.explain.explain` (the one text every interface shows).
+
+        Examples
+        --------
+        >>> render([[1.0, 60.0, 5.0]], "sRGB").explain()
+        ['cannot be reproduced (R, B negative; G above 1): shown black']
+        """
+        from .explain import explain
+
+        return explain(self)
+
     @property
     def hex(self) -> np.ndarray:
         """``"#rrggbb"`` strings (...,) for 8-bit renderings."""
