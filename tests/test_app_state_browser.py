@@ -20,7 +20,8 @@ HOSTILE = '<img src=x onerror="window.__pwned=1">'
 
 
 def edit_everything(pg):
-    """A state far from the defaults: setting 4, A, edited sample, B, SPECTRA monitor, 1964."""
+    """A state far from the defaults: setting 4 under A, an edited sample, the SPECTRA monitor,
+    the 1964 observer, SPECTRA's own normalisation A and its way of showing E as the white."""
     choose(pg, 4)
     key(pg, "4")
     key(pg, "7")
@@ -28,7 +29,10 @@ def edit_everything(pg):
     settle(pg)
     pg.select_option("#observer", "1964")
     settle(pg)
-    key(pg, "x")
+    pg.select_option("#normalise", "spectra-exact")  # SPECTRA's own A
+    settle(pg)
+    pg.select_option("#adaptation", "display rgb")
+    settle(pg)
     drag(pg, 1, 0.1, 0.3, 0.5, 0.7)
     return state(pg)
 
@@ -54,7 +58,8 @@ def test_a_copied_link_reproduces_the_state_and_a_reload_restores_it(browser, ba
         same_state(got, st)
         assert fresh.locator("#numbers").inner_text() == numbers
         assert fresh.locator("#display").input_value() == "SPECTRA 7000K"
-        assert fresh.locator("#normalise").input_value() == "per-colour"
+        assert fresh.locator("#normalise").input_value() == "spectra-exact"
+        assert fresh.locator("#adaptation").input_value() == "display rgb"
         lib = library(got)
         for i in range(3):
             check_card(fresh, i, lib["colours"][i])

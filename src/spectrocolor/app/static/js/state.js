@@ -73,7 +73,7 @@ export function resampleAll(fromWl, toWl, step) {
 }
 
 // ---------------------------------------------------------------- the URL
-// ?s=setting&b=step&o=observer&d=display&g=gamut&n=A|B[&a=adaptation]&l0=…&t0=name&e=edited flags
+// ?s=setting&b=step&o=observer&d=display&g=gamut&n=normalisation&a=adaptation&l0=…&t0=name&e=edited flags
 // Levels: "i" + one base-36 digit per bin (whole levels), "t" + two digits per bin (tenths),
 // or "f" + comma-separated numbers (anything else, e.g. a CIE illuminant scaled to 30).
 const DIGITS = "0123456789abcdefghijklmnopqrstuvwxyz";
@@ -100,7 +100,7 @@ export function decodeLevels(text, bins) {
 
 export function stateURL() {
   const q = new URLSearchParams({s: S.setting, b: S.step, o: S.observer, d: S.display, g: S.gamut,
-    n: S.normalise === "fixed" ? "A" : "B"});
+    n: S.normalise});
   if (S.adaptation) q.set("a", S.adaptation);
   S.dists[S.setting].forEach((d, i) => {
     q.set(`l${i}`, encodeLevels(d));
@@ -118,7 +118,7 @@ export function readURLOptions(search) {
     setting: SETTINGS.includes(setting) ? setting : null,
     step: q.has("b") ? Number(q.get("b")) : null,
     observer: q.get("o"), display: q.get("d"), gamut: q.get("g"), adaptation: q.get("a"),
-    normalise: q.get("n") === "B" ? "per-colour" : q.get("n") === "A" ? "fixed" : null,
+    normalise: q.get("n"),
   };
 }
 
