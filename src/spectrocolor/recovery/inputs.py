@@ -14,10 +14,11 @@ from numbers import Real
 import numpy as np
 
 from ..colorimetry import weights
+from ..coordinates import colour_array
 from ..errors import ColorimetryError, SpectrumError
-from ..illuminants import canonical_illuminant_name
+from ..illuminants import canonical_illuminant, illuminant_label
 from ..observers import canonical_observer_name
-from ..spectrum import Spectrum, wavelength_grid
+from ..spectrum import wavelength_grid
 from . import qp, zonotope
 
 #: The default grid of the recovered reflectances: 380–780 nm in 5 nm steps.
@@ -76,19 +77,24 @@ def grid_key(wavelengths) -> tuple[float, float, float]:
 
 
 def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
-    """The :class:`Setup` (cached for named observers and illuminants) and their labels."""
+    """The :class:`Setup` (cached for named observers and illuminants) and their labels.
+
+    ``illuminant`` takes every form of :func:`spectrocolor.canonical_illuminant` but ``None``
+    (a reflectance needs a light): a CIE name, ``"blackbody:T"``, ``"D:T"``, a temperature, or a
+    Spectrum on the grid.
+    """
     key = grid_key(wavelengths)
-    if isinstance(observer, str) and isinstance(illuminant, str):
-        obs, ill = canonical_observer_name(observer), canonical_illuminant_name(illuminant)
-        return _named_setup(key, obs, ill), obs, ill
-    if not isinstance(illuminant, str | Spectrum):
+    light = canonical_illuminant(illuminant)
+    if light is None:
         raise ColorimetryError(
-            f"illuminant: expected a CIE name such as 'D65' or a Spectrum, got {illuminant!r}"
+            "illuminant: reflectances need a light; None means the spectra are lights themselves"
         )
+    if isinstance(observer, str) and isinstance(light, str):
+        obs = canonical_observer_name(observer)
+        return _named_setup(key, obs, light), obs, illuminant_label(light)
     grid = wavelength_grid(*key)
     label_obs = observer if isinstance(observer, str) else "custom observer"
-    label_ill = illuminant if isinstance(illuminant, str) else "custom illuminant"
-    return Setup(grid, weights(grid, observer=observer, illuminant=illuminant)), label_obs, label_ill
+    return Setup(grid, weights(grid, observer=observer, illuminant=light)), label_obs, illuminant_label(light)
 
 
 def xyz_array(XYZ, name: str = "XYZ") -> np.ndarray:
@@ -99,13 +105,7 @@ def xyz_array(XYZ, name: str = "XYZ") -> np.ndarray:
     >>> xyz_array([1, 2, 3]).tolist()
     [1.0, 2.0, 3.0]
     """
-    try:
-        b = np.asarray(XYZ, dtype=float)
-    except (TypeError, ValueError):
-        raise ColorimetryError(f"{name}: expected numbers of shape (..., 3), got {XYZ!r}") from None
-    if b.ndim == 0 or b.shape[-1] != 3:
-        raise ColorimetryError(
-            f"{name}: expected shape (..., 3) (X, Y, Z on the Y=100 scale), got {b.shape}")
+    b = colour_array(XYZ, name, 3, "X, Y, Z on the Y = 100 scale")
     if not np.all(np.isfinite(b)):
         raise ColorimetryError(
             f"{name}: contains NaN or infinite values; pass finite tristimulus values")
