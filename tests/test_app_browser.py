@@ -162,6 +162,27 @@ def test_setting3_transfers_conserve_the_total(page):
         assert got[side] == want[0].tolist() and got[1 - side] == want[1].tolist()
 
 
+def test_setting3_fig12_moves_make_the_pair_metameric(page):
+    """Seed 002, Fig. 12: from default 2, move the light at 560-590 nm to the right side; the
+    two sides then have the same colour. The button applies the library's suggested moves with
+    the complementary rule (spectrocolor.mixing.complementary_edit)."""
+    choose(page, 3)
+    q = next(q for q in compute.presets(10.0)["setting3"] if q["key"] == "2")
+    page.click("#actions [data-moves='2']")
+    settle(page)
+    left, right = np.array(q["left"], float), np.array(q["right"], float)
+    for k, level in q["moves"]:
+        left, right = mixing.complementary_edit(left, right, k, level, full=30)
+    st = state(page)
+    assert st["dists"] == [left.tolist(), right.tolist()]
+    lib = library(st)
+    check_card(page, 0, lib["colours"][0])
+    assert lib["delta_e_2000"][0] < 0.5
+    assert f"{lib['delta_e_2000'][0]:.2f}" in page.locator("#numbers .de-card").inner_text()
+    key(page, "Control+z")  # one undo step back to before the button
+    assert state(page)["dists"] != st["dists"]
+
+
 def test_setting4_metamers_under_illuminants(page):
     choose(page, 4)
     de = {}

@@ -10,7 +10,7 @@ import {localColour, localWeights, whiteOf, emitted} from "./colour.js";
 import {buildPatches, buildCards, paint, evalSpec, markStale, gamutLabel, NORMALISE_TEXT} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
-import {applyPreset, presetButtons} from "./presets.js";
+import {applyPreset, presetButtons, moveButtons} from "./presets.js";
 
 window.__spectra = S;  // for the browser tests and the latency bench
 
@@ -121,9 +121,9 @@ function selectSetting(n, push = true) {
 }
 
 function actionButtons() {
-  const act = $("actions");
-  fill(act, S.setting === 2 ? el("button", {id: "metamer", type: "button", onclick: makeMetamer,
-    title: "Replace the right distribution by the smoothest one with the same colour as the left (van Trigt)"}, "Make a metamer") : null);
+  fill($("actions"), S.setting === 2 ? el("button", {id: "metamer", type: "button", onclick: makeMetamer,
+    title: "Replace the right distribution by the smoothest one with the same colour as the left (van Trigt)"}, "Make a metamer") : null,
+  moveButtons(update, say));
 }
 
 async function loadModel() {

@@ -2,6 +2,7 @@
 
 import {$, el, fill} from "./dom.js";
 import {S, remember} from "./state.js";
+import {setLevel} from "./editors.js";
 
 const copy = (a) => a.slice();
 
@@ -54,4 +55,24 @@ export function presetButtons(update, say) {
     if (n === 2) S.active[2] = b.dataset.group === "left" ? 0 : 1;
     applyPreset(b.dataset.key, update, say);
   }));
+}
+
+/** Setting 3: load default `q` and make the seed's suggested transfers (`moves`: [bin, new left
+ * level], e.g. Fig. 12's), each by the complementary rule — one undo step. */
+export function applyMoves(q, update, say) {
+  remember();
+  S.dists[3] = [copy(q.left), copy(q.right)];
+  S.names[3] = q.name.split(" / ").map((t) => t.trim());
+  for (const [k, level] of q.moves) setLevel(0, k, level);
+  const nm = q.moves.map(([k]) => S.wl[k]).join(", ");
+  say(`default ${q.key} with the seed's transfers at ${nm} nm (from the left to the right)`);
+  update();
+}
+
+/** Buttons for the defaults that come with the seed's transfers (setting 3). */
+export function moveButtons(update, say) {
+  if (S.setting !== 3) return [];
+  return S.presets.setting3.filter((q) => q.moves && q.moves.length).map((q) => el("button", {type: "button",
+    "data-moves": q.key, title: `Load default ${q.key} and move light at ${q.moves.map(([k]) => S.wl[k]).join(", ")} nm from the left to the right, as the seed suggests`,
+    onclick: () => applyMoves(q, update, say)}, q.key === "2" ? "Fig. 12: move the light (default 2)" : `the seed's moves (default ${q.key})`));
 }

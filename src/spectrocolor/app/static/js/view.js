@@ -129,6 +129,7 @@ export function paint(colours, server) {
     cell("xy").textContent = c.xy.map((v) => fmt(v, 4)).join("  ");
     const L = server ? server.colours[i].lab : lab(c.XYZ, local);
     cell("lab").textContent = L.map((v) => fmt(v, 1)).join("  ");
+    cell("lab").title = server && server.lab_note ? server.lab_note : "";
     cell("rgb").textContent = c.rgb_unmapped.map((v) => fmt(v, 3)).join("  ");
     cell("codes").textContent = c.codes.join("  ");
     cell("hex").textContent = hex;
@@ -180,6 +181,9 @@ function paintDeltaE(server) {
   const de = scaled ? server.delta_e_2000_shown[0] : server.delta_e_2000[0];
   card.querySelector(".de").textContent = fmt(de, 2);
   const st = card.querySelector(".de-status");
+  if (de === null) {  // CIELAB undefined for this reference white (the server says why)
+    st.textContent = server.lab_note || "undefined"; st.className = "status de-status"; return;
+  }
   st.textContent = [de < 0.5 ? "metameric" : "", scaled ? `as shown (B); unscaled lights ${fmt(server.delta_e_2000[0], 2)}` : ""]
     .filter(Boolean).join(" · ");
   st.className = `status de-status ${de < 0.5 ? "opt" : ""}`;
