@@ -23,7 +23,7 @@ def test_xyz_csv_equals_library():
     result = run("xyz", COLORCHECKER, "--illuminant", "D65", "--format", "csv")
     assert result.returncode == 0, result.stderr
     rows = list(csv.DictReader(io.StringIO(result.stdout)))
-    expected = sc.tristimulus(sc.read_spectra(COLORCHECKER), "1931", "D65")
+    expected = sc.tristimulus(sc.read_spectra(COLORCHECKER), observer="1931", illuminant="D65")
     got = np.array([[float(r["X"]), float(r["Y"]), float(r["Z"])] for r in rows])
     np.testing.assert_allclose(got, expected, rtol=1e-12)
     assert rows[0]["name"] == "dark_skin"
@@ -35,7 +35,8 @@ def test_xyz_interval_subsamples_like_the_seed(tmp_path):
     result = run("xyz", str(path), "--interval", "20", "--format", "json")
     assert result.returncode == 0, result.stderr
     got = json.loads(result.stdout)[0]
-    expected = sc.tristimulus(sc.Spectrum(g[::2], np.linspace(0.2, 0.8, g.size)[::2]), "1931", "D65")
+    spectrum = sc.Spectrum(g[::2], np.linspace(0.2, 0.8, g.size)[::2])
+    expected = sc.tristimulus(spectrum, observer="1931", illuminant="D65")
     np.testing.assert_allclose([got["X"], got["Y"], got["Z"]], expected, rtol=1e-12)
 
 
@@ -44,8 +45,9 @@ def test_describe_matches_library_and_the_known_colorchecker_swatch():
     assert result.returncode == 0, result.stderr
     rows = json.loads(result.stdout)
     spectra = sc.read_spectra(COLORCHECKER)
-    XYZ = sc.tristimulus(spectra, "1931", "D65")
-    dominant = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(sc.weights(spectra.wavelengths_nm, "1931", "D65").sum(0)))
+    XYZ = sc.tristimulus(spectra, observer="1931", illuminant="D65")
+    white = sc.weights(spectra.wavelengths_nm, observer="1931", illuminant="D65").sum(0)
+    dominant = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(white))
     np.testing.assert_allclose([r["wavelength_nm"] for r in rows], dominant.wavelength_nm, rtol=1e-12)
     np.testing.assert_allclose([r["purity"] for r in rows], dominant.excitation_purity, rtol=1e-12)
     assert rows[16]["kind"] == "complementary"  # magenta
@@ -113,9 +115,17 @@ def test_binary_file_is_one_line(tmp_path, capsys):
     assert "not UTF-8" in capsys.readouterr().err
 
 
-def test_light_with_an_illuminant_is_refused(tmp_path):
-    result = run("xyz", COLORCHECKER, "--light", "--illuminant", "A")
-    assert result.returncode == 2 and "--illuminant" in result.stderr
+def test_lights_are_said_one_way_and_describe_refuses_them(tmp_path):
+    """--illuminant none is the one way to say the spectra are lights (as None in the library)."""
+    lights = run("xyz", COLORCHECKER, "--illuminant", "none", "--format", "csv")
+    assert lights.returncode == 0, lights.stderr
+    assert run("xyz", COLORCHECKER, "--light").returncode == 2  # no second spelling
+    refused = run("describe", COLORCHECKER, "--illuminant", "none")
+    assert refused.returncode == 2 and "argument --illuminant" in refused.stderr
+    assert "'none' is for lights" in refused.stderr
+    unknown = run("xyz", COLORCHECKER, "--illuminant", "D66")
+    assert unknown.returncode == 2 and "'D66' is not a CIE illuminant name" in unknown.stderr
+    assert run("xyz", COLORCHECKER, "--illuminant", "blackbody:3000").returncode == 0
 
 
 def test_report_refuses_a_format_that_contradicts_the_file_name(tmp_path):

@@ -19,7 +19,9 @@ import sys
 from .. import __version__
 from ..errors import ColorimetryError, SpectrumError
 
-COMMAND_MODULES: tuple[str, ...] = ("colorimetry", "app", "render", "image", "report", "thinfilm", "recover", "relight", "light")
+COMMAND_MODULES: tuple[str, ...] = (
+    "colorimetry", "app", "render", "image", "report", "thinfilm", "recover", "relight", "light",
+)
 
 
 #: Optional packages and the extra that installs each (pyproject.toml ``[project.optional-dependencies]``).

@@ -12,9 +12,10 @@ from contextlib import contextmanager
 import numpy as np
 
 from ..errors import ColorimetryError, SpectrumError
-from ..illuminants import DEFAULT_ILLUMINANT
+from ..illuminants import illuminant_label
 from ..spectrum import Spectrum
 from . import UserError
+from .options import add_illuminant, add_observer
 
 #: Reflectance factors above this are almost surely percentages.
 _PERCENT_SUSPICION = 1.5
@@ -32,21 +33,14 @@ PERCENT_HELP = (
 )
 
 
-def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: str | None = DEFAULT_ILLUMINANT) -> None:
-    """Options shared by commands that compute colour from a spectral file."""
+def add_spectral_options(parser: argparse.ArgumentParser, *, lights: bool) -> None:
+    """Options shared by commands that compute colour from a spectral file (``lights``: the file
+    may hold lights, written ``--illuminant none``)."""
     from ..colorimetry import SUMMATION_METHODS
 
     parser.add_argument("file", help=FILE_HELP)
-    parser.add_argument(
-        "--illuminant",
-        default=None,
-        help=f"CIE illuminant lighting the reflectance/transmittance samples (default {default_illuminant}, "
-        "the default of every spectrocolor command that takes one; seed 001's examples use C)",
-    )
-    parser.set_defaults(default_illuminant=default_illuminant)
-    parser.add_argument(
-        "--observer", default="1931", help="1931 (2°), 1964 (10°), 2015-2, 2015-10 (default %(default)s)"
-    )
+    add_illuminant(parser, lights=lights, what="the reflectance/transmittance samples (seed 001's examples use C)")
+    add_observer(parser)
     parser.add_argument(
         "--interval",
         type=float,
@@ -61,7 +55,6 @@ def add_spectral_options(parser: argparse.ArgumentParser, default_illuminant: st
     )
     parser.add_argument("--range", nargs=2, type=float, metavar=("START", "STOP"), help="use only START–STOP nm")
     parser.add_argument("--percent", action="store_true", help=PERCENT_HELP)
-    parser.add_argument("--light", action="store_true", help="the spectra are lights (no illuminant; relative XYZ)")
     parser.add_argument(
         "--format",
         choices=("table", "csv", "json", "cgats"),
@@ -77,10 +70,6 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
 
     check_files(args, (), ("file",), MAX_SPECTRAL_FILE_BYTES)  # a regular file, bounded: never /dev/zero
 
-    if args.light and args.illuminant is not None:
-        raise UserError("--illuminant: lights are not lit by an illuminant; drop --illuminant or --light")
-    if not args.light and args.illuminant is None:
-        args.illuminant = args.default_illuminant
     spectra = read_spectra(args.file, percent=True if args.percent else None)
     if spectra.names is None:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
@@ -101,7 +90,7 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
                 "(use --method 1nm to integrate at 1 nm instead)"
             )
         spectra = Spectrum(grid[on_step], spectra.values[..., on_step], spectra.names)
-    if args.light:
+    if args.illuminant is None:  # lights
         return spectra
     return reflectance_factors(spectra, args.file)
 
@@ -116,12 +105,12 @@ def reflectance_factors(spectra: Spectrum, source: str) -> Spectrum:
         name = spectra.names[row] if spectra.names else f"spectrum {row + 1}"
         raise UserError(
             f"{source}: negative reflectance {values[row, k]:g} in {name!r} at {spectra.wavelengths_nm[k]:g} nm; "
-            "reflectance factors are 0–1 (use --light for lights)"
+            "reflectance factors are 0–1 (for lights give --illuminant none)"
         )
     if values.max() > _PERCENT_SUSPICION:
         raise UserError(
             f"{source}: reflectance values reach {values.max():g}; if they are percentages pass --percent, "
-            "if they are lights pass --light"
+            "if they are lights give --illuminant none"
         )
     return spectra
 
@@ -139,7 +128,7 @@ def command_line_hints():
 def compute_XYZ(spectra: Spectrum, args: argparse.Namespace) -> np.ndarray:
     from ..colorimetry import tristimulus
 
-    illuminant = None if args.light else args.illuminant
+    illuminant = args.illuminant
     with command_line_hints():
         return np.atleast_2d(tristimulus(spectra, observer=args.observer, illuminant=illuminant, method=args.method))
 
@@ -148,7 +137,7 @@ def conditions(args: argparse.Namespace) -> dict[str, str]:
     """CGATS keywords saying how the rows were computed (file, illuminant, observer, method)."""
     return {
         "DESCRIPTOR": f"spectrocolor {args.command} of {args.file}",
-        "ILLUMINANT": "none (lights)" if getattr(args, "light", False) else str(args.illuminant),
+        "ILLUMINANT": illuminant_label(args.illuminant),
         "OBSERVER": str(args.observer),
         "SUMMATION_METHOD": str(args.method),
     }
@@ -213,7 +202,7 @@ def _xyz_command(args: argparse.Namespace) -> int:
         {"name": name, "X": float(X[0]), "Y": float(X[1]), "Z": float(X[2]), "x": float(c[0]), "y": float(c[1])}
         for name, X, c in zip(spectra.names, XYZ, chromaticity, strict=True)
     ]
-    if not args.light:  # CIELAB relative to the perfect white summed the same way
+    if args.illuminant is not None:  # reflectances: CIELAB relative to the perfect white summed the same way
         with command_line_hints():
             white = white_point(
                 args.illuminant, observer=args.observer, wavelengths_nm=spectra.wavelengths_nm, method=args.method
@@ -262,10 +251,6 @@ def describe_rows(spectra: Spectrum, illuminant: str, observer: str, method: str
 
 
 def _describe_command(args: argparse.Namespace) -> int:
-    if args.light:
-        raise UserError(
-            "describe: reports surface colours under an illuminant; use `spectrocolor xyz --light` for lights"
-        )
     spectra = load_samples(args)
     with command_line_hints():
         rows = describe_rows(spectra, args.illuminant, args.observer, args.method)
@@ -279,7 +264,7 @@ def register(subparsers) -> None:
         help="CIE XYZ and xy of each spectrum in a file",
         description="Tristimulus values (perfect white Y = 100) and chromaticity of each spectrum.",
     )
-    add_spectral_options(xyz)
+    add_spectral_options(xyz, lights=True)
     xyz.set_defaults(handler=_xyz_command)
 
     describe = subparsers.add_parser(
@@ -291,5 +276,5 @@ def register(subparsers) -> None:
             "and an sRGB hex swatch (Bradford-adapted to D65, desaturated at constant Y if out of gamut)."
         ),
     )
-    add_spectral_options(describe)
+    add_spectral_options(describe, lights=False)
     describe.set_defaults(handler=_describe_command)

@@ -20,6 +20,7 @@ from ..registry import Registry
 
 __all__ = [
     "GAMUT_STRATEGIES",
+    "DEFAULT_GAMUT",
     "DEFAULT_TOLERANCE",
     "gamut_flags",
     "apply_gamut",
@@ -258,6 +259,12 @@ GAMUT_STRATEGIES.add(
 GAMUT_STRATEGIES.add(
     "desaturate", desaturate, "move towards the grey of equal luminance along constant hue: the least change"
 )
+
+
+#: The strategy used wherever the caller names none (the command line, the explorer, reports):
+#: the least change of a colour a display cannot show, so no demonstration is a bare black
+#: patch. SPECTRA's strict ``"flag"`` and seed 000's ``"preserve-luminance"`` are a choice away.
+DEFAULT_GAMUT = "desaturate"
 
 
 def apply_gamut(

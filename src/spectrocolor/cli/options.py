@@ -1,0 +1,70 @@
+"""Options every command shares: one wording, one default and one vocabulary per concept.
+
+``--illuminant`` takes the library's illuminant vocabulary (:func:`spectrocolor.canonical_illuminant`)
+and, where a command reads lights, ``none``: the one way to say "these spectra are lights". The
+defaults are the library's (:data:`spectrocolor.DEFAULT_ILLUMINANT`,
+:data:`spectrocolor.DEFAULT_OBSERVER`, :data:`DEFAULT_GAMUT`), and the choices and help texts of
+``--observer``, ``--gamut`` and ``--method`` come from the registries, so a new entry there is a
+new choice here.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ..display.gamut import DEFAULT_GAMUT, GAMUT_STRATEGIES
+from ..errors import ColorimetryError
+from ..illuminants import DEFAULT_ILLUMINANT, canonical_illuminant
+from ..observers import OBSERVERS, canonical_observer_name
+
+#: How --illuminant is written, for every command's help.
+ILLUMINANT_FORMS = "a CIE name (D65, A, C, D50, FL11, LED-B1, …), blackbody:T or D:T (T in kelvin)"
+
+
+def _illuminant_type(lights: bool):
+    def parse(text: str):
+        if text.strip().lower() == "none":
+            if lights:
+                return None
+            raise argparse.ArgumentTypeError("this command needs a light on the samples; 'none' is for lights")
+        try:
+            return canonical_illuminant(text)
+        except ColorimetryError as exc:
+            raise argparse.ArgumentTypeError(str(exc).removeprefix("illuminant: ")) from None
+
+    parse.__name__ = "illuminant"
+    return parse
+
+
+def add_illuminant(parser: argparse.ArgumentParser, *, lights: bool = False, default: str = DEFAULT_ILLUMINANT,
+                   what: str = "the samples") -> None:
+    """``--illuminant``: the light on ``what``; with ``lights``, ``none`` means the spectra are lights."""
+    help_text = f"the light on {what}: {ILLUMINANT_FORMS}"
+    if lights:
+        help_text += "; 'none' when the file holds lights (sources) rather than reflectances"
+    parser.add_argument("--illuminant", type=_illuminant_type(lights), default=default,
+                        help=f"{help_text} (default {default})")
+
+
+def _observer_type(text: str) -> str:
+    try:
+        return canonical_observer_name(text)
+    except ColorimetryError as exc:
+        raise argparse.ArgumentTypeError(str(exc).removeprefix("observer: ")) from None
+
+
+_observer_type.__name__ = "observer"
+
+
+def add_observer(parser: argparse.ArgumentParser) -> None:
+    """``--observer``: a shipped observer or alias (default CIE 1931 2°)."""
+    parser.add_argument("--observer", type=_observer_type, default="1931",
+                        help="standard observer: " + "; ".join(f"{n} ({OBSERVERS.description(n)})"
+                                                               for n in ("CIE 1931 2°", "CIE 1964 10°"))
+                        + "; also 2015-2, 2015-10; aliases 1931, 1964, 2deg, 10deg (default 1931)")
+
+
+def add_gamut(parser: argparse.ArgumentParser, default: str = DEFAULT_GAMUT) -> None:
+    """``--gamut``: the strategy for colours a display cannot show, from :data:`GAMUT_STRATEGIES`."""
+    parser.add_argument("--gamut", choices=GAMUT_STRATEGIES.names(), default=default,
+                        help=f"colours the display cannot show: {GAMUT_STRATEGIES.help()} (default {default})")
