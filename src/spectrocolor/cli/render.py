@@ -8,7 +8,9 @@ import numpy as np
 
 from ..display.adaptation import ADAPTATION_METHODS
 from . import UserError
+from .colorimetry import FILE_HELP
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files, save_figure
+from .options import add_gamut, add_illuminant, add_observer
 
 _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 #: Largest swatch side in pixels (the image is about 8 swatches wide).
@@ -43,12 +45,7 @@ def register(subparsers) -> None:
         help="for --normalise fixed: a number, or 'object-max' (the largest channel any "
         "reflectance 0..1 can reach under the illuminant: SPECTRA's alternative A)",
     )
-    r.add_argument(
-        "--gamut",
-        choices=("flag", "clip", "preserve-luminance", "desaturate"),
-        default="flag",
-        help="out-of-gamut strategy (default flag: shown black and crossed)",
-    )
+    add_gamut(r)
     r.add_argument(
         "--adapt",
         choices=_ADAPT_CHOICES,
@@ -78,17 +75,13 @@ def register(subparsers) -> None:
 
 
 def _common(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("file", metavar="FILE", help="spectra as CSV or JSON")
-    parser.add_argument(
-        "--illuminant",
-        default="D65",
-        help="illuminant for reflectances (default D65), or 'none' when FILE holds lights",
-    )
-    parser.add_argument("--observer", default="1931", help="observer (default 1931)")
+    parser.add_argument("file", metavar="FILE", help=FILE_HELP)
+    add_illuminant(parser, lights=True)
+    add_observer(parser)
 
 
-def _illuminant(args) -> str | None:
-    return None if args.illuminant.strip().lower() == "none" else args.illuminant
+def _illuminant(args):
+    return args.illuminant  # None for lights (--illuminant none)
 
 
 def _tristimulus(args):
@@ -111,6 +104,7 @@ def _tristimulus(args):
 
 def _render(args) -> int:
     from ..display import adaptation_matrix, max_object_rgb, render, rgb_space
+    from ..display.explain import explain
     from ..pictures import write_swatches
 
     space = rgb_space(args.space)
@@ -156,18 +150,7 @@ def _render(args) -> int:
     print(f"# space {space.name}; normalise {normalise}; gamut {args.gamut}; {adapt_note}")
     print(f"# {depth}-bit codes; out-of-gamut swatches are crossed; written to {args.out}")
     print("name\tX\tY\tZ\tcodes\tstatus")
-    channels = "RGB"
-    for i, name in enumerate(names):
-        neg = "".join(c for c, f in zip(channels, result.negative[i], strict=True) if f)
-        over = "".join(c for c, f in zip(channels, result.over[i], strict=True) if f)
-        if result.in_gamut[i]:
-            status = "in gamut"
-        else:
-            what = ", ".join(
-                p for p in (f"{neg} < 0" if neg else "", f"{over} > 1" if over else "") if p
-            )
-            done = "shown black" if args.gamut == "flag" else args.gamut
-            status = f"cannot be reproduced ({what}); {done}"
+    for i, (name, status) in enumerate(zip(names, explain(result), strict=True)):  # the library's words
         x, y, z = XYZ[i]
         code = " ".join(str(int(c)) for c in result.codes[i])
         print(f"{name}\t{x:.4f}\t{y:.4f}\t{z:.4f}\t{code}\t{status}")
