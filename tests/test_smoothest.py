@@ -292,15 +292,15 @@ def test_spike_at_the_end_of_the_range_is_reproduced_exactly():
 def test_every_two_transition_block_is_solved_or_flagged(illuminant):
     """Optimal-colour candidates (boundary colours, many on degenerate facets): a result that
     claims convergence reproduces the colour, keeps the bounds and is optimal by the
-    independent KKT check at rounding level. On this grid at most 11 of the 990 (measured:
-    11 under E and D65, 5 under A) are honestly flagged: faces whose free part the dense
-    solver leaves above the strict rounding tolerance."""
+    independent KKT check at rounding level. On this grid a few of the 990 are honestly
+    flagged (measured: 2 under E and D65, 1 under A): faces whose free part the dense solver
+    leaves above the strict rounding tolerance."""
     grid = (400.0, 700.0, 10.0)
     W = _weights(grid, illuminant)
     R = _blocks(W.shape[0])
     r = smoothest_reflectance(R @ W, illuminant=illuminant, wavelengths=grid)
     c = r.certificate
-    assert np.all(r.feasible) and np.count_nonzero(~c.converged) <= 11
+    assert np.all(r.feasible) and np.count_nonzero(~c.converged) <= 3
     ok = c.converged
     assert c.primal_residual[ok].max() <= 1e-10
     rho = r.spectrum.values

@@ -117,7 +117,14 @@ def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
     from scipy.optimize import linprog
 
     m = W.shape[1]
-    N = np.linalg.svd(basis.T)[2][basis.shape[1]:].T if basis.shape[1] else np.eye(m)
+    r = basis.shape[1]
+    free = np.flatnonzero(~fixed)
+    if free.size >= r > 0:
+        # the normals of the face, from the free generators themselves: orthogonal to them to
+        # rounding (a cross product of two nearly parallel generators is not)
+        N = np.linalg.svd(W[free])[2][r:].T
+    else:
+        N = np.linalg.svd(basis.T)[2][r:].T if r else np.eye(m)
     if N.shape[1] == 0:
         return mu
     base = mu - N @ (N.T @ mu)
