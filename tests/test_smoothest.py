@@ -431,3 +431,17 @@ def test_cone_edge_colours_are_answered_never_raised(bounds):
         assert np.abs(r.spectrum.values[i] @ W - R[i] @ W).max() <= 1e-12 * max(1.0, (R[i] @ W).max())
         if i < 4:
             assert_kkt(W, 5.0, r.spectrum.values[i], upper, mu_hint=r.multipliers[i])
+
+
+def test_vertices_with_unlit_samples_are_certified():
+    """LED-B1 has no power at 380 nm: that sample's weights are 0, no colour constrains it, and
+    on a vertex only smoothness does (it interpolates its neighbours). Every vertex reached by
+    a supporting plane is certified and passes the independent check."""
+    grid = (380.0, 780.0, 10.0)
+    W = _weights(grid, "LED-B1")
+    assert np.any(np.all(W == 0, axis=1))
+    R = (np.random.default_rng(5).normal(size=(60, 3)) @ W.T > 0).astype(float)
+    r = smoothest_reflectance(R @ W, "LED-B1", wavelengths=grid)
+    assert np.all(r.certificate.converged)
+    for i in range(0, 60, 6):
+        assert_kkt(W, 10.0, r.spectrum.values[i], 1.0, mu_hint=r.multipliers[i])

@@ -184,9 +184,15 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
         # the remaining generators span the facet's plane: drop the normal from the basis
         null = np.linalg.svd(n[None, :])[2][1:].T
         basis = basis @ null
-    if free.any():
-        if basis.shape[1] == 0:  # generators that no colour constrains: only smoothness
-            return failed
+    if free.any() and basis.shape[1] == 0:
+        # generators that no colour constrains (zero weights: an illuminant without power
+        # there): only smoothness fixes them, ρ interpolates its fixed neighbours linearly
+        # (a convex combination of bound values, so within the bounds)
+        F, A = np.flatnonzero(free), np.flatnonzero(~free)
+        rho[F] = np.linalg.solve(Q[np.ix_(F, F)], -Q[np.ix_(F, A)] @ rho[A])
+        rho[F] = np.clip(rho[F], lower, upper)
+        mu = np.zeros(m)
+    elif free.any():
         Wb = W @ basis
         start = _strictly_feasible(Wb, b @ basis, lower, upper, rho, free)
         if start is None:
