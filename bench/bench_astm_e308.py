@@ -40,8 +40,9 @@ def main() -> None:
     )
 
     cube = np.random.default_rng(0).random((256, 256, grid.size))
-    W = np.array(sc.weights(grid, "1931", "D65", method="astm-e308"))
-    ours = best_of(lambda: sc.tristimulus(sc.Spectrum(grid, cube), "1931", "D65", method="astm-e308"))
+    W = np.array(sc.weights(grid, observer="1931", illuminant="D65", method="astm-e308"))
+    spectra = sc.Spectrum(grid, cube)
+    ours = best_of(lambda: sc.tristimulus(spectra, observer="1931", illuminant="D65", method="astm-e308"))
     limit = best_of(lambda: cube @ W)
     subset = cube.reshape(-1, grid.size)[:COLOUR_SPECTRA]  # colour loops in Python, one spectrum at a time
     msds = colour.MultiSpectralDistributions(subset.T, grid)
@@ -76,14 +77,14 @@ def accuracy() -> None:
     samples = sc.Spectrum(table[:, 0], table[:, 1:].T.copy()).restrict(360, 780).resample(fine, "sprague")
     print("accuracy: dE00 vs 1 nm summation, TCS01-14 interpolated to 1 nm (Sprague), point sampling")
     for observer, illuminant in (("1931", "D65"), ("1964", "A")):
-        white = sc.white_point(illuminant, observer, wavelengths_nm=fine)
-        truth = sc.lab(sc.tristimulus(samples, observer, illuminant), white)
+        white = sc.white_point(illuminant, observer=observer, wavelengths_nm=fine)
+        truth = sc.lab(sc.tristimulus(samples, observer=observer, illuminant=illuminant), white)
         for start, stop in ((360, 780), (400, 700)):
             for step in (10, 20):
                 sampled = samples.resample(np.arange(start, stop + 1.0, step), "linear")  # exact: a subset
                 cells = []
                 for method in sc.colorimetry.METHODS:
-                    XYZ = sc.tristimulus(sampled, observer, illuminant, method=method)
+                    XYZ = sc.tristimulus(sampled, observer=observer, illuminant=illuminant, method=method)
                     dE = sc.delta_e_2000(sc.lab(XYZ, white), truth)
                     cells.append(f"{method} {dE.mean():.3f}/{dE.max():.3f}")
                 print(f"  {observer} {illuminant:3s} {start}-{stop} nm at {step:2d} nm (mean/max): " + "  ".join(cells))

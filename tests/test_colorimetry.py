@@ -85,7 +85,9 @@ def test_1nm_method_equals_explicit_interpolation():
     refl = Spectrum(g, rng.random((5, g.size)))
     fine = refl.resample(sc.wavelength_grid(400, 700, 1))
     np.testing.assert_allclose(
-        sc.tristimulus(refl, observer="1931", illuminant="D65", method="1nm"), sc.tristimulus(fine, observer="1931", illuminant="D65"), rtol=1e-13
+        sc.tristimulus(refl, observer="1931", illuminant="D65", method="1nm"),
+        sc.tristimulus(fine, observer="1931", illuminant="D65"),
+        rtol=1e-13
     )
 
 
@@ -154,7 +156,8 @@ reflectances = arrays(np.float64, 31, elements=st.floats(0, 1))
 def test_tristimulus_is_linear(a, b, scale):
     g = sc.wavelength_grid(400, 700, 10)
     lhs = sc.tristimulus(Spectrum(g, scale * a + b), observer="1964", illuminant="A")
-    rhs = scale * sc.tristimulus(Spectrum(g, a), observer="1964", illuminant="A") + sc.tristimulus(Spectrum(g, b), observer="1964", illuminant="A")
+    rhs = (scale * sc.tristimulus(Spectrum(g, a), observer="1964", illuminant="A")
+           + sc.tristimulus(Spectrum(g, b), observer="1964", illuminant="A"))
     np.testing.assert_allclose(lhs, rhs, atol=1e-9)
 
 

@@ -119,10 +119,10 @@ def validate_wavelengths(wavelengths_nm: ArrayLike, argument: str = "wavelengths
     --------
     >>> validate_wavelengths([400, 500]).tolist()
     [400.0, 500.0]
-    >>> validate_wavelengths([0.4, 0.5])
+    >>> validate_wavelengths([0.4, 0.5])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    spectrocolor.errors.SpectrumError: wavelengths_nm: largest wavelength is 0.5; that looks like micrometres, but spectrocolor expects nanometres (multiply by 1000)
+    spectrocolor.errors.SpectrumError: wavelengths_nm: largest wavelength is 0.5; that looks like micrometres, ...
     """
     try:
         grid = np.array(wavelengths_nm, dtype=float)

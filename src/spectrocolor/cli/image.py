@@ -8,8 +8,10 @@ import sys
 import numpy as np
 
 from ..display.adaptation import ADAPTATION_METHODS
+from ..illuminants import illuminant_label
 from . import UserError
 from .files import add_force, check_files
+from .options import add_gamut, add_illuminant, add_observer
 
 _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 
@@ -29,10 +31,8 @@ def register(subparsers) -> None:
                    help="cube file (.hdr/raw, .tif, .npy, .npz, .nc, .h5) or folder of band images")
     p.add_argument("--out", required=True, help="output: .png (display codes) or .tif (floats)")
     add_force(p)
-    p.add_argument("--illuminant", required=True,
-                   help="illuminant for reflectance cubes (e.g. D65, A, C), or 'none' for "
-                   "radiance cubes (lights)")
-    p.add_argument("--observer", default="1931", help="observer (default 1931)")
+    add_illuminant(p, lights=True, what="a reflectance cube ('none' for a radiance cube)")
+    add_observer(p)
     p.add_argument("--method", choices=("sum", "1nm"), default="sum",
                    help="summation method (default sum)")
     p.add_argument("--quantity", choices=("rgb", "xyz", "lab"), default="rgb",
@@ -48,8 +48,7 @@ def register(subparsers) -> None:
                    "header's reflectance scale factor, data ignore value and bbl are applied on "
                    "reading, as read_cube does")
     p.add_argument("--space", default="sRGB", help="display RGB space (default sRGB)")
-    p.add_argument("--gamut", choices=("flag", "clip", "preserve-luminance", "desaturate"),
-                   default="clip", help="out-of-gamut strategy (default clip)")
+    add_gamut(p)
     p.add_argument("--exposure", type=float, default=1.0,
                    help="multiplier on XYZ before display (default 1)")
     p.add_argument("--adapt", choices=_ADAPT_CHOICES, default="bradford",
@@ -128,7 +127,7 @@ def _image(args: argparse.Namespace) -> int:
     for note in cube.metadata.get("applied", ()):  # the header's reading fields (ENVI), as the API applies them
         print(f"{args.cube}: {note}", file=sys.stderr)
     scale = 1.0 if args.scale is None else args.scale
-    illuminant = None if args.illuminant.lower() == "none" else args.illuminant
+    illuminant = args.illuminant  # None for a radiance cube
     output = "codes" if suffix == "png" else "rgb_linear"
     plan = plan_conversion(
         args.quantity, cube.wavelengths_nm, illuminant=illuminant, observer=args.observer,
@@ -144,7 +143,7 @@ def _image(args: argparse.Namespace) -> int:
     if suffix == "png":
         write_image(args.out, result)
     else:
-        metadata = {"quantity": plan.quantity, "illuminant": args.illuminant,
+        metadata = {"quantity": plan.quantity, "illuminant": illuminant_label(args.illuminant),
                     "observer": args.observer, "source": cube.source}
         if plan.white_XYZ is not None:
             metadata["white_XYZ"] = [float(v) for v in plan.white_XYZ]
@@ -152,7 +151,7 @@ def _image(args: argparse.Namespace) -> int:
     height, width = result.shape[:2]
     print(f"wrote {args.out}: {width} x {height} pixels, {plan.quantity}, "
           f"{cube.wavelengths_nm.size} bands {cube.wavelengths_nm[0]:g}-"
-          f"{cube.wavelengths_nm[-1]:g} nm, illuminant {args.illuminant}, observer "
+          f"{cube.wavelengths_nm[-1]:g} nm, illuminant {illuminant_label(args.illuminant)}, observer "
           f"{args.observer}")
     return 0
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..coordinates import colour_array
 from ..errors import ColorimetryError
-from .gamut import DEFAULT_TOLERANCE, GAMUT_STRATEGIES, apply_gamut, gamut_flags
+from .gamut import DEFAULT_GAMUT, DEFAULT_TOLERANCE, GAMUT_STRATEGIES, apply_gamut, gamut_flags
 from .normalise import normalise as _normalise
 from .spaces import rgb_space
 from .transfer import LevelTable, to_codes
@@ -77,7 +77,7 @@ class Rendering:
 
         Examples
         --------
-        >>> render([[1.0, 60.0, 5.0]], "sRGB").explain()
+        >>> render([[1.0, 60.0, 5.0]], "sRGB", gamut="flag").explain()
         ['cannot be reproduced (R, B negative; G above 1): shown black']
         """
         from .explain import explain
@@ -98,7 +98,7 @@ def render(
     XYZ100,
     space="sRGB",
     normalise: str = "none",
-    gamut: str = "flag",
+    gamut: str = DEFAULT_GAMUT,
     scale: float | None = None,
     bit_depth: int | None = None,
     tolerance: float = DEFAULT_TOLERANCE,

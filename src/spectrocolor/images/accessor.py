@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..display.gamut import DEFAULT_GAMUT
 from ..errors import SpectrumError
 from ..observers import DEFAULT_OBSERVER
 from .convert import plan_conversion
@@ -202,7 +203,7 @@ class SpectroAccessor:
         return self._apply(plan, "Lab", ("L*", "a*", "b*"))
 
     def to_rgb(self, illuminant=None, observer=DEFAULT_OBSERVER, method: str = "sum",
-               scale: float = 1.0, space="sRGB", gamut: str = "clip", exposure: float = 1.0,
+               scale: float = 1.0, space="sRGB", gamut: str = DEFAULT_GAMUT, exposure: float = 1.0,
                adaptation: str | None = "bradford", bit_depth: int = 8,
                output: str = "codes") -> xr.DataArray:
         """Display RGB per pixel, dims (..., "RGB"); arguments as :func:`cube_to_rgb`.

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..display.gamut import DEFAULT_GAMUT
 from ..errors import ColorimetryError, SpectrumError
 from ..observers import DEFAULT_OBSERVER
 from . import blocks
@@ -59,7 +60,7 @@ def plan_conversion(
     scale: float = 1.0,
     white_XYZ=None,
     space="sRGB",
-    gamut: str = "clip",
+    gamut: str = DEFAULT_GAMUT,
     exposure: float = 1.0,
     adaptation: str | None = "bradford",
     bit_depth: int = 8,
@@ -76,8 +77,10 @@ def plan_conversion(
         What to compute.
     wavelengths_nm : array_like, shape (K,)
         Band wavelengths, nm.
-    illuminant, observer, method, scale, white_XYZ, space, gamut, exposure, adaptation, bit_depth, output : object, keyword-only
-        As for :func:`cube_to_xyz`, :func:`cube_to_lab` and :func:`cube_to_rgb`.
+    illuminant, observer, method, scale, white_XYZ : keyword-only
+        As for :func:`cube_to_xyz` and :func:`cube_to_lab`.
+    space, gamut, exposure, adaptation, bit_depth, output : keyword-only
+        As for :func:`cube_to_rgb`.
 
     Returns
     -------
@@ -376,7 +379,7 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
 
 
 def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
-                method: str = "sum", scale: float = 1.0, space="sRGB", gamut: str = "clip",
+                method: str = "sum", scale: float = 1.0, space="sRGB", gamut: str = DEFAULT_GAMUT,
                 exposure: float = 1.0, adaptation: str | None = "bradford", bit_depth: int = 8,
                 output: str = "codes", rows_per_block=None, max_block_mib: float = 64.0,
                 out=None, progress: bool = False) -> np.ndarray:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..display.gamut import DEFAULT_GAMUT
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import illuminant_label
 from ..observers import DEFAULT_OBSERVER
@@ -75,7 +76,7 @@ class FilmColours:
 
 def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_ILLUMINANT,
                  observer=DEFAULT_OBSERVER, exposure: str = "global-max", gain: float = 1.0,
-                 space="sRGB", gamut: str = "preserve-luminance", bit_depth: int = 8,
+                 space="sRGB", gamut: str = DEFAULT_GAMUT, bit_depth: int = 8,
                  method: str = "sum") -> FilmColours:
     """Colours of films seen in reflection (or transmission) under a light.
 
