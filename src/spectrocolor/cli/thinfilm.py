@@ -17,8 +17,10 @@ from pathlib import Path
 import numpy as np
 
 from ..safe_write import atomic_path
+from ..thinfilm.colour import SEED_000_ILLUMINANT
 from . import UserError
 from .files import add_force, check_files, save_figure
+from .options import add_gamut, add_illuminant, add_observer
 
 #: Largest strip length / locus point count and image side accepted on the command line.
 _MAX_COLUMNS = 100_000
@@ -99,21 +101,19 @@ def _film_options(p) -> None:
 
 
 def _colour_options(p) -> None:
-    p.add_argument("--illuminant", default="blackbody:6504",
-                   help="CIE name (D65, A, ...) or blackbody:T (default blackbody:6504)")
-    p.add_argument("--observer", default="1931", help="1931 or 1964")
+    add_illuminant(p, default=SEED_000_ILLUMINANT, what="the film (seed 000's 6504 K blackbody by default)")
+    add_observer(p)
     p.add_argument("--exposure", choices=("global-max", "perfect-reflector"),
                    default="global-max")
     p.add_argument("--gain", type=float, default=1.0, help="with --exposure perfect-reflector")
     p.add_argument("--space", default="sRGB")
-    p.add_argument("--gamut", default="preserve-luminance",
-                   help="flag, clip, preserve-luminance or desaturate")
+    add_gamut(p)
 
 
 def _film_function(args):
     """A callable ``f(thickness_nm, wavelengths_nm, angle_deg=...) -> FilmOptics``."""
     from ..thinfilm import media
-    from ..thinfilm.optics import FilmOptics, stack_optics, two_beam_reflectance
+    from ..thinfilm.optics import FilmOptics, optical_path_difference, stack_optics, two_beam_reflectance
 
     film = media.medium(args.film)
     ambient, substrate = media.medium(args.ambient), media.medium(args.substrate)
@@ -136,8 +136,7 @@ def _film_function(args):
         def two_beam(d, wl, angle_deg=0.0):
             n = float(np.real(film.refractive_index(np.array([589.3]))[0]))
             n0 = float(np.real(ambient.refractive_index(np.array([589.3]))[0]))
-            sin0 = n0 * np.sin(np.radians(angle_deg))
-            opd = 2 * np.asarray(d) * np.sqrt(n * n - sin0 * sin0)
+            opd = optical_path_difference(d, n, angle_deg, ambient_index=n0)
             factor = two_beam_reflectance(opd, wl, beta=args.beta)
             return FilmOptics(np.asarray(wl, float), factor, np.zeros_like(factor), "unpolarised")
 
