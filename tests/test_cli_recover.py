@@ -29,7 +29,7 @@ def test_recover_xyz_round_trip(tmp_path):
     assert main(["recover", "--xyz", "30", "25", "10", "--range", "400", "700", "10",
                  "--out", str(out)]) == 0
     s = sc.read_spectra(out)
-    np.testing.assert_allclose(sc.tristimulus(s, "1931", "D65"), [30, 25, 10], atol=1e-8)
+    np.testing.assert_allclose(sc.tristimulus(s, observer="1931", illuminant="D65"), [30, 25, 10], atol=1e-8)
     assert s.values.min() >= 0 and s.values.max() <= 1
 
 
@@ -58,7 +58,7 @@ def test_recover_bad_bounds(args, tmp_path):
 
 def test_cie_d65_white_outside_the_grid_white_is_one_helpful_line(tmp_path, capsys):
     """The tabulated D65 white is not the 5 nm grid's white: one line, naming this grid's white."""
-    white = np.asarray(sc.weights(sc.wavelength_grid(380, 780, 5), "1931", "D65")).sum(axis=0)
+    white = np.asarray(sc.weights(sc.wavelength_grid(380, 780, 5), observer="1931", illuminant="D65")).sum(axis=0)
     assert main(["recover", "--xyz", "95.047", "100", "108.883", "--illuminant", "D65",
                  "--out", str(tmp_path / "x.csv")]) == 2
     got = capsys.readouterr()
@@ -84,6 +84,6 @@ def test_help_shows_defaults(capsys):
     with pytest.raises(SystemExit):
         main(["recover", "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    for needle in ("(default: D65)", "(default: 1931)", "(default: 380 780 5)",
+    for needle in ("(default D65)", "(default 1931)", "(default: 380 780 5)",
                    "(default: unit)", "scale of this grid"):
         assert needle in text

@@ -10,6 +10,7 @@ import numpy as np
 from ..safe_write import atomic_path
 from . import UserError
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files, save_figure
+from .options import add_illuminant, add_observer
 
 
 def register(subparsers) -> None:
@@ -23,10 +24,8 @@ def register(subparsers) -> None:
     src.add_argument("--xyz", nargs=3, type=float, metavar=("X", "Y", "Z"))
     src.add_argument("--hex", nargs="+", metavar="RRGGBB", help="sRGB hex colours")
     src.add_argument("--csv", type=Path, help="CSV with columns X,Y,Z (one colour per row)")
-    p.add_argument("--illuminant", default="D65",
-                   help="CIE illuminant the XYZ are under, e.g. D65, A, E, FL2 (default: %(default)s)")
-    p.add_argument("--observer", default="1931",
-                   help="observer: 1931, 1964, 2015-2 or 2015-10 (default: %(default)s)")
+    add_illuminant(p, what="the colours (their perfect white has Y = 100)")
+    add_observer(p)
     p.add_argument("--range", nargs=3, type=float, default=(380.0, 780.0, 5.0),
                    metavar=("START_NM", "STOP_NM", "STEP_NM"),
                    help="wavelength grid of the recovered reflectance; XYZ must be on the scale "

@@ -5,10 +5,10 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..illuminants import DEFAULT_ILLUMINANT
 from . import UserError
 from .colorimetry import FILE_HELP, PERCENT_HELP, reflectance_factors
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files
+from .options import add_illuminant, add_observer
 
 
 def register(subparsers) -> None:
@@ -25,10 +25,8 @@ def register(subparsers) -> None:
         ),
     )
     p.add_argument("file", metavar="FILE", help=FILE_HELP)
-    p.add_argument("--illuminant", default=DEFAULT_ILLUMINANT,
-                   help=f"illuminant, e.g. C (seed 001), D65, A (default {DEFAULT_ILLUMINANT}, as in "
-                   "every spectrocolor command)")
-    p.add_argument("--observer", default="1931", help="observer (default 1931)")
+    add_illuminant(p, what="the reflectance samples (seed 001 uses C)")
+    add_observer(p)
     p.add_argument("--method", choices=_methods(), default="sum",
                    help="summation method: sum, 1nm or astm-e308 (default sum)")
     p.add_argument("--percent", action="store_true", help=PERCENT_HELP)
