@@ -412,9 +412,9 @@ def test_ill_conditioned_colours_at_depth_1e_9_are_certified(grid, illuminant, X
 def test_cone_edge_colours_are_answered_never_raised(bounds):
     """Single wavelengths (400, 480, 630 nm), a reflectance that is zero below 650 nm (Z = 0)
     and black, in one batch: every colour gets an answer (no exception), a converged one is
-    exact and passes the independent check. (Measured on this grid: with ρ ≥ 0 the 400 nm and
-    630 nm lines and the Z = 0 reflectance are still flagged not converged, with 0 ≤ ρ ≤ 1
-    all five are certified.)"""
+    exact and passes the independent check. (Measured on this grid: with ρ ≥ 0 the 630 nm line
+    and the Z = 0 reflectance are still flagged not converged, with 0 ≤ ρ ≤ 1 all five are
+    certified.)"""
     grid = (380.0, 780.0, 5.0)
     wl = sc.wavelength_grid(*grid)
     W = _weights(grid)

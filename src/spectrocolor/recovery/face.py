@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import qp
+from . import qp, zonotope
 
 #: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
 PLANE_TOLERANCE = 1e-10
@@ -46,21 +46,29 @@ def _normals(G: np.ndarray) -> np.ndarray:
 
 
 def _touching_facet(G, c, lower, upper, tol):
-    """The outward normal of a facet of the zonotope (or cone) of G containing c, or None."""
-    n = _normals(G)
-    p = n @ G.T  # (F, n)
-    if np.isfinite(upper):
-        support = np.where(p > 0, upper * p, lower * p).sum(axis=1)
-    else:  # the cone: only normals with no generator on their positive side bound it
-        in_plane = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
-        ok = np.all(p <= in_plane, axis=1)
-        n, p = n[ok], p[ok]
-        support = lower * p.sum(axis=1)
-    if len(n) == 0:
-        return None
-    slack = support - n @ c
-    f = int(np.argmin(slack))
-    return n[f] if slack[f] <= tol else None
+    """The outward normal of a facet of the zonotope (or cone) of G containing c, or None.
+
+    The candidate normals (n² of them) are projected on the generators in blocks, so memory
+    stays O(n²) rather than O(n³)."""
+    normals = _normals(G)
+    in_plane = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
+    best, best_slack = None, np.inf
+    rows = max(1, zonotope.BLOCK // max(len(G), 1))
+    for i in range(0, len(normals), rows):
+        n = normals[i:i + rows]
+        p = n @ G.T  # (block, generators)
+        if np.isfinite(upper):
+            support = np.where(p > 0, upper * p, lower * p).sum(axis=1)
+        else:  # the cone: only normals with no generator on their positive side bound it
+            ok = np.all(p <= in_plane, axis=1)
+            n, support = n[ok], lower * p[ok].sum(axis=1)
+        if len(n) == 0:
+            continue
+        slack = support - n @ c
+        f = int(np.argmin(slack))
+        if slack[f] < best_slack:
+            best, best_slack = n[f], slack[f]
+    return best if best_slack <= tol else None
 
 
 def _strictly_feasible(W, b, lower, upper, rho, free):

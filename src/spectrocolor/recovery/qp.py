@@ -576,7 +576,7 @@ def primal_active_set(Q, W, b, lower, upper, rho, active, pinned=None, max_iter=
         lam = Q @ rho - W @ mu
         lam[~active] = 0.0
         step_nm = 2.0 / Q[0, 0]
-        tol = 0.5 * certificate.dual_tolerance(W, step_nm, rho, mu)
+        tol = np.maximum(0.5 * certificate.dual_tolerance(W, step_nm, rho, mu), np.finfo(float).tiny)
         wrong = np.where(rho == lower, -lam, lam) / tol
         wrong[~active | pinned] = 0.0
         worst = int(np.argmax(wrong))

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: Elements (colours × facets) of one block of the membership test: bounds its memory (128 MiB
+#: Elements (colours × facets) of one block of the membership test: bounds its memory (32 MiB
 #: per array) whatever the grid (the solid has K (K − 1) facets) and the batch.
-_BLOCK = 1 << 24
+BLOCK = 1 << 22
 
 
 @dataclass(frozen=True)
@@ -39,12 +39,19 @@ def _pair_normals(W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return n, np.stack([i[keep], j[keep]], axis=1)
 
 
+def _blocked(normals: np.ndarray, W: np.ndarray, reduce) -> np.ndarray:
+    """``reduce(normals @ W.T)`` row by row in blocks: the full (F, K) product has K³ entries."""
+    rows = max(1, BLOCK // max(W.shape[0], 1))
+    return np.concatenate([reduce(normals[i:i + rows] @ W.T) for i in range(0, len(normals), rows)]
+                          or [reduce(np.zeros((0, W.shape[0])))])
+
+
 def solid_facets(W: np.ndarray) -> Facets:
     """Facets of the zonotope ``{W.T rho : 0 <= rho <= 1}`` (both orientations)."""
     n, pairs = _pair_normals(W)
     n = np.concatenate([n, -n])
     pairs = np.concatenate([pairs, pairs])
-    support = 0.5 * np.abs(n @ W.T).sum(axis=1)
+    support = 0.5 * _blocked(n, W, lambda p: np.abs(p).sum(axis=1))
     centre = 0.5 * W.sum(axis=0)
     return Facets(n, support, centre, pairs)
 
@@ -52,10 +59,11 @@ def solid_facets(W: np.ndarray) -> Facets:
 def cone_facets(W: np.ndarray) -> Facets:
     """Facets of the cone ``{W.T rho : rho >= 0}``, normals pointing outwards."""
     n, pairs = _pair_normals(W)
-    proj = n @ W.T  # (F, K)
-    tol = 1e-12 * np.abs(proj).max(axis=1, keepdims=True)
-    below = np.all(proj <= tol, axis=1)
-    above = np.all(proj >= -tol, axis=1)
+    def sides(p):  # (F, K) projections of the generators on each normal, in blocks
+        tol = 1e-12 * np.abs(p).max(axis=1, keepdims=True)
+        return np.stack([np.all(p <= tol, axis=1), np.all(p >= -tol, axis=1)], axis=1)
+
+    below, above = _blocked(n, W, sides).T
     n = np.concatenate([n[below], -n[above]])
     pairs = np.concatenate([pairs[below], pairs[above]])
     return Facets(n, np.zeros(len(n)), np.zeros(3), pairs)
@@ -83,7 +91,7 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
     facet = np.empty(N, dtype=np.int64)
     scaled = facets.normals if cone else facets.normals / facets.support[:, None]
     half = len(scaled) // 2
-    chunk = max(1, _BLOCK // max(len(scaled), 1))
+    chunk = max(1, BLOCK // max(len(scaled), 1))
     for start in range(0, N, chunk):
         d = b[start:start + chunk] - facets.centre
         rows = np.arange(len(d))
@@ -150,7 +158,7 @@ def ray_exit(facets: Facets, origin: np.ndarray, directions: np.ndarray) -> np.n
     """
     slack = facets.support - facets.normals @ (origin - facets.centre)
     out = np.empty(len(directions))
-    chunk = max(1, _BLOCK // max(len(facets.normals), 1))
+    chunk = max(1, BLOCK // max(len(facets.normals), 1))
     for start in range(0, len(directions), chunk):
         nd = directions[start:start + chunk] @ facets.normals.T
         with np.errstate(divide="ignore", invalid="ignore"):
