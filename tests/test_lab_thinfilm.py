@@ -90,3 +90,16 @@ def test_the_route_answers_the_table_and_errors_in_the_servers_shape():
     assert extra.status_code == 422 and "error" in extra.json()
     page = client.get("/labs/thinfilm")
     assert page.status_code == 200 and "Thin-film lab" in page.text
+
+
+def test_the_explorer_and_every_lab_link_to_each_other():
+    from fastapi.testclient import TestClient
+
+    from spectrocolor.app.server import create_app
+
+    client = TestClient(create_app(), base_url="http://127.0.0.1")
+    labs = ["/labs/thinfilm", "/labs/reflectance", "/labs/solid", "/labs/light"]
+    for page in ["/", *labs]:
+        html = client.get(page).text
+        assert all(f'href="{lab}"' in html for lab in labs), page
+        assert 'href="/"' in html or page == "/"
