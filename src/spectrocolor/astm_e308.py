@@ -53,10 +53,10 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import ColorimetryError
-from .illuminants import canonical_illuminant_name
+from .illuminants import ILLUMINANTS, canonical_illuminant
 from .illuminants import illuminant as named_illuminant
 from .sampling import cmfs_on, illuminant_on, reflectance_weights, resolve_observer
-from .spectrum import Spectrum, validate_wavelengths
+from .spectrum import validate_wavelengths
 
 #: Measurement intervals for which ASTM E308 gives (and E2022 computes) weights, nm.
 INTERVALS_NM = (1, 5, 10, 20)
@@ -86,18 +86,17 @@ def _validated_grid(wavelengths_nm) -> tuple[np.ndarray, int]:
 
 
 def _illuminant_extent(illuminant) -> tuple[float, float]:
-    """Wavelength range on which the illuminant is defined, nm (A is a formula: everywhere)."""
-    if isinstance(illuminant, Spectrum):
-        return float(illuminant.wavelengths_nm[0]), float(illuminant.wavelengths_nm[-1])
-    if isinstance(illuminant, str):
-        if canonical_illuminant_name(illuminant) == "A":
-            return -np.inf, np.inf
-        native = named_illuminant(illuminant).wavelengths_nm
-        return float(native[0]), float(native[-1])
-    raise ColorimetryError(
-        "illuminant: ASTM E308 weights are for reflectance or transmittance factors and need an "
-        f"illuminant (a CIE name such as 'D65' or a Spectrum at 1 nm), got {illuminant!r}"
-    )
+    """Wavelength range on which the illuminant is defined, nm (formulas — A, blackbodies — everywhere)."""
+    light = canonical_illuminant(illuminant)
+    if light is None:
+        raise ColorimetryError(
+            "illuminant: ASTM E308 weights are for reflectance or transmittance factors and need an "
+            "illuminant (a CIE name such as 'D65', 'blackbody:T', or a Spectrum at 1 nm), got None"
+        )
+    if isinstance(light, str) and (light == "A" or light.startswith("blackbody:")):
+        return -np.inf, np.inf
+    native = named_illuminant(light).wavelengths_nm
+    return float(native[0]), float(native[-1])
 
 
 def _reference_range(grid: np.ndarray, observer, illuminant) -> tuple[float, float]:
@@ -216,13 +215,12 @@ def illuminant_at_1nm(fine_nm: np.ndarray, illuminant) -> np.ndarray:
     >>> illuminant_at_1nm(np.array([560.0, 561.0]), "D65").round(4).tolist()
     [100.0, 99.6334]
     """
-    if isinstance(illuminant, str) and canonical_illuminant_name(illuminant) not in ("A", "D65", "E"):
-        table = named_illuminant(illuminant)
+    light = canonical_illuminant(illuminant)
+    if isinstance(light, str) and light in ILLUMINANTS and ILLUMINANTS.get(light) == "table" and light != "D65":
+        table = named_illuminant(light)
         lo, hi = table.wavelengths_nm[[0, -1]]
         if fine_nm[0] < lo or fine_nm[-1] > hi:
-            raise ColorimetryError(
-                f"illuminant: {canonical_illuminant_name(illuminant)} is tabulated at {lo:g}–{hi:g} nm only"
-            )
+            raise ColorimetryError(f"illuminant: {light} is tabulated at {lo:g}–{hi:g} nm only")
         return lagrange_matrix(table.wavelengths_nm, fine_nm) @ table.values
     return illuminant_on(fine_nm, illuminant)
 
