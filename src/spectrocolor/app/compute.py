@@ -14,7 +14,7 @@ import numpy as np
 
 import spectrocolor as sc
 from spectrocolor.display.explain import out_of_gamut_channels
-from spectrocolor.display.gamut import DEFAULT_TOLERANCE
+from spectrocolor.display.gamut import DEFAULT_GAMUT, DEFAULT_TOLERANCE, GAMUT_STRATEGIES
 from spectrocolor.display.spectra_exact import spectra_channel_factors, spectra_scale
 from spectrocolor.display.transfer import LevelTable, PowerLaw, SRGBCurve
 from spectrocolor.display_emission import emission_sources, excitation_function, primary_emission
@@ -27,8 +27,9 @@ STEPS_NM = (10.0, 5.0, 2.0, 1.0)
 OBSERVERS = {"1931": "CIE 1931 2°", "1964": "CIE 1964 10°", "2015-2": "CIE 2015 2°",
              "2015-10": "CIE 2015 10°"}
 DISPLAYS = ("sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy")
-#: Gamut strategies, the default first: never a bare black patch; "flag" is SPECTRA's strict one.
-GAMUTS = ("desaturate", "flag", "clip", "preserve-luminance")
+#: Gamut strategies, the library's default first (never a bare black patch); "flag" is
+#: SPECTRA's strict one.
+GAMUTS = (DEFAULT_GAMUT, *(g for g in GAMUT_STRATEGIES if g != DEFAULT_GAMUT))
 #: Normalisations: A exact (largest object channel), B per colour ("Optimised!"), and A as the
 #: program computed it (one k per channel, 1.32 × R_white; display/spectra_exact.py).
 NORMALISATIONS = ("fixed", "per-colour", "spectra-exact")
@@ -45,7 +46,7 @@ ADAPTATIONS = {
              "colorimetrically exact for a viewer adapted to E, not to the screen: E looks "
              "pinkish on a D65 display"),
 }
-DEFAULT_GAMUT, DEFAULT_NORMALISE, DEFAULT_ADAPTATION = GAMUTS[0], NORMALISATIONS[0], "bradford"
+DEFAULT_NORMALISE, DEFAULT_ADAPTATION = NORMALISATIONS[0], "bradford"
 
 
 def grid(step_nm: float) -> np.ndarray:
