@@ -77,9 +77,27 @@ def plan_conversion(
         What to compute.
     wavelengths_nm : array_like, shape (K,)
         Band wavelengths, nm.
-    illuminant, observer, method, scale, white_XYZ : keyword-only
-        As for :func:`cube_to_xyz` and :func:`cube_to_lab`.
-    space, gamut, exposure, adaptation, bit_depth, output : keyword-only
+    illuminant : str or Spectrum, keyword-only, optional
+        As for :func:`cube_to_xyz` (``None``: the values are lights).
+    observer : str, keyword-only, default DEFAULT_OBSERVER
+        As for :func:`cube_to_xyz`.
+    method : str, keyword-only, default "sum"
+        As for :func:`cube_to_xyz`.
+    scale : float, keyword-only, default 1.0
+        As for :func:`cube_to_xyz`.
+    white_XYZ : array_like, shape (3,), keyword-only, optional
+        As for :func:`cube_to_lab`.
+    space : str or RGBSpace, keyword-only, default "sRGB"
+        As for :func:`cube_to_rgb`.
+    gamut : str, keyword-only, default DEFAULT_GAMUT
+        As for :func:`cube_to_rgb`.
+    exposure : float, keyword-only, default 1.0
+        As for :func:`cube_to_rgb`.
+    adaptation : str or None, keyword-only, default "bradford"
+        As for :func:`cube_to_rgb`.
+    bit_depth : int, keyword-only, default 8
+        As for :func:`cube_to_rgb`.
+    output : str, keyword-only, default "codes"
         As for :func:`cube_to_rgb`.
 
     Returns
@@ -407,8 +425,9 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         Factor from the stored values to reflectance (0–1).
     space : str or RGBSpace, keyword-only, default "sRGB"
         Display space, e.g. "sRGB", "Display P3".
-    gamut : str, keyword-only, default "clip"
-        "clip", "flag", "preserve-luminance" or "desaturate" (see :func:`spectrocolor.render`).
+    gamut : str, keyword-only, default DEFAULT_GAMUT
+        "desaturate" (the default), "clip", "flag" or "preserve-luminance" (see
+        :func:`spectrocolor.render`).
         One fixed exposure and per-pixel strategies keep blocks independent, so there are no
         seams; per-image normalisations are not offered here (choose ``exposure``).
     exposure : float, keyword-only, default 1.0
