@@ -99,8 +99,9 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_IL
         Multiplier for ``"perfect-reflector"`` exposure (must be 1 for ``"global-max"``).
     space : str or RGBSpace, keyword-only, default "sRGB"
         Passed to :func:`spectrocolor.render`.
-    gamut : str, keyword-only, default "preserve-luminance"
-        Gamut strategy, passed to :func:`spectrocolor.render` (seed 000's eqs. 20–21 by default).
+    gamut : str, keyword-only, default DEFAULT_GAMUT
+        Gamut strategy, passed to :func:`spectrocolor.render` (default ``"desaturate"``; seed
+        000's eqs. 20–21 are ``"preserve-luminance"``, as :func:`spectrocolor.zawischa_strip` uses).
     bit_depth : int, keyword-only, default 8
         Passed to :func:`spectrocolor.render`.
     method : str, keyword-only, default "sum"
