@@ -220,8 +220,8 @@ class SpectroAccessor:
             Factor from the stored values to reflectance (0–1).
         space : str or RGBSpace, default "sRGB"
             Display space.
-        gamut : str, default "clip"
-            Per-pixel gamut strategy (see :func:`spectrocolor.render`).
+        gamut : str, default DEFAULT_GAMUT
+            Per-pixel gamut strategy (default ``"desaturate"``; see :func:`spectrocolor.render`).
         exposure : float, default 1.0
             Multiplier on XYZ before rendering.
         adaptation : str or None, default "bradford"
