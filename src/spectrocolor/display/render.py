@@ -114,7 +114,8 @@ def render(
         See :func:`~spectrocolor.display.spaces.rgb_space`.
     normalise : {"none", "fixed", "per-colour", "global-max"}
         See :mod:`spectrocolor.display.normalise`.
-    gamut : {"flag", "clip", "preserve-luminance", "desaturate"}
+    gamut : {"flag", "clip", "preserve-luminance", "desaturate"}, default DEFAULT_GAMUT
+        :data:`~spectrocolor.display.gamut.DEFAULT_GAMUT` is ``"desaturate"``.
         ``"flag"`` shows out-of-gamut colours black (SPECTRA: "cannot be reproduced");
         ``"clip"`` clips each channel; ``"preserve-luminance"`` zeroes negative channels and
         rescales the others to keep Y (Zawischa eqs. 20-21, all negatives at once);
