@@ -75,6 +75,11 @@ class Rendering:
 
         See :func:`spectrocolor.display.explain.explain` (the one text every interface shows).
 
+        Returns
+        -------
+        list of str
+            One line per colour, in the order of the flattened batch.
+
         Examples
         --------
         >>> render([[1.0, 60.0, 5.0]], "sRGB", gamut="flag").explain()
