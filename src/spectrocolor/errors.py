@@ -13,7 +13,7 @@ class SpectrumError(ValueError):
     ...     wavelength_grid(400, 700, 7)
     ... except SpectrumError as error:
     ...     print(error)
-    step_nm: 7.0 does not divide 400.0–700.0 nm into whole steps
+    start_nm, stop_nm, step_nm: 7.0 does not divide 400.0–700.0 nm into whole steps
     """
 
 
