@@ -23,7 +23,7 @@ run: $(STAMP)
 	$(BIN)/spectrocolor app
 
 test: $(STAMP)
-	$(BIN)/ruff check src tests bench docs
+	$(BIN)/ruff check src tests bench docs tools
 	$(BIN)/python -m pytest -q --doctest-modules src tests
 	$(MAKE) --no-print-directory docs
 
