@@ -1,0 +1,20 @@
+"""Every data file and static asset of the package is declared in pyproject.toml's package-data,
+so an installed wheel (not only an editable checkout) has it."""
+
+from __future__ import annotations
+
+import fnmatch
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "src" / "spectrocolor"
+
+
+def test_every_non_python_file_is_package_data():
+    patterns = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]["spectrocolor"]
+    files = [p.relative_to(PACKAGE).as_posix() for p in PACKAGE.rglob("*")
+             if p.is_file() and p.suffix not in (".py", ".pyc") and "__pycache__" not in p.parts]
+    assert files, "no data files found"
+    undeclared = [f for f in files if not any(fnmatch.fnmatch(f, pattern) for pattern in patterns)]
+    assert not undeclared, f"not in [tool.setuptools.package-data]: {undeclared}"
