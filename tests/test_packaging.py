@@ -1,9 +1,9 @@
 """Every data file and static asset of the package is declared in pyproject.toml's package-data,
-so an installed wheel (not only an editable checkout) has it."""
+so an installed wheel (not only an editable checkout) has it. The patterns are expanded the way
+setuptools does (glob, ``*`` never crosses a ``/``, ``**`` does)."""
 
 from __future__ import annotations
 
-import fnmatch
 import tomllib
 from pathlib import Path
 
@@ -12,9 +12,10 @@ PACKAGE = ROOT / "src" / "spectrocolor"
 
 
 def test_every_non_python_file_is_package_data():
-    patterns = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]["spectrocolor"]
-    files = [p.relative_to(PACKAGE).as_posix() for p in PACKAGE.rglob("*")
-             if p.is_file() and p.suffix not in (".py", ".pyc") and "__pycache__" not in p.parts]
+    setuptools = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    declared = {p for pattern in setuptools["package-data"]["spectrocolor"] for p in PACKAGE.glob(pattern)}
+    files = {p for p in PACKAGE.rglob("*")
+             if p.is_file() and p.suffix not in (".py", ".pyc") and "__pycache__" not in p.parts}
     assert files, "no data files found"
-    undeclared = [f for f in files if not any(fnmatch.fnmatch(f, pattern) for pattern in patterns)]
+    undeclared = sorted(p.relative_to(PACKAGE).as_posix() for p in files - declared)
     assert not undeclared, f"not in [tool.setuptools.package-data]: {undeclared}"
