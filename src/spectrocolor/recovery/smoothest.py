@@ -13,10 +13,12 @@ illuminant)`` — the very weights that ``spectrocolor.tristimulus`` uses, so th
 the natural end conditions ``dρ/dλ = 0`` of van Trigt's Euler–Lagrange equations in the
 limit ``h → 0``, and the discrete problem converges to his continuous one.
 
-The unconstrained solution is linear in ``XYZ100`` (one K × 3 matrix, precomputed). The
-bounded problems are strictly convex quadratic programmes, solved exactly by a
-primal-dual active-set (semismooth Newton) method that adds and releases bounds; every
-result carries a certificate (primal residual, multiplier signs, complementarity).
+The unconstrained solution is linear in ``XYZ100`` (one K × 3 matrix, precomputed, then one
+step of iterative refinement). The bounded problems are strictly convex quadratic programmes,
+solved exactly by a primal-dual active-set (semismooth Newton) method that adds and releases
+bounds; every result carries a certificate at rounding level
+(:mod:`spectrocolor.recovery.certificate`): bounds held exactly, the colour reproduced and the
+KKT conditions met to within small multiples of the rounding error of the terms summed.
 
 References
 ----------
@@ -170,7 +172,6 @@ def smoothest_reflectance(
     b = b_in.reshape(-1, 3)
     N, K = b.shape[0], prob.size
     rho, mu = qp.solve_unconstrained(prob, b)
-    lam = np.zeros((N, K))
     converged = np.ones(N, dtype=bool)
     feasible = np.ones(N, dtype=bool)
     distance = np.zeros(N)
@@ -193,7 +194,7 @@ def smoothest_reflectance(
         todo = check[feasible[check] & ~on_boundary[check]]
         if todo.size:
             sol = qp.solve_bounded(prob, b[todo], lower, upper)
-            rho[todo], mu[todo], lam[todo] = sol.rho, sol.mu, sol.lam
+            rho[todo], mu[todo] = sol.rho, sol.mu
             converged[todo] = sol.converged
             method[todo] = np.asarray(qp.METHODS, dtype=object)[sol.method]
             # a colour that close to the boundary that the active-set methods could not
@@ -204,19 +205,19 @@ def smoothest_reflectance(
                 passed = certify(prob.W, prob.step_nm, b[near], got[0], got[1], lower, upper,
                                  got[3]).converged
                 take = near[passed]
-                rho[take], mu[take], lam[take] = (g[passed] for g in got[:3])
+                rho[take], mu[take] = got[0][passed], got[1][passed]
                 converged[take] = True
                 method[take] = "boundary face"
         if on_boundary.any():
             idx = np.flatnonzero(on_boundary)
-            rho[idx], mu[idx], lam[idx], converged[idx] = _boundary_solutions(
+            rho[idx], mu[idx], _, converged[idx] = _boundary_solutions(
                 setup, b[idx], lower, upper)
             method[idx] = "boundary face"
         # black and white have one reflectance each; zero multipliers certify them
-        rho[black], mu[black], lam[black] = 0.0, 0.0, 0.0
-        rho[white], mu[white], lam[white] = 1.0, 0.0, 0.0
+        rho[black], mu[black] = 0.0, 0.0
+        rho[white], mu[white] = 1.0, 0.0
         method[black | white] = "black or white"
-        rho[~feasible], mu[~feasible], lam[~feasible] = np.nan, np.nan, np.nan
+        rho[~feasible], mu[~feasible] = np.nan, np.nan
         converged[~feasible] = False
         method[~feasible] = "infeasible"
         if not shape and not feasible[0]:
