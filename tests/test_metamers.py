@@ -15,8 +15,8 @@ from spectrocolor.recovery.metamers import (
 
 GRID = (400.0, 700.0, 10.0)
 GRID_NM = sc.wavelength_grid(*GRID)
-W1 = np.asarray(sc.weights(GRID_NM, "1931", "D65"))
-W2 = np.asarray(sc.weights(GRID_NM, "1931", "A"))
+W1 = np.asarray(sc.weights(GRID_NM, observer="1931", illuminant="D65"))
+W2 = np.asarray(sc.weights(GRID_NM, observer="1931", illuminant="A"))
 
 
 def _sample(i=1):
