@@ -323,3 +323,14 @@ def test_a_remote_host_needs_allow_remote_and_warns():
     finally:
         proc.terminate()
         proc.wait(10)
+
+
+def test_the_listening_socket_sends_without_delay():
+    """Accepted connections inherit TCP_NODELAY: no 40 ms delayed-ACK stall per kept-alive request."""
+    from spectrocolor.cli.app import _bind
+
+    sock = _bind("127.0.0.1", 0)
+    try:
+        assert sock.getsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY) != 0
+    finally:
+        sock.close()
