@@ -291,7 +291,39 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "gamut": r.gamut,
         "display": r.space,
         "bit_depth": r.bit_depth,
+        "light_metrics": None if illuminant_levels is None else light_metrics(wl, illuminant_levels),
     }
+
+
+#: How setting 4's light is extended for the lighting metrics, said once (the page shows it).
+LIGHT_METRICS_NOTE = ("the explorer's lights have no energy outside 400–700 nm, so the light is taken as zero "
+                      "from 380 to 400 and 700 to 780 nm (CIE 13.3 and CIE 224 need 380–780 nm)")
+
+
+def light_metrics(wavelengths_nm, illuminant_levels) -> dict:
+    """CCT, Duv, Ra, R9, Rf, Rg, LER and melanopic DER of setting 4's illuminant (plain floats).
+
+    The page's light is linear between its bins over 400–700 nm and zero elsewhere
+    (:data:`LIGHT_METRICS_NOTE`); :func:`spectrocolor.lighting.summary` computes the metrics on
+    380–780 nm at 5 nm. NaN (undefined, e.g. no CCT for a single line) becomes None.
+
+    Examples
+    --------
+    >>> metrics = light_metrics(grid(10.0), [30.0] * 31)   # equal energy over 400-700 nm
+    >>> metrics["Ra"] > 80, metrics["note"].startswith("the explorer's lights")
+    (True, True)
+    """
+    from ..lighting import summary
+
+    fine = np.arange(380.0, 781.0, 5.0)
+    inside = (fine >= wavelengths_nm[0]) & (fine <= wavelengths_nm[-1])
+    values = np.zeros(fine.size)
+    values[inside] = np.interp(fine[inside], wavelengths_nm, np.asarray(illuminant_levels, dtype=float))
+    if not values.any():
+        return {"note": "a light with no energy has no colour rendering"}
+    metrics = summary(sc.Spectrum(fine, values))
+    plain = {k: (v if isinstance(v, bool) else _none_nan(v)) for k, v in metrics.items()}
+    return {**plain, "note": LIGHT_METRICS_NOTE}
 
 
 def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:

@@ -65,6 +65,7 @@ async function pump() {
     if (!S.dirty && seq === S.seq) {
       S.server = r; S.localWhite = r.white_XYZ;
       paint(r.colours, r); drawPoints(r.colours, evalSpec().labels, r); drawEmittedLight(r.colours[0].emitted_levels);
+      showLightMetrics(r.light_metrics);
       markStale(null);
       S.settled = true;
     }
@@ -77,6 +78,27 @@ async function pump() {
   }
   S.inflight = false;
   if (S.dirty) pump();
+}
+
+/** Setting 4: how well the illuminant renders colours (the library's lighting metrics). */
+function showLightMetrics(m) {
+  const box = $("light-metrics");
+  box.hidden = S.setting !== 4 || !m;
+  if (box.hidden) return;
+  const f = (v, d) => (v === null || v === undefined ? "—" : Number(v).toFixed(d));
+  box.replaceChildren();
+  const text = m.Ra === undefined ? m.note
+    : `The illuminant: CCT ${f(m.cct_K, 0)} K, Duv ${f(m.duv, 4)} · CRI Ra ${f(m.Ra, 1)}, R9 ${f(m.R9, 1)}`
+      + `${m.cri_meaningful ? "" : " (not meaningful: |Duv| > 0.0054)"} · TM-30 Rf ${f(m.Rf, 1)}, Rg ${f(m.Rg, 1)} · `
+      + `${f(m.LER_lm_per_W, 0)} lm/W · melanopic DER ${f(m.melanopic_DER, 2)}. `;
+  box.append(document.createTextNode(text));
+  if (m.Ra !== undefined) {
+    const link = document.createElement("a");
+    link.href = "/labs/light";
+    link.textContent = "More in the light-source lab";
+    box.append(link);
+    box.title = m.note;
+  }
 }
 
 /** Setting 1: the light the screen emits for the colour (SPECTRA's step 4) beside the bars. */
