@@ -60,6 +60,18 @@ class AlphaOpic:
         α-opic daylight (D65) efficacy ratios (1 for D65).
     illuminance_lx : ndarray
         Photopic illuminance E_v (lx), shape ``(...)``.
+
+    References
+    ----------
+    CIE S 026/E:2018, *CIE system for metrology of optical radiation for ipRGC-influenced
+    responses to light*.
+
+    Examples
+    --------
+    >>> from spectrocolor import alpha_opic, illuminant, wavelength_grid
+    >>> d65 = alpha_opic(illuminant("D65", wavelength_grid(380, 780, 5)))
+    >>> d65.der.round(3).tolist()  # D65 is the reference: every ratio is 1
+    [1.0, 1.0, 1.0, 1.0, 1.0]
     """
 
     irradiance_W_m2: np.ndarray
