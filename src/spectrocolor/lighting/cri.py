@@ -51,6 +51,18 @@ class CRI:
         Correlated colour temperature (K) and Duv of the light (CIE 1960 UCS).
     meaningful : ndarray of bool
         A CCT exists and ``|Duv|`` ≤ 5.4 × 10⁻³ (CIE 13.3 §5.3).
+
+    References
+    ----------
+    CIE 13.3-1995, *Method of measuring and specifying colour rendering properties of light
+    sources*.
+
+    Examples
+    --------
+    >>> from spectrocolor import colour_rendering_index, illuminant
+    >>> cri = colour_rendering_index(illuminant("FL2"))
+    >>> round(float(cri.Ra), 1), round(float(cri.Ri[8]), 1), bool(cri.meaningful)  # Ra, R9
+    (64.2, -83.9, True)
     """
 
     Ra: np.ndarray
