@@ -59,6 +59,18 @@ class Fidelity:
     test_ab, reference_ab : ndarray, shape (..., 16, 2)
         Mean CAM02-UCS a', b' of each hue bin under the light and the reference (the corners
         of the colour vector graphic).
+
+    References
+    ----------
+    CIE 224:2017, *CIE 2017 colour fidelity index for accurate scientific use*; ANSI/IES
+    TM-30-20.
+
+    Examples
+    --------
+    >>> from spectrocolor import colour_fidelity, illuminant
+    >>> result = colour_fidelity(illuminant("FL2"))
+    >>> result.Rf_h.shape, result.test_ab.shape, round(float(result.cct_K))
+    ((16,), (16, 2), 4224)
     """
 
     Rf: np.ndarray
