@@ -143,6 +143,29 @@ def radiant_quantity(spd) -> np.ndarray:
 def luminous_efficacy_of_radiation(spd, vision: str = "photopic") -> np.ndarray:
     """Luminous efficacy of radiation (LER), lm/W, of spectra ``(..., K)`` (any scale).
 
+    ``K = K_m ∫ S V dλ / ∫ S dλ``: the luminous flux per watt of radiant flux.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)``, any radiometric scale (it cancels).
+    vision : str, default "photopic"
+        ``"photopic"`` (V(λ), K_m = 683 lm/W) or ``"scotopic"`` (V′(λ), K′_m = 1700 lm/W).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        LER in lm/W; NaN for a spectrum with no radiant power.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown ``vision`` or a grid outside the luminous efficiency functions.
+
+    References
+    ----------
+    CIE 015:2018 §7.1 (K_m = 683 lm/W); ISO 23539:2005 / CIE S 010/E:2004 (V(λ), V′(λ), K′_m).
+
     Examples
     --------
     >>> from spectrocolor import wavelength_grid
