@@ -47,10 +47,22 @@ class LightReport:
     Attributes
     ----------
     names : tuple of str
+        One name per light (the Spectrum's names, else ``spectrum 1``, …).
     cri : CRI
+        CIE 13.3 colour rendering.
     fidelity : Fidelity
+        CIE 224 / TM-30 fidelity and gamut.
     ler_lm_per_W : ndarray (N,)
+        Luminous efficacy of radiation, lm/W.
     alpha_opic : AlphaOpic
+        CIE S 026 α-opic quantities.
+
+    Examples
+    --------
+    >>> from spectrocolor import illuminant
+    >>> report = light_report(illuminant("FL2"))
+    >>> {k: round(float(v[0]), 1) for k, v in report.headline().items() if k in ("Ra", "Rf", "LER_lm_per_W")}
+    {'Ra': 64.2, 'Rf': 70.1, 'LER_lm_per_W': 336.4}
     """
 
     names: tuple
@@ -63,7 +75,20 @@ class LightReport:
         return len(self.names)
 
     def headline(self) -> dict[str, np.ndarray]:
-        """The :data:`HEADLINE` columns as arrays (N,)."""
+        """The :data:`HEADLINE` columns as arrays (N,).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``cct_K``, ``duv``, ``Ra``, ``R9``, ``Rf``, ``Rg``, ``LER_lm_per_W``,
+            ``melanopic_DER``, each of shape (N,).
+
+        Examples
+        --------
+        >>> from spectrocolor import illuminant
+        >>> list(light_report(illuminant("FL2")).headline())
+        ['cct_K', 'duv', 'Ra', 'R9', 'Rf', 'Rg', 'LER_lm_per_W', 'melanopic_DER']
+        """
         return {
             "cct_K": self.fidelity.cct_K,
             "duv": self.fidelity.duv,
@@ -85,6 +110,26 @@ def light_report(spd) -> LightReport:
 
     ``spd`` as for :func:`~spectrocolor.lighting.colour_fidelity` (1 or 5 nm, 380–780 nm at
     least); CIE 13.3 uses samples from 360 nm where present.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)`` of the lights, uniform 1 or 5 nm, covering
+        380–780 nm; any scale.
+
+    Returns
+    -------
+    LightReport
+        CRI, fidelity, LER and α-opic quantities of the N lights.
+
+    Raises
+    ------
+    ColorimetryError
+        For a grid that does not cover 380–780 nm at 1 or 5 nm, and as the metrics.
+
+    References
+    ----------
+    CIE 13.3-1995; CIE 224:2017 and ANSI/IES TM-30-20; CIE S 026/E:2018.
 
     Examples
     --------
