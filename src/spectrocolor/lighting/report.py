@@ -149,6 +149,39 @@ def write_light_report(report: LightReport, path, format: str | None = None, *, 
 
     Written beside ``path`` and renamed over it when complete; CSV names that a spreadsheet
     would execute get a leading apostrophe; JSON has ``null`` where a value is undefined.
+
+    Parameters
+    ----------
+    report : LightReport
+        From :func:`light_report`.
+    path : str or os.PathLike
+        Output file.
+    format : {"html", "csv", "json"}, optional
+        Default: from the file suffix (``.htm`` counts as HTML).
+    title : str, keyword-only, optional
+        HTML title.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown format.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from spectrocolor import illuminant, light_report
+    >>> report = light_report(illuminant("FL2"))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_light_report(report, pathlib.Path(folder) / "fl2.csv")
+    ...     path.read_text().split(",")[:4]
+    ['name', 'cct_K', 'duv', 'Ra']
     """
     path = Path(path)
     fmt = (format or path.suffix.lstrip(".")).lower()
