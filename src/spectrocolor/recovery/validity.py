@@ -53,6 +53,13 @@ class DomainOfValidity:
     edge_wavelengths_nm : ndarray (P,)
         For the edge from vertex i to i+1, the wavelength at which ρ reaches 0 along it.
     illuminant, observer : str
+        The conditions used.
+
+    Examples
+    --------
+    >>> domain = domain_of_validity("D65", wavelengths=(400, 700, 10))
+    >>> domain.region_xy.shape, domain.edge_wavelengths_nm[:3].tolist()
+    ((31, 2), [540.0, 530.0, 520.0])
     """
 
     wavelengths_nm: np.ndarray
@@ -70,14 +77,52 @@ class DomainOfValidity:
         return c[..., :1] * a + c[..., 1:] * b + k
 
     def nonnegative(self, xy) -> np.ndarray:
-        """Whether the unconstrained solution is ≥ 0 at chromaticities ``xy`` (..., 2), y > 0."""
+        """Whether the unconstrained solution is ≥ 0 at chromaticities ``xy`` (..., 2), y > 0.
+
+        Parameters
+        ----------
+        xy : array_like, shape (..., 2)
+            CIE 1931 chromaticities.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (...)
+            True inside :attr:`region_xy` (and y > 0).
+
+        Examples
+        --------
+        >>> domain = domain_of_validity("D65", wavelengths=(400, 700, 10))
+        >>> domain.nonnegative([[0.3127, 0.3290], [0.70, 0.29]]).tolist()
+        [True, False]
+        """
         c = np.asarray(xy, dtype=float)
         return np.all(self._levels(c) >= 0.0, axis=-1) & (c[..., 1] > 0)
 
     def max_luminance_factor(self, xy) -> np.ndarray:
         """Largest ``Y/Y0`` (0–1 scale, ``Y0`` the perfect white) at chromaticities ``xy``
         (..., 2) for which the unconstrained solution stays ≤ 1; NaN where it is negative
-        somewhere (outside :attr:`region_xy`)."""
+        somewhere (outside :attr:`region_xy`).
+
+        Parameters
+        ----------
+        xy : array_like, shape (..., 2)
+            CIE 1931 chromaticities.
+
+        Returns
+        -------
+        numpy.ndarray, shape (...)
+            ``Y / Y0`` on the 0–1 scale, or NaN outside the region.
+
+        References
+        ----------
+        C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 7–12.
+
+        Examples
+        --------
+        >>> domain = domain_of_validity("D65", wavelengths=(400, 700, 10))
+        >>> round(float(domain.max_luminance_factor([0.3127, 0.3290])), 4)
+        0.9973
+        """
         c = np.asarray(xy, dtype=float)
         top = self._levels(c).max(axis=-1)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -86,7 +131,19 @@ class DomainOfValidity:
 
     def end_lines(self) -> tuple[np.ndarray, np.ndarray]:
         """Coefficients ``(a, b, c)`` of the lines ``a x + b y + c = 0`` on which the
-        unconstrained solution vanishes at the first (λ_b) and the last (λ_e) sample."""
+        unconstrained solution vanishes at the first (λ_b) and the last (λ_e) sample.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(first, last)``, each ``(a, b, c)`` of shape (3,), in xy chromaticity.
+
+        Examples
+        --------
+        >>> first, last = domain_of_validity("D65", wavelengths=(400, 700, 10)).end_lines()
+        >>> first.shape, last.shape
+        ((3,), (3,))
+        """
         return self.line_coefficients[0], self.line_coefficients[-1]
 
 
@@ -121,8 +178,13 @@ def domain_of_validity(
 
     Parameters
     ----------
-    illuminant, observer, wavelengths
-        As for :func:`spectrocolor.smoothest_reflectance`.
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
 
     Returns
     -------
