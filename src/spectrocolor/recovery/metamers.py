@@ -57,6 +57,18 @@ class MismatchRegion:
     extreme_metamers : Spectrum (n, K)
         The extreme metamers themselves (0/1 except at a few samples).
     illuminant, second_illuminant, observer : str
+        The conditions used.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> grid = wavelength_grid(400, 700, 10)
+    >>> grey = np.full(grid.size, 0.4)  # a flat 40 % reflectance
+    >>> region = metamer_mismatch_region(grey @ weights(grid, illuminant="D65"), wavelengths=(400, 700, 10),
+    ...                                  directions=50)
+    >>> region.support.shape, region.extreme_metamers.values.shape, region.second_illuminant
+    ((50,), (50, 31), 'A')
     """
 
     XYZ100: np.ndarray
@@ -70,7 +82,31 @@ class MismatchRegion:
 
     def contains(self, XYZ_second, tolerance: float = 1e-9) -> np.ndarray:
         """Whether colours (..., 3) under the second illuminant satisfy every supporting
-        half-space (an outer bound of the region: exact up to the direction sampling)."""
+        half-space (an outer bound of the region: exact up to the direction sampling).
+
+        Parameters
+        ----------
+        XYZ_second : array_like, shape (..., 3)
+            Colours under the second illuminant, XYZ100 (its perfect white Y = 100).
+        tolerance : float, default 1e-9
+            Slack on each half-space, XYZ100 units.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (...)
+            True where every supporting half-space holds.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spectrocolor import wavelength_grid, weights
+        >>> grid = wavelength_grid(400, 700, 10)
+        >>> grey = np.full(grid.size, 0.4)  # a flat 40 % reflectance
+        >>> region = metamer_mismatch_region(grey @ weights(grid, illuminant="D65"), wavelengths=(400, 700, 10),
+        ...                                  directions=50)
+        >>> region.contains([grey @ weights(grid, illuminant="A"), [90.0, 40.0, 5.0]]).tolist()
+        [True, False]
+        """
         b = np.asarray(XYZ_second, dtype=float)
         return np.all(b @ self.directions.T <= self.support + tolerance, axis=-1)
 
@@ -144,10 +180,13 @@ def metamer_mismatch_region(
     XYZ : array_like (3,)
         The colour under ``illuminant`` (perfect white ``Y = 100``); it must lie in the
         object-colour solid.
-    illuminant, second_illuminant : str
-        The illuminant the metamers match under, and the one they are seen under.
-    observer, wavelengths
-        As for :func:`spectrocolor.smoothest_reflectance`.
+    illuminant, second_illuminant : str or Spectrum
+        The illuminant the metamers match under (default ``"D65"``), and the one they are seen
+        under (default ``"A"``).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
     directions : int or ndarray (n, 3)
         Number of directions (spread evenly on the sphere) or the directions themselves.
 
@@ -163,6 +202,17 @@ def metamer_mismatch_region(
     References
     ----------
     A. D. Logvinenko, B. Funt, C. Godau, IEEE Trans. Image Process. 23, 34–43 (2014).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> grid = wavelength_grid(400, 700, 10)
+    >>> grey = np.full(grid.size, 0.4)  # a flat 40 % reflectance
+    >>> region = metamer_mismatch_region(grey @ weights(grid, illuminant="D65"), wavelengths=(400, 700, 10),
+    ...                                  directions=50)
+    >>> bool(region.contains(grey @ weights(grid, illuminant="A")))  # the grey itself under A
+    True
     """
     from scipy.optimize import linprog
 
@@ -226,11 +276,38 @@ def smoothest_metamer(
     XYZ, XYZ_second : array_like (..., 3)
         Colours under ``illuminant`` and ``second_illuminant`` (each white ``Y = 100``).
 
+    illuminant, second_illuminant : str or Spectrum
+        The two lights (defaults ``"D65"`` and ``"A"``).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+
     Returns
     -------
     MetamerResult
         Pairs that no reflectance can match (``XYZ_second`` outside the mismatch region)
         are flagged and NaN; a single such pair raises :class:`ColorimetryError`.
+
+    Raises
+    ------
+    ColorimetryError
+        For shapes that differ, or a single pair that no reflectance can match.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990) (smoothest reflectance).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> grid = wavelength_grid(400, 700, 10)
+    >>> grey = np.full(grid.size, 0.4)  # a flat 40 % reflectance
+    >>> pair = smoothest_metamer(grey @ weights(grid, illuminant="D65"), grey @ weights(grid, illuminant="A"),
+    ...                          wavelengths=(400, 700, 10))
+    >>> bool(abs(pair.spectrum.values - 0.4).max() < 1e-9)  # the grey is the smoothest
+    True
     """
     from scipy.optimize import linprog
 
@@ -321,13 +398,45 @@ def most_different_metamer(
     sample : Spectrum (K,) or array_like (3,)
         A reflectance (on the grid of ``wavelengths``) or its colour under ``illuminant``;
         for a colour, its smoothest reflectance stands for the sample.
-    amount : float
+    amount : float, default 0.9
         0 ≤ amount < 1: the metamer's colour under ``second_illuminant`` lies this fraction
         of the way from the sample's to the farthest point of the mismatch region.
+    illuminant, second_illuminant : str or Spectrum
+        The two lights (defaults ``"D65"`` and ``"A"``).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+    directions : int, default 200
+        Directions used to sample the mismatch region.
 
     Returns
     -------
     DifferentMetamer
+        The metamer, its colour under the second light, the farthest colour and the ΔE00
+        values reached and possible.
+
+    Raises
+    ------
+    ColorimetryError
+        For ``amount`` outside [0, 1), a sample not on the grid, or a colour outside the
+        object-colour solid.
+
+    References
+    ----------
+    A. D. Logvinenko, B. Funt, C. Godau (2014) (mismatch region); C. van Trigt (1990)
+    (smoothest reflectance).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> grid = wavelength_grid(400, 700, 10)
+    >>> grey = np.full(grid.size, 0.4)  # a flat 40 % reflectance
+    >>> different = most_different_metamer(grey @ weights(grid, illuminant="D65"), amount=0.5,
+    ...                                    wavelengths=(400, 700, 10), directions=50)
+    >>> round(float(different.delta_e_2000), 2), round(float(different.max_delta_e_2000), 2)
+    (16.55, 22.81)
     """
     from .smoothest import smoothest_reflectance
 
