@@ -78,6 +78,13 @@ class SmoothestResult:
         ``"infeasible"``.
     bounds : str or None
     observer, illuminant : str
+        The conditions used.
+
+    Examples
+    --------
+    >>> result = smoothest_reflectance([40.0, 40.0, 40.0], wavelengths=(400, 700, 10))
+    >>> bool(result.feasible), str(result.method), result.bounds, result.spectrum.values.shape
+    (True, 'unconstrained', 'unit', (31,))
     """
 
     spectrum: Spectrum
