@@ -58,6 +58,28 @@ def object_colour_membership(
 ) -> SolidMembership:
     """Exact membership test of ``XYZ`` (..., 3) (white ``Y = 100``) in the object-colour solid.
 
+    Parameters
+    ----------
+    XYZ : array_like, shape (..., 3)
+        Colours, XYZ100 (the perfect white under ``illuminant`` has Y = 100).
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+
+    Returns
+    -------
+    SolidMembership
+        ``inside`` (bool), ``relative_depth`` (> 0 inside, 0 on the boundary) and
+        ``distance_outside`` (XYZ100 units), each of shape (...).
+
+    References
+    ----------
+    E. Schrödinger, Ann. Phys. 62, 603–622 (1920) (optimal colours).
+
     Examples
     --------
     >>> m = object_colour_membership([[40.0, 40.0, 40.0], [90.0, 10.0, 5.0]])
@@ -103,8 +125,13 @@ def optimal_colours(
 
     Parameters
     ----------
-    illuminant, observer, wavelengths
-        As for :func:`spectrocolor.smoothest_reflectance`.
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
     directions : int or array_like (M, 3)
         Number of directions spread evenly over the sphere, or the directions themselves.
 
@@ -161,9 +188,16 @@ def macadam_limits(
 
     Parameters
     ----------
-    luminance_factor
+    luminance_factor : float
         ``Y`` in percent of the perfect white, strictly between 0 and 100.
-    samples
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+    samples : int, default 720
         Number of hue angles, spread uniformly over the full turn.
 
     Returns
