@@ -33,20 +33,107 @@ def _reflectance(spectrum, argument: str) -> Spectrum:
 
 
 def cohen_projector(wavelengths_nm, illuminant="D65", observer="1931") -> np.ndarray:
-    """Cohen's matrix ``R`` (K, K): the orthogonal projector onto the span of the weights."""
+    """Cohen's matrix ``R`` (K, K): the orthogonal projector onto the span of the weights.
+
+    ``R = W (Wᵀ W)⁻¹ Wᵀ``: ``R ρ`` is the fundamental metamer of ρ, ``(I − R) ρ`` its
+    metameric black.
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K, K)
+        Symmetric, idempotent, of rank 3.
+
+    References
+    ----------
+    J. B. Cohen and W. E. Kappauf, Am. J. Psychol. 95, 537–564 (1982) (matrix R).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid
+    >>> R = cohen_projector(wavelength_grid(400, 700, 10))
+    >>> R.shape, round(float(np.trace(R)), 9), bool(np.allclose(R @ R, R))
+    ((31, 31), 3.0, True)
+    """
     W = np.asarray(weights(wavelengths_nm, observer=observer, illuminant=illuminant))
     return W @ np.linalg.solve(W.T @ W, W.T)
 
 
 def fundamental_metamer(spectrum: Spectrum, illuminant="D65", observer="1931") -> Spectrum:
-    """The fundamental metamer ``R ρ`` of reflectance(s) ``(..., K)``: same XYZ, no black."""
+    """The fundamental metamer ``R ρ`` of reflectance(s) ``(..., K)``: same XYZ, no black.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        Reflectance factors (0–1), ``(..., K)``.
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias.
+
+    Returns
+    -------
+    Spectrum
+        ``R ρ`` (may leave 0–1), same names.
+
+    References
+    ----------
+    J. B. Cohen and W. E. Kappauf (1982); see :func:`cohen_projector`.
+
+    Examples
+    --------
+    >>> from spectrocolor import Spectrum, tristimulus, wavelength_grid
+    >>> sample = Spectrum.gaussian(550, 80, wavelength_grid(400, 700, 10), peak=0.8)
+    >>> tristimulus(fundamental_metamer(sample), illuminant="D65").round(4).tolist()
+    [29.3969, 50.8161, 5.5021]
+    >>> tristimulus(sample, illuminant="D65").round(4).tolist()
+    [29.3969, 50.8161, 5.5021]
+    """
     s = _reflectance(spectrum, "spectrum")
     R = cohen_projector(s.wavelengths_nm, illuminant, observer)
     return Spectrum(s.wavelengths_nm, s.values @ R.T, s.names)
 
 
 def metameric_black(spectrum: Spectrum, illuminant="D65", observer="1931") -> Spectrum:
-    """The metameric black ``ρ − R ρ``: tristimulus values exactly zero (to rounding)."""
+    """The metameric black ``ρ − R ρ``: tristimulus values exactly zero (to rounding).
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        Reflectance factors (0–1), ``(..., K)``.
+    illuminant : str or Spectrum, default "D65"
+        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
+        Spectrum sampled on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias.
+
+    Returns
+    -------
+    Spectrum
+        ``ρ − R ρ``, same names; adds to the fundamental metamer to give ρ.
+
+    References
+    ----------
+    J. B. Cohen and W. E. Kappauf (1982); see :func:`cohen_projector`.
+
+    Examples
+    --------
+    >>> from spectrocolor import Spectrum, tristimulus, wavelength_grid
+    >>> sample = Spectrum.gaussian(550, 80, wavelength_grid(400, 700, 10), peak=0.8)
+    >>> bool(abs(tristimulus(metameric_black(sample), illuminant="D65")).max() < 1e-12)
+    True
+    """
     s = _reflectance(spectrum, "spectrum")
     R = cohen_projector(s.wavelengths_nm, illuminant, observer)
     return Spectrum(s.wavelengths_nm, s.values - s.values @ R.T, s.names)
@@ -62,10 +149,37 @@ def metamerism_index(
     CIE 015 corrects the second sample multiplicatively in XYZ by the ratio of the
     reference-illuminant values, which is applied here.
 
+    Parameters
+    ----------
+    spectrum1, spectrum2 : Spectrum
+        Reflectance factors (0–1) on the same grid; broadcast against each other.
+    reference : str or Spectrum, default "D65"
+        The illuminant under which the pair matches.
+    test : str or Spectrum, default "A"
+        The illuminant under which the mismatch is measured.
+    observer : str or Spectrum, default "1931"
+        Observer name or alias.
+
     Returns
     -------
     ndarray (...)
         ΔE00 under the test illuminant.
+
+    Raises
+    ------
+    SpectrumError
+        For input that is not a Spectrum, or spectra on different grids.
+
+    References
+    ----------
+    CIE 015:2018 (special metamerism index: change in illuminant); CIE 142-2001 (ΔE00).
+
+    Examples
+    --------
+    >>> from spectrocolor import Spectrum, wavelength_grid
+    >>> sample = Spectrum.gaussian(550, 80, wavelength_grid(400, 700, 10), peak=0.8)
+    >>> round(float(metamerism_index(sample, fundamental_metamer(sample))), 3)
+    0.708
     """
     s1, s2 = _reflectance(spectrum1, "spectrum1"), _reflectance(spectrum2, "spectrum2")
     if not np.array_equal(s1.wavelengths_nm, s2.wavelengths_nm):
@@ -103,6 +217,35 @@ def colour_shift(spectrum: Spectrum, source="D65", target="A", observer="1931",
     The samples' XYZ under ``target`` are mapped to corresponding colours under ``source``
     by a chromatic adaptation transform (:func:`spectrocolor.adapt`), and compared in
     CIELAB with their XYZ under ``source``.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        Reflectance factors (0–1), ``(..., K)``.
+    source : str or Spectrum, default "D65"
+        The reference light.
+    target : str or Spectrum, default "A"
+        The new light.
+    observer : str or Spectrum, default "1931"
+        Observer name or alias.
+    method : str, default "bradford"
+        Chromatic adaptation transform (see :func:`spectrocolor.adapt`).
+
+    Returns
+    -------
+    ColourShift
+        ``lab_source``, ``lab_target`` (…, 3) relative to the source white and the a*b* shift.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Fig. 1.
+
+    Examples
+    --------
+    >>> from spectrocolor import Spectrum, wavelength_grid
+    >>> green = Spectrum.gaussian(550, 80, wavelength_grid(400, 700, 10), peak=0.8)
+    >>> colour_shift(green).shift_ab.round(2).tolist()  # a*, b* shift from D65 to A
+    [-19.07, -0.68]
     """
     from ..display.adaptation import adapt
 
