@@ -77,6 +77,19 @@ class MeasurementReport:
         ``srgb8`` as "#rrggbb".
     white_XYZ : ndarray (3,)
         The perfect white under the illuminant on the samples' grid.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import Spectrum, wavelength_grid
+    >>> grid = wavelength_grid(380, 780, 5)
+    >>> tiles = Spectrum(grid, np.stack([np.full(grid.size, 0.5), np.where(grid > 600, 0.9, 0.05)]),
+    ...                  ["grey", "red"])
+    >>> report = measurement_report(tiles, illuminant="C")  # seed 001's illuminant
+    >>> report.XYZ.round(2).tolist(), report.dominant_wavelength_nm.round(1).tolist()
+    ([[49.04, 50.0, 59.11], [31.88, 17.0, 5.92]], [nan, 620.2])
+    >>> report.srgb_hex
+    ('#bcbcbc', '#de2039')
     """
 
     names: tuple
@@ -112,7 +125,27 @@ class MeasurementReport:
         return self.srgb_hex
 
     def records(self) -> list[dict]:
-        """One dict per sample, keys as in the CSV header; NaN as None."""
+        """One dict per sample, keys as in the CSV header; NaN as None.
+
+        Returns
+        -------
+        list of dict
+            One record per sample: ``name``, ``X``, ``Y``, ``Z``, ``x``, ``y``,
+            ``dominant_wavelength_nm``, ``complementary``, ``excitation_purity_percent``,
+            ``luminance_factor_percent``, ``L*``, ``a*``, ``b*``, ``sRGB``, ``in_sRGB_gamut``
+            (numbers rounded as in the CSV).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spectrocolor import Spectrum, wavelength_grid
+        >>> grid = wavelength_grid(380, 780, 5)
+        >>> tiles = Spectrum(grid, np.stack([np.full(grid.size, 0.5), np.where(grid > 600, 0.9, 0.05)]),
+        ...                  ["grey", "red"])
+        >>> record = measurement_report(tiles, illuminant="C").records()[1]
+        >>> record["name"], record["luminance_factor_percent"], record["sRGB"]
+        ('red', 17.0, '#de2039')
+        """
         columns = self._columns()
         return [
             dict(zip(_COLUMNS, row, strict=True))
@@ -163,6 +196,30 @@ def measurement_report(spectra: Spectrum, illuminant=DEFAULT_ILLUMINANT, observe
     Returns
     -------
     MeasurementReport
+        XYZ100, xy, dominant (or complementary) wavelength, excitation purity, luminance
+        factor, CIELAB and an sRGB swatch of every sample, with the conditions used.
+
+    Raises
+    ------
+    SpectrumError
+        For input that is not a Spectrum of (N, K) or (K,) reflectances.
+    ColorimetryError
+        For ``illuminant=None`` or an unknown illuminant, observer or method.
+
+    References
+    ----------
+    Seed 001 (Visser 1986), §§1.7–1.8; CIE 015:2018 §§7–9.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import Spectrum, wavelength_grid
+    >>> grid = wavelength_grid(380, 780, 5)
+    >>> tiles = Spectrum(grid, np.stack([np.full(grid.size, 0.5), np.where(grid > 600, 0.9, 0.05)]),
+    ...                  ["grey", "red"])
+    >>> report = measurement_report(tiles, illuminant="C")
+    >>> report.names, report.luminance_factor.round(2).tolist()
+    (('grey', 'red'), [50.0, 17.0])
     """
     from .chromaticity import dominant_wavelength
     from .colorimetry import tristimulus, white_point
@@ -221,21 +278,48 @@ def write_report(report: MeasurementReport, path, format: str | None = None, *,
                  title: str | None = None, page_rows: int = 500) -> Path:
     """Write a report as HTML (self-contained), CSV or JSON.
 
-    Parameters
-    ----------
-    report : MeasurementReport
-    path : str or Path
-    format : {"html", "csv", "json"}, optional
-        Default: from the file suffix.
-    title : str, optional
-        HTML title (default: "Colour measurement report").
-    page_rows : int
-        HTML only: list every sample up to this many; beyond, list this many and summarise.
-
     The file is written beside ``path`` and renamed over it once complete
     (:func:`spectrocolor.safe_write.write_text`): a failed write leaves any previous file
     unchanged. CSV names that a spreadsheet would execute (``=``, ``+``, ``-``, ``@``) get a
     leading apostrophe (:func:`spectrocolor.spreadsheet.neutralise_cell`).
+
+    Parameters
+    ----------
+    report : MeasurementReport
+        From :func:`measurement_report`.
+    path : str or os.PathLike
+        Output file.
+    format : {"html", "csv", "json"}, optional
+        Default: from the file suffix.
+    title : str, keyword-only, optional
+        HTML title (default: "Colour measurement report").
+    page_rows : int, keyword-only, default 500
+        HTML only: list every sample up to this many; beyond, list this many and summarise.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown format.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import Spectrum, wavelength_grid
+    >>> grid = wavelength_grid(380, 780, 5)
+    >>> tiles = Spectrum(grid, np.stack([np.full(grid.size, 0.5), np.where(grid > 600, 0.9, 0.05)]),
+    ...                  ["grey", "red"])
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_report(measurement_report(tiles, illuminant="C"), pathlib.Path(folder) / "tiles.csv")
+    ...     path.read_text().splitlines()[0][:26]
+    '# illuminant C, observer C'
     """
     path = Path(path)
     fmt = (format or path.suffix.lstrip(".")).lower()
