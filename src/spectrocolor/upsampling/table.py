@@ -90,6 +90,20 @@ class UpsamplingTable:
         The tristimulus weights ``W`` (illuminant × observer × Δλ, perfect white Y = 100).
     space, illuminant, observer : str
         Labels of what the table was built for.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990) (the smoothest reflectances at the
+    nodes).
+
+    Examples
+    --------
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> table
+    UpsamplingTable(space='sRGB', illuminant='D65', observer='CIE 1931 2°', resolution=3, K=81, moved_nodes=0)
+    >>> table.node_XYZ100[2, 2, 2].round(3).tolist()  # the white node
+    [95.043, 100.0, 108.88]
     """
 
     wavelengths_nm: np.ndarray
