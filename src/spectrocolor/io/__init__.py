@@ -67,11 +67,11 @@ def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None
 
     Parameters
     ----------
-    text
+    text : str
         The whole file as text.
-    source
+    source : str, default "<text>"
         Name used in messages (normally the file name).
-    percent
+    percent : bool or None, default None
         ``None``: follow the file where its format declares percent or fraction (Argyll
         ``SPECTRAL_NORM``, ``CTI3``, ``SPECTRAL_PCT``/``SPECTRAL_DEC`` fields) and otherwise keep
         the values as written; ``True``: the values are percentages (divided by 100); ``False``:
@@ -123,6 +123,33 @@ def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:
     ``percent`` and what the result holds; wavelengths must be strictly increasing, and a
     ``wavelength_um`` column is converted to nm.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The measurement file.
+    percent : bool or None, keyword-only, default None
+        As for :func:`parse_spectra`: ``None`` follows the file's declaration, ``True`` divides
+        by 100, ``False`` keeps fractions.
+
+    Returns
+    -------
+    Spectrum
+        ``(N, K)`` (or ``(K,)``) values on the 0–1 scale for reflectances when the file or
+        ``percent`` says so, with names and ``metadata`` (``format``, ``value_scale``, …).
+
+    Raises
+    ------
+    SpectrumError
+        For a path that is not a file name, an unreadable or unrecognised file, or malformed
+        content (one line saying where).
+    FileNotFoundError
+        If the file does not exist.
+
+    References
+    ----------
+    ANSI CGATS.17-2009 (exchange format); ArgyllCMS ``.ti3``/``.sp`` file formats; ANSI/IES
+    TM-27-20 (spectral data format).
+
     Examples
     --------
     >>> from importlib.resources import files
@@ -144,10 +171,31 @@ def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:
     """Write ``spectrum`` to ``path`` atomically: ``.csv``/``.txt`` (long CSV), ``.json`` or
     ``.cgats`` (CGATS.17, 0–1 scale declared); returns the path.
 
+    Parameters
+    ----------
+    spectrum : Spectrum
+        One spectrum or an ``(N, K)`` batch (wavelengths in nm; values written as they are).
+    path : str or os.PathLike
+        Output file; the suffix chooses the format.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written (beside ``path`` first, then renamed over it).
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum or an unknown suffix.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
+
+    Examples
+    --------
     >>> import tempfile, pathlib
-    >>> folder = pathlib.Path(tempfile.mkdtemp())
     >>> s = Spectrum([400, 500], [[0.1, 0.2], [0.3, 0.4]], ["a", "b"])
-    >>> read_spectra(write_spectra(s, folder / "s.cgats")) == s
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     read_spectra(write_spectra(s, pathlib.Path(folder) / "s.cgats")) == s
     True
     """
     from ..safe_write import write_text
