@@ -191,6 +191,18 @@ def primary_emission(space="SPECTRA 7000K", wavelengths_nm=None):
 def emission_sources(space="SPECTRA 7000K", wavelengths_nm=None) -> tuple[str, ...]:
     """Where each primary's spectrum in :func:`primary_emission` comes from (R, G, B).
 
+    Parameters
+    ----------
+    space : str or RGBSpace, default "SPECTRA 7000K"
+        The display.
+    wavelengths_nm : array_like, shape (K,), optional
+        The grid of the emission spectra, nm (as for :func:`primary_emission`).
+
+    Returns
+    -------
+    tuple of str
+        One description per primary (R, G, B).
+
     Examples
     --------
     >>> emission_sources("sRGB")[0]
