@@ -2,7 +2,8 @@
 // what the library computes for it (POST /api/lab/light): CCT, Duv, Ra, R1-R14, Rf, Rg, the TM-30
 // vector graphic, LER, melanopic DER and the test samples under the light and the reference.
 
-const $ = (id) => document.getElementById(id);
+import { $, api, context, css, fmt, showError, wireCommon } from "./common.js";
+
 const DEFAULT_LEDS = [[450, 20, 1.0], [540, 60, 0.7], [620, 20, 0.8]];
 const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB" };
 
@@ -13,20 +14,7 @@ let dirty = false;
 const undoStack = [];
 const redoStack = [];
 
-function showError(message) {
-  $("error-text").textContent = message;
-  $("error").hidden = false;
-}
 
-async function api(path, body) {
-  const init = body === undefined ? {} : {
-    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
-  };
-  const response = await fetch(path, init);
-  const data = await response.json();
-  if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
-  return data;
-}
 
 // ---- state, URL, undo ----------------------------------------------------------------------
 function encode(s) {
@@ -166,18 +154,7 @@ async function request() {
 }
 
 // ---- drawing ----------------------------------------------------------------------------
-function context(canvas) {
-  const ratio = window.devicePixelRatio || 1;
-  const { width, height } = canvas.getBoundingClientRect();
-  canvas.width = Math.max(1, Math.round(width * ratio));
-  canvas.height = Math.max(1, Math.round(height * ratio));
-  const ctx = canvas.getContext("2d");
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-  return { ctx, width, height };
-}
 
-const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
-const fmt = (v, digits) => (v === null || v === undefined ? "—" : Number(v).toFixed(digits));
 
 function numbers() {
   const s = result.summary;
@@ -299,10 +276,7 @@ async function start() {
   $("remove").addEventListener("click", () => commit({ leds: state.leds.slice(0, -1) }));
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
-  $("error-close").addEventListener("click", () => { $("error").hidden = true; });
-  document.addEventListener("keydown", (e) => {
-    if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") { e.preventDefault(); if (e.shiftKey) redo(); else undo(); }
-  });
+  wireCommon(undo, redo);
   window.addEventListener("popstate", () => { state = decode(location.hash); render(); });
   window.addEventListener("resize", paint);
   history.replaceState(null, "", encode(state));

@@ -3,7 +3,8 @@
 // chromaticity and the domain of validity (POST /api/lab/reflectance), and the MacAdam limit at Y
 // (POST /api/lab/reflectance/macadam). Nothing is computed here but the drawing.
 
-const $ = (id) => document.getElementById(id);
+import { $, api, context, css, fmt, showError, wireCommon } from "./common.js";
+
 const DEFAULTS = { light: "D65", step: "5", x: 0.45, y: 0.4, Y: 30 };
 
 let state = { ...DEFAULTS };
@@ -14,20 +15,7 @@ let dirty = false;
 const undoStack = [];
 const redoStack = [];
 
-function showError(message) {
-  $("error-text").textContent = message;
-  $("error").hidden = false;
-}
 
-async function api(path, body) {
-  const init = body === undefined ? {} : {
-    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
-  };
-  const response = await fetch(path, init);
-  const data = await response.json();
-  if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
-  return data;
-}
 
 function decode(hash) {
   const params = new URLSearchParams(hash.slice(1));
@@ -109,18 +97,7 @@ async function request() {
 }
 
 // ---- drawing ----------------------------------------------------------------------------
-function context(canvas) {
-  const ratio = window.devicePixelRatio || 1;
-  const { width, height } = canvas.getBoundingClientRect();
-  canvas.width = Math.max(1, Math.round(width * ratio));
-  canvas.height = Math.max(1, Math.round(height * ratio));
-  const ctx = canvas.getContext("2d");
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-  return { ctx, width, height };
-}
 
-const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
-const fmt = (v, digits) => (v === null || v === undefined ? "—" : Number(v).toFixed(digits));
 const ranges = (runs) => runs.map(([a, b]) => (a === b ? `${a}` : `${a}–${b}`)).join(", ") + " nm";
 
 function drawSpectrum() {
@@ -254,10 +231,7 @@ async function start() {
   });
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
-  $("error-close").addEventListener("click", () => { $("error").hidden = true; });
-  document.addEventListener("keydown", (e) => {
-    if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") { e.preventDefault(); if (e.shiftKey) redo(); else undo(); }
-  });
+  wireCommon(undo, redo);
   window.addEventListener("popstate", () => { state = decode(location.hash); render(); });
   window.addEventListener("resize", paint);
   history.replaceState(null, "", encode(state));

@@ -2,7 +2,8 @@
 // colours, the display cube's edges), a section at Y and a sample's metamer mismatch region; the
 // page only projects and draws them (a rotatable orthographic view on a 2-D canvas).
 
-const $ = (id) => document.getElementById(id);
+import { $, api, context, css, showError, wireCommon } from "./common.js";
+
 const DEFAULTS = { light: "D65", display: "sRGB", Y: 50, sample: 1, second: "A", yaw: 35, pitch: 20, mismatch: 0 };
 
 let state = { ...DEFAULTS };
@@ -12,19 +13,7 @@ let region = null;
 const undoStack = [];
 const redoStack = [];
 
-function showError(message) {
-  $("error-text").textContent = message;
-  $("error").hidden = false;
-}
 
-async function api(path, body) {
-  const response = await fetch(path, body === undefined ? {} : {
-    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
-  });
-  const data = await response.json();
-  if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
-  return data;
-}
 
 function decode(hash) {
   const params = new URLSearchParams(hash.slice(1));
@@ -95,17 +84,7 @@ async function load(before = null) {
 }
 
 // ---- drawing ----------------------------------------------------------------------------
-function context(canvas) {
-  const ratio = window.devicePixelRatio || 1;
-  const { width, height } = canvas.getBoundingClientRect();
-  canvas.width = Math.max(1, Math.round(width * ratio));
-  canvas.height = Math.max(1, Math.round(height * ratio));
-  const ctx = canvas.getContext("2d");
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-  return { ctx, width, height };
-}
 
-const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
 
 // The mismatch region is convex; its boundary points come in the order of their directions on a
 // sphere, so a picture of it is the convex hull of their projections (Andrew's monotone chain).
@@ -257,10 +236,7 @@ async function start() {
   });
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
-  $("error-close").addEventListener("click", () => { $("error").hidden = true; });
-  document.addEventListener("keydown", (e) => {
-    if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") { e.preventDefault(); if (e.shiftKey) redo(); else undo(); }
-  });
+  wireCommon(undo, redo);
   window.addEventListener("popstate", () => restore(decode(location.hash)));
   window.addEventListener("resize", paint);
   history.replaceState(null, "", encode(state));

@@ -3,7 +3,8 @@
 // for thickness 0-1500 nm in 1 nm steps), and the page only looks values up in it, so dragging the
 // thickness or animating a draining film repaints in the same frame.
 
-const $ = (id) => document.getElementById(id);
+import { $, api, context, css, showError, wireCommon } from "./common.js";
+
 const DEFAULTS = { film: "soap", model: "airy", light: "blackbody:6504", display: "sRGB", angle: 0, d: 350 };
 // the library's draining_film(): h(x, t) = 2 sqrt(eta x / (rho g t)), x down from the top (m)
 export const DRAIN = { heightM: 0.05, viscosityPaS: 1.0e-3, densityKgM3: 1000.0, g: 9.80665 };
@@ -18,20 +19,7 @@ export function drainThicknessNm(xM, timeS) {
   return 2.0 * Math.sqrt((DRAIN.viscosityPaS * xM) / (DRAIN.densityKgM3 * DRAIN.g * timeS)) * 1e9;
 }
 
-function showError(message) {
-  $("error-text").textContent = message;
-  $("error").hidden = false;
-}
 
-async function api(path, body) {
-  const init = body === undefined ? {} : {
-    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
-  };
-  const response = await fetch(path, init);
-  const data = await response.json();
-  if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
-  return data;
-}
 
 function fillSelect(select, options, value) {
   select.replaceChildren(...options.map((o) => {
@@ -105,17 +93,6 @@ async function loadTable() {
 }
 
 // ---- drawing ----------------------------------------------------------------------------
-// The canvas's backing store follows its CSS size (reallocated only when that changes), cleared.
-function context(canvas) {
-  const ratio = window.devicePixelRatio || 1;
-  const width = canvas.clientWidth, height = canvas.clientHeight;
-  const w = Math.max(1, Math.round(width * ratio)), h = Math.max(1, Math.round(height * ratio));
-  if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
-  const ctx = canvas.getContext("2d");
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-  ctx.clearRect(0, 0, width, height);
-  return { ctx, width, height };
-}
 
 // A layer drawn once per table and size (axes, curves), copied under each repaint's marker.
 const layers = new Map();
@@ -136,7 +113,6 @@ function layer(name, canvas, draw) {
 }
 
 const hex = (rgb) => "#" + rgb.map((c) => c.toString(16).padStart(2, "0")).join("");
-const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
 
 let stripImage = null;
 let spectrumTop = 1;
@@ -423,13 +399,7 @@ async function start() {
   $("full").addEventListener("click", () => toggleFullWindow());
   $("drain").addEventListener("click", togglePlay);
   document.addEventListener("keydown", (e) => { if (e.key === "Escape") toggleFullWindow(false); });
-  $("error-close").addEventListener("click", () => { $("error").hidden = true; });
-  document.addEventListener("keydown", (e) => {
-    if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") {
-      e.preventDefault();
-      if (e.shiftKey) redo(); else undo();
-    }
-  });
+  wireCommon(undo, redo);
   window.addEventListener("popstate", () => { const before = { ...state }; state = readHash(); apply(before); });
   window.addEventListener("resize", () => paint());
   syncControls();
