@@ -22,8 +22,6 @@ import inspect
 import re
 import textwrap
 
-import pytest
-
 import spectrocolor
 
 _UNDERLINE = re.compile(r"^\s*-{3,}\s*$")
@@ -235,7 +233,6 @@ def test_returns_detection():
 # -- the API ----------------------------------------------------------------------------------------
 
 
-@pytest.mark.xfail(strict=True, reason="public names still lack Examples/Returns/parameter types; see issue 11")
 def test_public_api_docstrings_are_complete():
     counts, failing = report()
     lines = [f"{name}: {problems}" for name, problems in sorted(failing.items())]
