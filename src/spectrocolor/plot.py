@@ -27,7 +27,25 @@ _LOCUS_LABELS_NM = (380, 460, 470, 480, 490, 500, 510, 520, 540, 560, 580, 600, 
 _PLANCK_LABELS_K = (1500, 2000, 3000, 4000, 6500, 10000)
 
 
-def _axes(ax, figsize):
+def axes_or_new(ax, figsize):
+    """``ax`` itself, or the axes of a new :class:`matplotlib.figure.Figure` (no pyplot state).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes or None
+        Axes to draw into; ``None`` makes a new figure.
+    figsize : tuple of float
+        Size of the new figure, inches (width, height).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> axes_or_new(None, (3, 2)).figure.get_size_inches().tolist()
+    [3.0, 2.0]
+    """
     if ax is not None:
         return ax
     from matplotlib.figure import Figure
@@ -240,7 +258,7 @@ def chromaticity_diagram(
     from .display.spaces import rgb_space
 
     kind = _kind(kind)
-    ax = _axes(ax, (6.4, 6.4))
+    ax = axes_or_new(ax, (6.4, 6.4))
     locus_all = spectral_locus(observer)
     wl = np.asarray(locus_all.wavelengths_nm)
     locus = _to_kind(np.asarray(locus_all.xy), kind)
@@ -526,7 +544,7 @@ def spectrum_plot(spectrum, index=None, style: str = "bars", ax=None, title=None
         raise ColorimetryError(f"style must be 'bars' or 'area', got {style!r}")
     wl = spectrum.wavelengths_nm
     tint = wavelength_tint(wl) / 255.0
-    ax = _axes(ax, (6.4, 3.2))
+    ax = axes_or_new(ax, (6.4, 3.2))
     if style == "bars":
         width = np.min(np.diff(wl)) * 0.9 if wl.size > 1 else 5.0
         ax.bar(wl, values, width=width, color=tint, edgecolor="0.3", linewidth=0.3)

@@ -11,15 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import SpectrumError
+from ..plot import axes_or_new
 from ..spectrum import Spectrum
-
-
-def _axes(ax, figsize):
-    if ax is not None:
-        return ax
-    from matplotlib.figure import Figure
-
-    return Figure(figsize=figsize, layout="constrained").add_subplot()
 
 
 def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=None,
@@ -42,7 +35,7 @@ def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=
         if len(ref) != len(values):
             raise SpectrumError(f"measured: expected {len(values)} curves to compare, got {len(ref)}")
     names = labels if labels is not None else (spectrum.names or [None] * len(values))
-    ax = _axes(ax, (6.4, 4.0))
+    ax = axes_or_new(ax, (6.4, 4.0))
     for i, curve in enumerate(values):
         ax.plot(spectrum.wavelengths_nm, curve, color=f"C{i % 10}", lw=1.6, label=names[i])
         if ref is not None:
@@ -68,7 +61,7 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
     from ..plot import chromaticity_diagram
 
     ax = chromaticity_diagram(spaces=(), whites=(domain.illuminant,), planckian=False,
-                              fill=False, ax=_axes(ax, (6.4, 6.4)),
+                              fill=False, ax=axes_or_new(ax, (6.4, 6.4)),
                               title=title or f"Domain of validity, {domain.illuminant}, "
                               f"{domain.wavelengths_nm[0]:g}–{domain.wavelengths_nm[-1]:g} nm")
     x, y = np.meshgrid(np.linspace(0.0, 0.8, 321), np.linspace(0.001, 0.9, 361))
@@ -106,7 +99,7 @@ def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65"
     return chromaticity_diagram(
         spaces=(), whites=(illuminant,), planckian=False, fill=False,
         curves=curves, curve_labels=[f"Y = {Y:g} %" for Y in luminance_factors],
-        ax=_axes(ax, (6.4, 6.4)), title=f"MacAdam limits, {illuminant}, observer {observer}")
+        ax=axes_or_new(ax, (6.4, 6.4)), title=f"MacAdam limits, {illuminant}, observer {observer}")
 
 
 def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_second=None, ax=None):
@@ -122,7 +115,7 @@ def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_seco
 
     W_white = _second_white(region)
     ab = lab(region.boundary_XYZ100, W_white)[:, 1:]
-    ax = _axes(ax, (5.6, 5.2))
+    ax = axes_or_new(ax, (5.6, 5.2))
     hull = ConvexHull(ab)
     loop = np.append(hull.vertices, hull.vertices[0])
     ax.fill(ab[loop, 0], ab[loop, 1], color="0.85", zorder=1, label="mismatch region (a*b*)")
@@ -163,7 +156,7 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
     from ..plot import chromaticity_diagram
 
     ax = chromaticity_diagram(spaces=(), whites=(), planckian=False, fill=False,
-                              ax=_axes(ax, (6.4, 6.4)), title=title or "Boundary locus")
+                              ax=axes_or_new(ax, (6.4, 6.4)), title=title or "Boundary locus")
     ax.plot(*locus.left_xy.T, color="C0", lw=1.5, zorder=5, label="left branch: λ_b … λ")
     ax.plot(*locus.right_xy.T, color="C3", lw=1.5, zorder=5, label="right branch: λ … λ_e")
     ax.plot(*locus.white_xy, "o", color="black", ms=5, zorder=6, label="white")
@@ -181,7 +174,7 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
 
 def generating_luminance_plot(generating, ax=None, title: str | None = None):
     """``Y(λ₁)/Y₀`` (solid) and ``Y_M(λ₁)/Y₀`` (dashed) against λ₁ (van Trigt Figs. 9–10)."""
-    ax = _axes(ax, (6.4, 4.0))
+    ax = axes_or_new(ax, (6.4, 4.0))
     interior = generating.solution_class == "1"
     ax.plot(generating.touch_nm[interior], generating.luminance_factor[interior], color="C0",
             lw=1.6, label="Y(λ₁)/Y₀: ρ(λ; λ₁) at most 1")
