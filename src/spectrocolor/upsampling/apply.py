@@ -124,14 +124,29 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     Parameters
     ----------
     table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
     rgb_linear : array_like (..., 3)
         Table coordinates (linear RGB of the table's space, or XYZ100 / white).
-    out_of_range : str
-        A key of :data:`OUT_OF_RANGE_STRATEGIES` (default ``"toward-grey"``).
+    out_of_range : str, default "toward-grey"
+        A key of :data:`OUT_OF_RANGE_STRATEGIES`.
 
     Returns
     -------
     Lookup
+        ``nodes`` and barycentric ``weights`` of each query's tetrahedron, ``exact`` (the
+        query was inside the cube) and ``moved``.
+
+    Raises
+    ------
+    ColorimetryError
+        For a table of the wrong type, malformed coordinates or an unknown strategy.
+
+    Examples
+    --------
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> lookup(table, [[0.5, 0.5, 0.5], [1.2, 0.5, 0.1]]).exact.tolist()
+    [True, False]
     """
     if not isinstance(table, UpsamplingTable):
         raise ColorimetryError(f"table: expected an UpsamplingTable, got {type(table).__name__}")
@@ -245,7 +260,37 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
 
 def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey",
                      out: np.ndarray | None = None) -> np.ndarray:
-    """Only the spectra of :func:`upsample` (``(..., K)`` float64), optionally into ``out``."""
+    """Only the spectra of :func:`upsample` (``(..., K)`` float64), optionally into ``out``.
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
+    rgb_linear : array_like, shape (..., 3)
+        Table coordinates.
+    out_of_range : str, default "toward-grey"
+        A key of :data:`OUT_OF_RANGE_STRATEGIES` (``"nan"`` gives NaN spectra outside).
+    out : numpy.ndarray, shape (..., K), optional
+        Where to write the spectra.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., K)
+        Reflectance factors (0–1).
+
+    Raises
+    ------
+    ColorimetryError
+        As :func:`lookup`.
+
+    Examples
+    --------
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> spectra = upsample_spectra(table, [[0.5, 0.5, 0.5]])
+    >>> spectra.shape, bool(abs(spectra - 0.5).max() < 1e-9)  # mid grey: a flat 50 %
+    ((1, 81), True)
+    """
     out_of_range = _strategy(out_of_range)
     found = lookup(table, rgb_linear, out_of_range)
     flat_out = None if out is None else out.reshape(-1, table.wavelengths_nm.size)
@@ -257,7 +302,33 @@ def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "to
 
 
 def node_colours(table: UpsamplingTable, weights) -> np.ndarray:
-    """Colours of the nodes under other weights ``(K, 3)``: ``(n³, 3)`` = ``ρ_nodes @ weights``."""
+    """Colours of the nodes under other weights ``(K, 3)``: ``(n³, 3)`` = ``ρ_nodes @ weights``.
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
+    weights : array_like, shape (K, 3)
+        Tristimulus weights on the table's grid.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n³, 3)
+        The nodes' colours on the weights' scale.
+
+    Raises
+    ------
+    ColorimetryError
+        For weights of another shape.
+
+    Examples
+    --------
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> from spectrocolor import weights
+    >>> node_colours(table, weights(table.wavelengths_nm, illuminant="A")).shape
+    (27, 3)
+    """
     W = np.asarray(weights, dtype=np.float64)
     K = table.wavelengths_nm.size
     if W.shape != (K, 3):
@@ -275,15 +346,29 @@ def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str
     Parameters
     ----------
     table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
     rgb_linear : array_like (..., 3)
+        Table coordinates.
     weights : ndarray (K, 3)
         E.g. ``spectrocolor.weights(table.wavelengths_nm, illuminant="A")`` (XYZ100 under A).
-    out_of_range : str
+    out_of_range : str, default "toward-grey"
+        A key of :data:`OUT_OF_RANGE_STRATEGIES`.
 
     Returns
     -------
     XYZ : ndarray (..., 3)
+        Colours under the new weights, on their scale.
     exact : ndarray of bool (...)
+        Whether each query was inside the table's cube.
+
+    Examples
+    --------
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> from spectrocolor import weights
+    >>> XYZ, exact = colours_under(table, [[1.0, 1.0, 1.0]], weights(table.wavelengths_nm, illuminant="A"))
+    >>> XYZ.round(3).tolist(), exact.tolist()  # the white reflects 1 everywhere: A's white
+    ([[109.849, 100.0, 35.582]], [True])
     """
     out_of_range = _strategy(out_of_range)
     found = lookup(table, rgb_linear, out_of_range)
@@ -318,15 +403,33 @@ def upsample_blocks(table: UpsamplingTable, image, out_of_range: str = "toward-g
 
     Parameters
     ----------
+    table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
     image : array_like (H, ...) with last axis 3, e.g. a ``np.memmap``
         Linear table coordinates; only one block is read and converted at a time.
-    max_block_mib : float
+    out_of_range : str, default "toward-grey"
+        A key of :data:`OUT_OF_RANGE_STRATEGIES`.
+    max_block_mib : float, default 64.0
         Budget of one block's spectra (float64), MiB.
 
     Yields
     ------
     (slice, ndarray)
         The rows and their spectra ``(rows, ..., K)``.
+
+    Raises
+    ------
+    ColorimetryError
+        For an image whose last axis is not 3 or a budget that is not positive.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> blocks = list(upsample_blocks(table, np.full((4, 2, 3), 0.5), max_block_mib=0.001))
+    >>> len(blocks), blocks[0][0], blocks[0][1].shape
+    (4, slice(0, 1, None), (1, 2, 81))
     """
     shape = tuple(np.shape(image))
     if len(shape) < 2 or shape[-1] != 3:
@@ -345,6 +448,34 @@ def upsample_dask(table: UpsamplingTable, rgb_linear, out_of_range: str = "towar
     """Lazy spectra of a dask array ``(..., 3)`` (chunked on the leading axes): ``(..., K)``.
 
     Each chunk goes through :func:`upsample_spectra`, so the numbers equal the NumPy path's.
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
+    rgb_linear : dask.array.Array, shape (..., 3)
+        Table coordinates (the last axis is rechunked to one chunk).
+    out_of_range : str, default "toward-grey"
+        A key of :data:`OUT_OF_RANGE_STRATEGIES`.
+
+    Returns
+    -------
+    dask.array.Array, shape (..., K)
+        Lazy float64 reflectances, chunked like the input's leading axes.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown strategy or an array whose last axis is not 3.
+
+    Examples
+    --------
+    >>> import dask.array as da
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> spectra = upsample_dask(table, da.full((4, 2, 3), 0.5, chunks=(2, 2, 3)))
+    >>> spectra.shape, spectra.chunks[0]
+    ((4, 2, 81), (2, 2))
     """
     import dask.array as da
 
