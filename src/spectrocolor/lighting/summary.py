@@ -157,6 +157,21 @@ def summary(spd) -> dict[str, float | bool]:
     For the explorer app and other callers that want JSON-ready values; NaN where a metric is
     undefined (no CCT). ``cri_meaningful`` is CIE 13.3's ``|Duv|`` ≤ 5.4 × 10⁻³.
 
+    Parameters
+    ----------
+    spd : Spectrum
+        One light's spectral power distribution (1 or 5 nm, covering 380–780 nm; any scale).
+
+    Returns
+    -------
+    dict of str to float or bool
+        The :data:`HEADLINE` values and ``cri_meaningful``.
+
+    Raises
+    ------
+    ColorimetryError
+        As :func:`light_report`.
+
     Examples
     --------
     >>> from spectrocolor import illuminant
