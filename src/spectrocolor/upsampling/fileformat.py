@@ -60,7 +60,30 @@ def _sections(n: int, K: int):
 
 
 def table_bytes(table: UpsamplingTable) -> bytes:
-    """The file's bytes for ``table`` (see the module docstring for the layout)."""
+    """The file's bytes for ``table`` (see the module docstring for the layout).
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+        The table to serialise.
+
+    Returns
+    -------
+    bytes
+        Header, JSON metadata, the arrays, and a CRC-32 checksum.
+
+    Raises
+    ------
+    SpectrumError
+        If an array of the table has an unexpected shape.
+
+    Examples
+    --------
+    >>> from spectrocolor.upsampling import upsampling_table
+    >>> data = table_bytes(upsampling_table("sRGB", resolution=2, measure_excess=False))
+    >>> data[:len(MAGIC)] == MAGIC
+    True
+    """
     n, K = table.resolution, table.wavelengths_nm.size
     meta = {"format": FORMAT_NAME, "space": table.space, "illuminant": table.illuminant,
             "observer": table.observer,
@@ -82,6 +105,25 @@ def table_bytes(table: UpsamplingTable) -> bytes:
 
 def save_table(table: UpsamplingTable, path) -> Path:
     """Write ``table`` to ``path`` atomically (temporary file beside it, checked, renamed).
+
+    Parameters
+    ----------
+    table : UpsamplingTable
+        The table to save.
+    path : str or os.PathLike
+        Output file (conventionally ``.scup``).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    SpectrumError
+        For something other than an UpsamplingTable.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
 
     Examples
     --------
@@ -108,11 +150,31 @@ def _bad(path, what: str) -> SpectrumError:
 def load_table(path) -> UpsamplingTable:
     """Read a table written by :func:`save_table`, checking its size, checksum and values.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The table file.
+
+    Returns
+    -------
+    UpsamplingTable
+        The table, its arrays read-only.
+
     Raises
     ------
     SpectrumError
         Wrong magic or version, sizes out of range, a length that does not match the header, a
         checksum mismatch, malformed metadata, or values outside their ranges.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from spectrocolor.upsampling import upsampling_table
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = save_table(upsampling_table("sRGB", resolution=2, measure_excess=False),
+    ...                       pathlib.Path(folder) / "srgb.scup")
+    ...     load_table(path).resolution
+    2
     """
     path = Path(path)
     try:
