@@ -445,6 +445,26 @@ def read_thickness_map(path, nm_per_count: float | None = None) -> np.ndarray:
     nm_per_count : float, optional
         Required for PNG: thickness in nm per grey count (e.g. 0.05 maps a 16-bit range to
         0-3277 nm). Must not be given for ``.npy`` (already in nm).
+
+    Returns
+    -------
+    numpy.ndarray of float32, shape (H, W)
+        Thickness per pixel, nm.
+
+    Raises
+    ------
+    SpectrumError
+        For another suffix, a scale given or missing against the format, a map that is not
+        2-D numbers, or a PNG that is not greyscale.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     np.save(pathlib.Path(folder) / "wedge.npy", wedge(4, 2, 300.0))
+    ...     read_thickness_map(pathlib.Path(folder) / "wedge.npy")[0].tolist()
+    [0.0, 100.0, 200.0, 300.0]
     """
     path = Path(path)
     suffix = path.suffix.lower()
@@ -478,6 +498,43 @@ def draining_film_gif(path, table: ColourTable, width: int, height: int, times_s
 
     Needs Pillow. Thicknesses beyond the table's range are an error, so build the table up
     to the thickest frame (the earliest time, bottom edge).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Output ``.gif``.
+    table : ColourTable
+        From :func:`colour_table` (one angle).
+    width, height : int
+        Frame size in pixels.
+    times_s : sequence of float
+        Times since the film was drawn, s (one frame each).
+    frame_ms : int, default 100
+        Display time of each frame, ms.
+    **film_options : dict
+        ``film_height_m``, ``viscosity_Pa_s``, ``density_kg_m3`` for :func:`draining_film`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    SpectrumError
+        For no times, or thicknesses beyond the table.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from PIL import Image
+    >>> from spectrocolor import colour_table, soap_film
+    >>> table = colour_table(soap_film, 1200.0, thickness_step_nm=5.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = draining_film_gif(pathlib.Path(folder) / "film.gif", table, 8, 8, [2.0e4, 4.0e4])
+    ...     with Image.open(path) as gif:
+    ...         print(gif.n_frames, gif.size)
+    2 (8, 8)
     """
     from PIL import Image
 
