@@ -68,7 +68,8 @@ def throughput(size: int) -> None:
 _CHILD = r"""
 import json, os, resource, sys, time
 import numpy as np
-from spectrocolor.images import read_cube, cube_to_rgb, write_image
+from spectrocolor.images import read_cube, cube_to_rgb
+from spectrocolor.pictures import write_image
 status = dict(line.split(":", 1) for line in open("/proc/self/status") if ":" in line)
 baseline = int(status["VmSize"].split()[0]) * 1024
 limit = baseline + int(sys.argv[3])

@@ -61,8 +61,7 @@ def _report():
 
 
 def _writers():
-    from spectrocolor.images import write_image
-    from spectrocolor.pictures import save_image
+    from spectrocolor.pictures import save_image, write_image
     from spectrocolor.report import write_report
 
     big8 = np.random.default_rng(0).integers(0, 256, (300, 300, 3), dtype=np.uint8)
@@ -159,7 +158,7 @@ def test_a_missing_folder_is_one_clear_error(tmp_path):
 
 KILL_SCRIPT = """
 import sys, numpy as np
-from spectrocolor.images import write_image
+from spectrocolor.pictures import write_image
 image = np.random.default_rng(0).random((2500, 2500, 3)).astype(np.float32)  # 75 MB
 print("start", flush=True)
 for _ in range(50):
@@ -169,7 +168,7 @@ for _ in range(50):
 
 @pytest.mark.parametrize("run", range(3))
 def test_kill_9_during_a_tiff_write_keeps_the_previous_file(tmp_path, run):
-    from spectrocolor.images import write_image
+    from spectrocolor.pictures import write_image
 
     target = tmp_path / "cube.tif"
     previous = np.arange(12, dtype=np.float32).reshape(2, 2, 3)

@@ -24,8 +24,8 @@ from spectrocolor.images import (  # noqa: E402
     SpectralCube,
     read_cube,
     read_envi_header,
-    write_image,
 )
+from spectrocolor.pictures import write_image  # noqa: E402
 
 WAVELENGTHS = np.arange(400.0, 701.0, 10.0)  # 31 bands
 

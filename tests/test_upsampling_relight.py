@@ -130,7 +130,7 @@ def test_cli_bad_options_get_one_line(tmp_path, capsys, argv, message):
 
 
 def test_cli_refuses_16_bit_png_and_damaged_files(tmp_path, capsys):
-    from spectrocolor.images import write_image
+    from spectrocolor.pictures import write_image
 
     write_image(tmp_path / "deep.png", np.zeros((2, 2, 3), np.uint16))
     assert main(["relight", str(tmp_path / "deep.png"), "--to", "A",

@@ -119,7 +119,7 @@ _PUBLIC: dict[str, str] = {
     "cube_to_xyz": "images",
     "cube_to_lab": "images",
     "cube_to_rgb": "images",
-    "write_image": "images",
+    "write_image": "pictures",
     "measurement_report": "report",
     "MeasurementReport": "report",
     "write_report": "report",

@@ -316,7 +316,7 @@ def verify_tiff(path: Path, shape: tuple[int, ...], nbytes: int) -> None:
     --------
     >>> import tempfile, pathlib
     >>> import numpy as np
-    >>> from spectrocolor.images import write_image
+    >>> from spectrocolor.pictures import write_image
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = write_image(pathlib.Path(folder) / "a.tif", np.zeros((2, 3, 3)))
     ...     verify_tiff(path, (2, 3, 3), 144)  # silent when right

@@ -108,8 +108,9 @@ def _chunks(text: str | None, dask: bool):
 
 
 def _image(args: argparse.Namespace) -> int:
-    from ..images import plan_conversion, read_cube, write_image
+    from ..images import plan_conversion, read_cube
     from ..images.convert import run_blocks
+    from ..pictures import write_image
 
     suffix = args.out.lower().rsplit(".", 1)[-1]
     if suffix not in ("png", "tif", "tiff"):

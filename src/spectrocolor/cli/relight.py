@@ -170,7 +170,7 @@ def relight_codes(table, codes: np.ndarray, args: argparse.Namespace) -> tuple[n
 
 
 def _relight(args: argparse.Namespace) -> int:
-    from ..images import write_image
+    from ..pictures import write_image
 
     if not 2 <= args.resolution <= 65:
         raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")

@@ -1,4 +1,4 @@
-"""Spectral images at scale: read cubes, convert them block by block, write images.
+"""Spectral images at scale: read cubes and convert them block by block.
 
 Needs the ``images`` extra (Pillow, tifffile, xarray, dask, h5netcdf, tqdm); the core package
 never imports this. ``import spectrocolor.images`` registers the ``.spectro`` accessor on xarray
@@ -7,7 +7,7 @@ alone does not.
 
 * :func:`read_cube` — .npy/.npz, multi-page TIFF, ENVI, netCDF/HDF5, folder of band images.
 * :func:`cube_to_xyz`, :func:`cube_to_lab`, :func:`cube_to_rgb` — bounded-memory conversion.
-* :func:`write_image` — PNG (8/16-bit codes) or float TIFF.
+* writing the results: :func:`spectrocolor.pictures.write_image` (PNG 8/16-bit codes, float TIFF).
 * ``DataArray.spectro.to_xyz / to_lab / to_rgb`` — the same, lazy on dask.
 """
 
@@ -17,7 +17,6 @@ from . import accessor  # noqa: F401  (registers DataArray.spectro)
 from .convert import ConversionPlan, cube_to_lab, cube_to_rgb, cube_to_xyz, plan_conversion
 from .cube import MappedArray, SpectralCube, wavelengths_to_nm
 from .readers import read_cube, read_envi_header
-from .writers import write_image
 
 __all__ = [
     "ConversionPlan",
@@ -30,5 +29,4 @@ __all__ = [
     "read_cube",
     "read_envi_header",
     "wavelengths_to_nm",
-    "write_image",
 ]
