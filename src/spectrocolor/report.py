@@ -508,7 +508,33 @@ dt{font-weight:600}
 
 def report_html(report: MeasurementReport, *, title: str | None = None,
                 page_rows: int = 500) -> str:
-    """The report as one self-contained HTML document (figures embedded as base64 PNG)."""
+    """The report as one self-contained HTML document (figures embedded as base64 PNG).
+
+    Parameters
+    ----------
+    report : MeasurementReport
+        From :func:`measurement_report`.
+    title : str, keyword-only, optional
+        The page title (default "Colour measurement report").
+    page_rows : int, keyword-only, default 500
+        List every sample up to this many; beyond, list this many and summarise.
+
+    Returns
+    -------
+    str
+        The HTML text.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import Spectrum, measurement_report, wavelength_grid
+    >>> grid = wavelength_grid(380, 780, 5)
+    >>> tiles = Spectrum(grid, np.stack([np.full(grid.size, 0.5), np.where(grid > 600, 0.9, 0.05)]),
+    ...                  ["grey", "red"])
+    >>> page = report_html(measurement_report(tiles, illuminant="C"))
+    >>> page.startswith("<!DOCTYPE html>"), "<title>Colour measurement report</title>" in page
+    (True, True)
+    """
     title = title or "Colour measurement report"
     conditions = _conditions(report)
     n = len(report)
