@@ -100,7 +100,29 @@ def _cell(value, decimals: int | None = None) -> str:
 
 
 def report_html(report: LightReport, *, title: str | None = None, pictures: int = 12) -> str:
-    """The report as one self-contained HTML page (vector graphics of the first ``pictures`` lights)."""
+    """The report as one self-contained HTML page (vector graphics of the first ``pictures`` lights).
+
+    Parameters
+    ----------
+    report : LightReport
+        From :func:`spectrocolor.light_report`.
+    title : str, keyword-only, optional
+        The page title (default "Light source report").
+    pictures : int, keyword-only, default 12
+        How many lights get a TM-30 colour vector graphic (needs matplotlib).
+
+    Returns
+    -------
+    str
+        The HTML text.
+
+    Examples
+    --------
+    >>> from spectrocolor import illuminant, light_report
+    >>> page = report_html(light_report(illuminant("FL2")), pictures=0)
+    >>> "<title>Light source report</title>" in page
+    True
+    """
     title = title or "Light source report"
     records = _records(report)
     head = "".join(f"<th title='{html.escape(text)}'>{html.escape(key)}</th>" for key, text in HEADLINE.items())
