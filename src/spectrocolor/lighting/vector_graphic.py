@@ -34,6 +34,29 @@ FORMATS = ("png", "svg")
 def normalised_graphic(fidelity: Fidelity, index=()) -> tuple[np.ndarray, np.ndarray]:
     """Reference (unit circle) and test corners (16, 2) of the vector graphic of one light.
 
+    Parameters
+    ----------
+    fidelity : Fidelity
+        From :func:`~spectrocolor.lighting.colour_fidelity`.
+    index : int or tuple, default ()
+        Which light of a batch (``()`` for a single light).
+
+    Returns
+    -------
+    reference : numpy.ndarray, shape (16, 2)
+        The reference's hue-bin corners, normalised to the unit circle.
+    test : numpy.ndarray, shape (16, 2)
+        The light's corners, with the same normalisation.
+
+    Raises
+    ------
+    ColorimetryError
+        For an ``index`` that does not pick one light.
+
+    References
+    ----------
+    ANSI/IES TM-30-20, §6 (colour vector graphic).
+
     Examples
     --------
     >>> from spectrocolor import illuminant
@@ -95,6 +118,16 @@ def vector_graphic(fidelity: Fidelity, index=(), *, ax=None, title: str | None =
     ax : matplotlib Axes, optional
         Draw into these axes; default: a new 5 × 5 inch figure.
     title : str, optional
+        The graphic's title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn into.
+
+    References
+    ----------
+    ANSI/IES TM-30-20, §6 (colour vector graphic).
 
     Examples
     --------
@@ -146,6 +179,39 @@ def write_vector_graphic(fidelity: Fidelity, path, index=(), *, title: str | Non
     """Write the colour vector graphic of one light as PNG or SVG (by the file suffix).
 
     The file is written beside ``path`` and renamed over it when complete.
+
+    Parameters
+    ----------
+    fidelity : Fidelity
+        From :func:`~spectrocolor.lighting.colour_fidelity`.
+    path : str or os.PathLike
+        Output file ending in ``.png`` or ``.svg``.
+    index : int or tuple, default ()
+        Which light of a batch.
+    title : str, keyword-only, optional
+        The graphic's title.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ColorimetryError
+        For another suffix or an ``index`` that does not pick one light.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from spectrocolor import illuminant
+    >>> from spectrocolor.lighting import colour_fidelity
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_vector_graphic(colour_fidelity(illuminant("FL2")), pathlib.Path(folder) / "fl2.svg")
+    ...     path.read_text().count("<svg") >= 1
+    True
     """
     import io
 
