@@ -25,8 +25,28 @@ def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=
         Reflectance factors (0–1), e.g. ``smoothest_reflectance(...).spectrum``.
     measured : Spectrum, optional
         The same number of curves, on any grid (e.g. the measured samples).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+    title : str, optional
+        The axes' title.
     labels : sequence of str, optional
         Legend entries (default: ``spectrum.names``).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from spectrocolor import smoothest_reflectance
+    >>> result = smoothest_reflectance([[40.0, 40.0, 40.0], [30.0, 20.0, 10.0]], wavelengths=(400, 700, 10))
+    >>> len(reflectance_curves(result.spectrum, labels=["grey", "orange"]).lines)
+    2
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close("all")
     """
     values = np.atleast_2d(spectrum.values).reshape(-1, len(spectrum.wavelengths_nm))
     ref = None
@@ -57,6 +77,36 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
     Filled contours: the maximum luminance factor Y/Y0 for which the unconstrained solution
     stays ≤ 1; outline: the region where it is non-negative; dashed: the straight lines where
     it vanishes at the first (λ_b) and the last (λ_e) sample.
+
+    Parameters
+    ----------
+    domain : DomainOfValidity
+        From :func:`spectrocolor.domain_of_validity`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+    title : str, optional
+        The axes' title (default: the illuminant and the range).
+    levels : sequence of float, optional
+        Contour levels of Y/Y0 (0–1).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 7–12.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from spectrocolor import domain_of_validity
+    >>> domain_of_validity_plot(domain_of_validity("D65", wavelengths=(400, 700, 10))).get_title()
+    'Domain of validity, D65, 400–700 nm'
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close("all")
     """
     from ..plot import chromaticity_diagram
 
@@ -89,7 +139,39 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
 
 def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65",
                         observer="1931", wavelengths=(380.0, 780.0, 5.0), ax=None):
-    """MacAdam limits (optimal colours) at several luminance factors Y (percent)."""
+    """MacAdam limits (optimal colours) at several luminance factors Y (percent).
+
+    Parameters
+    ----------
+    luminance_factors : sequence of float, default (10, 30, 50, 70, 90)
+        Y of each locus, percent of the perfect white (strictly between 0 and 100).
+    illuminant : str or Spectrum, default "D65"
+        The light.
+    observer : str, default "1931"
+        Observer name or alias.
+    wavelengths : tuple of float, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` of the optimal reflectances.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    References
+    ----------
+    D. L. MacAdam, J. Opt. Soc. Am. 25, 249–252 (1935).
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> macadam_limits_plot((20, 60), wavelengths=(400, 700, 10)).get_title()
+    'MacAdam limits, D65, observer 1931'
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close("all")
+    """
     from ..coordinates import xy
     from ..plot import chromaticity_diagram
     from .optimal import macadam_limits
@@ -108,6 +190,36 @@ def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_seco
     The outline is the convex hull of the boundary points projected on a*b* (the projection
     of the convex region in XYZ, curved by CIELAB's non-linearity); ``sample_XYZ100_second``
     and ``metamers_XYZ100_second`` (e.g. smooth metamers) are marked.
+
+    Parameters
+    ----------
+    region : MismatchRegion
+        From :func:`spectrocolor.metamer_mismatch_region`.
+    sample_XYZ100_second : array_like, shape (3,), optional
+        The sample's colour under the second illuminant, XYZ100.
+    metamers_XYZ100_second : array_like, shape (M, 3), optional
+        Colours of metamers under the second illuminant, XYZ100.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import numpy as np
+    >>> from spectrocolor import metamer_mismatch_region, wavelength_grid, weights
+    >>> grey = np.full(31, 0.4)
+    >>> region = metamer_mismatch_region(grey @ weights(wavelength_grid(400, 700, 10), illuminant="D65"),
+    ...                                  wavelengths=(400, 700, 10), directions=50)
+    >>> mismatch_region_plot(region).get_xlabel()
+    'a*'
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close("all")
     """
     from scipy.spatial import ConvexHull
 
@@ -152,6 +264,36 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
     ``generating`` (:class:`~spectrocolor.recovery.validity.GeneratingFunctions`) the
     chromaticities of the generating functions (the boundary of the domain of validity) are
     drawn too, with λ₁ marked every 50 nm.
+
+    Parameters
+    ----------
+    locus : BoundaryLocus
+        From :func:`spectrocolor.recovery.validity.boundary_locus`.
+    generating : GeneratingFunctions, optional
+        From :func:`spectrocolor.recovery.validity.generating_functions`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+    title : str, optional
+        The axes' title (default "Boundary locus").
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 3–4.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from spectrocolor.recovery.validity import boundary_locus
+    >>> boundary_locus_plot(boundary_locus("D65", wavelengths=(400, 700, 10))).get_title()
+    'Boundary locus'
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close("all")
     """
     from ..plot import chromaticity_diagram
 
@@ -173,7 +315,36 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
 
 
 def generating_luminance_plot(generating, ax=None, title: str | None = None):
-    """``Y(λ₁)/Y₀`` (solid) and ``Y_M(λ₁)/Y₀`` (dashed) against λ₁ (van Trigt Figs. 9–10)."""
+    """``Y(λ₁)/Y₀`` (solid) and ``Y_M(λ₁)/Y₀`` (dashed) against λ₁ (van Trigt Figs. 9–10).
+
+    Parameters
+    ----------
+    generating : GeneratingFunctions
+        From :func:`spectrocolor.recovery.validity.generating_functions`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+    title : str, optional
+        The axes' title.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn into.
+
+    References
+    ----------
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 9–10.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from spectrocolor.recovery.validity import generating_functions
+    >>> generating_luminance_plot(generating_functions("D65", wavelengths=(400, 700, 10))).get_ylabel()
+    'luminance factor Y/Y₀'
+    >>> import matplotlib.pyplot as plt
+    >>> plt.close("all")
+    """
     ax = axes_or_new(ax, (6.4, 4.0))
     interior = generating.solution_class == "1"
     ax.plot(generating.touch_nm[interior], generating.luminance_factor[interior], color="C0",
