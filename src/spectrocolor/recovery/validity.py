@@ -251,6 +251,21 @@ def _xy(XYZ):
 def boundary_locus(illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS) -> BoundaryLocus:
     """The left and right branches of van Trigt's boundary locus for one illuminant.
 
+    Parameters
+    ----------
+    illuminant : str or Spectrum, default "D65"
+        The light (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a Spectrum on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm.
+
+    Returns
+    -------
+    BoundaryLocus
+        The grid, the xy of the left (λ_b … λ) and right (λ … λ_e) block reflectances, and the
+        white's xy.
+
     References
     ----------
     C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 3–4 and Eq. (8).
@@ -311,6 +326,21 @@ class GeneratingFunctions:
 def generating_functions(illuminant="D65", observer="1931",
                          wavelengths=DEFAULT_WAVELENGTHS) -> GeneratingFunctions:
     """Van Trigt's generating functions ``ρ(λ; λ₁)`` with ``Y(λ₁)`` and ``Y_M(λ₁)``.
+
+    Parameters
+    ----------
+    illuminant : str or Spectrum, default "D65"
+        The light (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a Spectrum on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm.
+
+    Returns
+    -------
+    GeneratingFunctions
+        For each touching wavelength λ₁: the reflectance (0–1), its luminance factor and the
+        optimal colour's.
 
     References
     ----------
