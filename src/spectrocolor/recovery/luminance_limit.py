@@ -27,8 +27,12 @@ def max_luminance_factor(xy, illuminant="D65", observer="1931", wavelengths=DEFA
     ----------
     xy : array_like, shape (..., 2)
         CIE chromaticities (x, y) with y > 0.
-    illuminant, observer, wavelengths
-        As :func:`spectrocolor.smoothest_reflectance` (the solid's weights).
+    illuminant : str or Spectrum, default "D65"
+        The light (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a Spectrum on the grid).
+    observer : str or Spectrum, default "1931"
+        Observer name or alias, or colour-matching functions on the grid.
+    wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm.
 
     Returns
     -------
