@@ -125,11 +125,11 @@ def parse_cgats(text: str, source: str, percent: bool | None = None) -> Spectrum
 
     Parameters
     ----------
-    text
+    text : str
         The file's text.
-    source
+    source : str
         File name, for messages.
-    percent
+    percent : bool or None, default None
         ``None`` to follow the file's declaration (module docstring), else the caller's statement.
 
     Returns
