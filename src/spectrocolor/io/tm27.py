@@ -55,6 +55,31 @@ def _leaves(element, prefix: str, into: dict[str, object]) -> None:
 def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
     """Spectra from an IES TM-27 XML document (see the module docstring).
 
+    Parameters
+    ----------
+    text : str
+        The XML document.
+    source : str
+        File name, for messages.
+    percent : bool or None, default None
+        ``True`` divides the values by 100; ``None`` and ``False`` keep them.
+
+    Returns
+    -------
+    Spectrum
+        One spectrum per ``SpectralDistribution``, named from the header's description, with
+        ``metadata`` (``format``, ``spectral_quantity``, …).
+
+    Raises
+    ------
+    SpectrumError
+        For XML with DOCTYPE or ENTITY declarations, malformed XML, or missing or
+        non-numeric spectral data.
+
+    References
+    ----------
+    ANSI/IES TM-27-20, *IES Standard Format for the Electronic Transfer of Spectral Data*.
+
     Examples
     --------
     >>> doc = ('<IESTM2714 xmlns="iesna.org/tm2714" version="1.0"><Header><Description>LED'
