@@ -98,13 +98,27 @@ def spectra_to_cgats(spectrum: Spectrum, keywords: Mapping[str, str] | None = No
 
     Parameters
     ----------
-    spectrum
+    spectrum : Spectrum
         Spectra; names become ``SAMPLE_NAME`` and ``metadata["sample_fields"]`` are written as
         fields of their own.
-    keywords
+    keywords : mapping of str to str, optional
         Extra keywords, e.g. ``{"DESCRIPTOR": "tiles", "MEASUREMENT_GEOMETRY": "45/0"}``; the
         keywords a reader kept in ``metadata["keywords"]`` are written too (layout and scale
         keywords are rewritten).
+
+    Returns
+    -------
+    str
+        The CGATS.17 text (CRLF line ends).
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum or an image cube.
+
+    References
+    ----------
+    ANSI CGATS.17-2009.
 
     Examples
     --------
