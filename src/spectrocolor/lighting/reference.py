@@ -34,6 +34,18 @@ DAYLIGHT_RANGE_K = (4000.0, 25000.0)
 def planckian_spd(cct_K, wavelengths_nm) -> np.ndarray:
     """Planckian radiators ``(..., K)`` at temperatures ``cct_K``, equal to 1 at 560 nm.
 
+    Parameters
+    ----------
+    cct_K : array_like, shape (...)
+        Temperatures, K.
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., K)
+        Relative SPDs (c₂ = 1.4388e-2 m·K, as CIE 015 defines the Planckian locus).
+
     Examples
     --------
     >>> planckian_spd([2856.0], [560.0]).tolist()
@@ -50,6 +62,22 @@ def daylight_spd(cct_K, wavelengths_nm) -> np.ndarray:
 
     The batched form of :func:`spectrocolor.daylight` (same rounding of M1, M2, same linear
     interpolation of the basis); NaN outside 4000–25 000 K.
+
+    Parameters
+    ----------
+    cct_K : array_like, shape (...)
+        Correlated colour temperatures, K.
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., K)
+        Relative SPDs (100 near 560 nm, as the CIE tables).
+
+    References
+    ----------
+    CIE 015:2018 §4.1.2.
 
     Examples
     --------
@@ -79,6 +107,22 @@ def daylight_spd(cct_K, wavelengths_nm) -> np.ndarray:
 def cri_reference(cct_K, wavelengths_nm) -> np.ndarray:
     """CIE 13.3 reference illuminants ``(..., K)``: Planckian below 5000 K, daylight from 5000 K.
 
+    Parameters
+    ----------
+    cct_K : array_like, shape (...)
+        The test lights' CCTs, K.
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., K)
+        Relative SPDs (each branch on its own scale; CIE 13.3 normalises later).
+
+    References
+    ----------
+    CIE 13.3-1995 (choice of the reference illuminant).
+
     Examples
     --------
     >>> cri_reference([4000.0], [560.0]).tolist()
@@ -91,6 +135,25 @@ def cri_reference(cct_K, wavelengths_nm) -> np.ndarray:
 
 def fidelity_reference(cct_K, wavelengths_nm) -> np.ndarray:
     """CIE 224:2017 / TM-30 reference illuminants ``(..., K)``, scaled to Y = 1 (CIE 1931 2°).
+
+    Planckian up to 4000 K, daylight from 5000 K, and a mixture in proportion to the CCT in
+    between.
+
+    Parameters
+    ----------
+    cct_K : array_like, shape (...)
+        The test lights' CCTs, K.
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., K)
+        SPDs with ``Σ S ȳ Δλ = 1``.
+
+    References
+    ----------
+    CIE 224:2017 (reference illuminant); ANSI/IES TM-30-20.
 
     Examples
     --------
