@@ -100,6 +100,20 @@ def _action_table() -> tuple[np.ndarray, np.ndarray]:
 def action_spectra(wavelengths_nm) -> np.ndarray:
     """CIE S 026 action spectra s_α at ``wavelengths_nm``, shape (K, 5); 0 outside 380–780 nm.
 
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K, 5)
+        s_sc, s_mc, s_lc, s_rh, s_mel (order of :data:`ALPHA_OPIC`), each peaking at 1.
+
+    References
+    ----------
+    CIE S 026/E:2018, Table 2.
+
     Examples
     --------
     >>> float(action_spectra([490.0])[0, 4])  # melanopic peak
@@ -119,6 +133,25 @@ def _weights(grid_key: bytes) -> np.ndarray:
 
 def alpha_opic_irradiance(spd) -> np.ndarray:
     """α-opic irradiances ``(..., 5)``, W/m², of spectral irradiances (W·m⁻²·nm⁻¹).
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral irradiances ``(..., K)``, W·m⁻²·nm⁻¹.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 5)
+        E_α = Σ E(λ) s_α(λ) Δλ, W/m².
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum, fewer than two samples, or non-finite values.
+
+    References
+    ----------
+    CIE S 026/E:2018 (α-opic irradiance).
 
     Examples
     --------
