@@ -62,6 +62,20 @@ VISIONS.add("scotopic", (K_M_SCOTOPIC_LM_PER_W, _scotopic), "V'(λ) (CIE 1951), 
 def weighting_on(wavelengths_nm, table_nm: np.ndarray, table: np.ndarray) -> np.ndarray:
     """A tabulated weighting function at ``wavelengths_nm``: linear inside the table, 0 outside.
 
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm.
+    table_nm : numpy.ndarray, shape (M,)
+        The table's wavelengths, nm, increasing.
+    table : numpy.ndarray, shape (M,)
+        The tabulated values.
+
+    Returns
+    -------
+    numpy.ndarray, shape (K,)
+        The function at ``wavelengths_nm``.
+
     Examples
     --------
     >>> weighting_on([399.5, 500.0, 900.0], np.array([399.0, 400.0]), np.array([1.0, 3.0])).tolist()
@@ -79,7 +93,31 @@ def _weights(grid_key: bytes, vision: str) -> np.ndarray:
 
 
 def spectral_values(spd, argument: str = "spd") -> np.ndarray:
-    """``spd.values`` as float64 after checking ``spd`` is a Spectrum of finite values."""
+    """``spd.values`` as float64 after checking ``spd`` is a Spectrum of finite values.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectra ``(..., K)``, K >= 2.
+    argument : str, default "spd"
+        The caller's argument name, for error messages.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., K)
+        The values as float64.
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum, fewer than two samples, or non-finite values.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid
+    >>> spectral_values(Spectrum.constant(1, wavelength_grid(400, 700, 100))).tolist()
+    [1.0, 1.0, 1.0, 1.0]
+    """
     if not isinstance(spd, Spectrum):
         raise SpectrumError(
             f"{argument}: expected a spectrocolor.Spectrum, got {type(spd).__name__}; "
@@ -130,6 +168,21 @@ def radiant_quantity(spd) -> np.ndarray:
     """Radiant flux (W), irradiance (W/m²) or radiance of spectra ``(..., K)``: ``Σ S Δλ``.
 
     Over the spectrum's own range (so an LER depends on the range measured).
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)`` (e.g. W·nm⁻¹ or W·m⁻²·nm⁻¹).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        ``Σ S Δλ`` in the units of the data times nm.
+
+    Raises
+    ------
+    SpectrumError
+        As :func:`spectral_values`.
 
     Examples
     --------
