@@ -88,6 +88,20 @@ class Fidelity:
 def rf_from_delta_e(delta_E):
     """Fidelity 0–100 from a CAM02-UCS colour difference (CIE 224:2017 eq. 9).
 
+    Parameters
+    ----------
+    delta_E : array_like
+        Mean CAM02-UCS colour difference(s) ΔE'.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``10 ln(1 + exp((100 − c_f ΔE') / 10))`` with c_f = 6.73.
+
+    References
+    ----------
+    CIE 224:2017, eq. (9).
+
     Examples
     --------
     >>> round(float(rf_from_delta_e(0.0)), 4)
