@@ -122,6 +122,37 @@ def cam02ucs_planes(rgb_cat02, white_cat02, white_Y, L_A: float = 100.0, Y_b: fl
     is folded into the spectral weights so the sharpened RGB come straight out of one matrix
     product; ``white_Y`` is the white's Y. :func:`cam02ucs_jab` is the same from XYZ ``(..., 3)``.
 
+    Parameters
+    ----------
+    rgb_cat02 : numpy.ndarray, shape (3, ...)
+        ``M_CAT02 @ XYZ`` of the colours, channel first.
+    white_cat02 : numpy.ndarray, shape (3, ...)
+        ``M_CAT02 @ XYZ_w`` of the white, broadcast against ``rgb_cat02``.
+    white_Y : float or numpy.ndarray
+        Y of the white.
+    L_A : float, default 100.0
+        Adapting luminance, cd/m².
+    Y_b : float, default 20.0
+        Relative luminance of the background (same scale as Y_w).
+    surround : str, default "average"
+        ``"average"``, ``"dim"`` or ``"dark"`` (:data:`SURROUNDS`).
+    discount_illuminant : bool, default True
+        ``True``: complete adaptation, D = 1 (as CIE 224 prescribes); else D from F and L_A.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        J', a', b', each of the colours' shape.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown surround or viewing conditions out of range.
+
+    References
+    ----------
+    M. R. Luo, G. Cui, C. Li, Color Res. Appl. 31, 320–330 (2006) (CAM02-UCS).
+
     Examples
     --------
     >>> XYZ, white = np.array([19.31, 23.93, 10.14]), np.array([98.88, 90.0, 32.03])
@@ -141,17 +172,17 @@ def ciecam02_jmh(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
 
     Parameters
     ----------
-    XYZ100
-        Tristimulus values ``(..., 3)`` on the scale of the white (white Y_w = 100 usually).
-    white_XYZ100
-        Adopted white ``(..., 3)``, broadcast against ``XYZ100``.
-    L_A
+    XYZ100 : array_like, shape (..., 3)
+        Tristimulus values on the scale of the white (white Y_w = 100 usually).
+    white_XYZ100 : array_like, shape (..., 3)
+        Adopted white, broadcast against ``XYZ100``.
+    L_A : float, default 100.0
         Adapting luminance, cd/m².
-    Y_b
+    Y_b : float, default 20.0
         Relative luminance of the background (same scale as Y_w).
-    surround
+    surround : str, default "average"
         ``"average"``, ``"dim"`` or ``"dark"`` (:data:`SURROUNDS`).
-    discount_illuminant
+    discount_illuminant : bool, default True
         ``True``: complete adaptation, D = 1 (as CIE 224 prescribes); else D from F and L_A.
 
     Returns
@@ -185,6 +216,30 @@ def cam02ucs_jab(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
     (the fast path for the 99 samples × many lights of CIE 224). Arguments as
     :func:`ciecam02_jmh`.
 
+    Parameters
+    ----------
+    XYZ100 : array_like, shape (..., 3)
+        Tristimulus values on the scale of the white.
+    white_XYZ100 : array_like, shape (..., 3)
+        Adopted white, broadcast against ``XYZ100``.
+    L_A : float, default 100.0
+        Adapting luminance, cd/m².
+    Y_b : float, default 20.0
+        Relative luminance of the background (same scale as Y_w).
+    surround : str, default "average"
+        ``"average"``, ``"dim"`` or ``"dark"`` (:data:`SURROUNDS`).
+    discount_illuminant : bool, default True
+        ``True``: complete adaptation, D = 1 (as CIE 224 prescribes); else D from F and L_A.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        J', a', b'.
+
+    References
+    ----------
+    M. R. Luo, G. Cui, C. Li, Color Res. Appl. 31, 320–330 (2006) (CAM02-UCS).
+
     Examples
     --------
     >>> cam02ucs_jab([19.31, 23.93, 10.14], [98.88, 90.0, 32.03], 200.0, 18.0).round(3).tolist()
@@ -196,6 +251,22 @@ def cam02ucs_jab(XYZ100, white_XYZ100, L_A: float = 100.0, Y_b: float = 20.0,
 
 def cam02ucs(jmh: JMh) -> np.ndarray:
     """CAM02-UCS J', a', b' ``(..., 3)`` from CIECAM02 J, M, h.
+
+    Parameters
+    ----------
+    jmh : JMh
+        CIECAM02 lightness J, colourfulness M and hue angle h (degrees), from
+        :func:`ciecam02_jmh`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        ``J' = 1.7 J / (1 + 0.007 J)``, ``M' = ln(1 + 0.0228 M) / 0.0228``, ``a' = M' cos h``,
+        ``b' = M' sin h``.
+
+    References
+    ----------
+    M. R. Luo, G. Cui, C. Li, Color Res. Appl. 31, 320–330 (2006) (CAM02-UCS).
 
     Examples
     --------
