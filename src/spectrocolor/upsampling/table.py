@@ -144,7 +144,30 @@ class UpsamplingTable:
 
 
 def colour_map(space, weights: np.ndarray) -> tuple[np.ndarray, str]:
-    """The matrix ``XYZ100 = matrix @ t`` and the space's label (see the module docstring)."""
+    """The matrix ``XYZ100 = matrix @ t`` and the space's label (see the module docstring).
+
+    Parameters
+    ----------
+    space : str or RGBSpace
+        A display space (its linear RGB, Bradford-adapted so that RGB = 1 is the perfect white
+        under the weights' illuminant) or ``"XYZ"`` (XYZ100 divided by the perfect white).
+    weights : numpy.ndarray, shape (K, 3)
+        Tristimulus weights (perfect white Y = 100).
+
+    Returns
+    -------
+    matrix : numpy.ndarray, shape (3, 3)
+        ``XYZ100 = matrix @ t``.
+    label : str
+        The space's name.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> matrix, label = colour_map("sRGB", weights(wavelength_grid(380, 780, 5), illuminant="D65"))
+    >>> label, (matrix @ [1.0, 1.0, 1.0]).round(3).tolist()
+    ('sRGB', [95.043, 100.0, 108.88])
+    """
     white = weights.sum(axis=0)
     if isinstance(space, str) and space.strip().upper() == "XYZ":
         return np.diag(white), "XYZ"
@@ -156,7 +179,23 @@ def colour_map(space, weights: np.ndarray) -> tuple[np.ndarray, str]:
 
 
 def node_coordinates(n: int) -> np.ndarray:
-    """Table coordinates of the nodes, ``(n, n, n, 3)``: ``t[i, j, k] = (i, j, k) / (n - 1)``."""
+    """Table coordinates of the nodes, ``(n, n, n, 3)``: ``t[i, j, k] = (i, j, k) / (n - 1)``.
+
+    Parameters
+    ----------
+    n : int
+        Nodes per axis.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, n, n, 3)
+        The coordinates, 0–1.
+
+    Examples
+    --------
+    >>> node_coordinates(3)[2, 1, 0].tolist()
+    [1.0, 0.5, 0.0]
+    """
     axis = np.linspace(0.0, 1.0, n)
     return np.stack(np.meshgrid(axis, axis, axis, indexing="ij"), axis=-1)
 
@@ -184,7 +223,34 @@ def _solve_checked(XYZ100, illuminant, observer, wavelengths):
 def verify_reflectances(rho: np.ndarray, XYZ100: np.ndarray, weights: np.ndarray,
                         tolerance: float = NODE_TOLERANCE) -> np.ndarray:
     """True where ρ is finite, ``0 ≤ ρ ≤ 1`` exactly and ``ρ @ W`` reproduces ``XYZ100`` to
-    ``tolerance`` relative to ``max|XYZ100|`` (per colour; black must be reproduced exactly)."""
+    ``tolerance`` relative to ``max|XYZ100|`` (per colour; black must be reproduced exactly).
+
+    Parameters
+    ----------
+    rho : numpy.ndarray, shape (..., K)
+        Reflectances (0–1).
+    XYZ100 : numpy.ndarray, shape (..., 3)
+        The colours they must produce.
+    weights : numpy.ndarray, shape (K, 3)
+        Tristimulus weights.
+    tolerance : float, default NODE_TOLERANCE
+        Relative tolerance on the colour.
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (...)
+        Whether each reflectance is valid and exact.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> W = weights(wavelength_grid(380, 780, 5), illuminant="D65")
+    >>> rho = np.full((2, 81), 0.5)
+    >>> rho[1, 0] = 1.2  # above 1: not a reflectance
+    >>> verify_reflectances(rho, rho @ W, W).tolist()
+    [True, False]
+    """
     with np.errstate(invalid="ignore"):
         finite = np.all(np.isfinite(rho), axis=-1)
         inside = np.all((rho >= 0.0) & (rho <= 1.0), axis=-1)
@@ -224,7 +290,18 @@ _ORDERS = ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0))
 
 def tetrahedron_corners() -> np.ndarray:
     """Corner offsets of the six tetrahedra, ``(6, 4, 3)`` integers; tetrahedron ``p`` holds
-    the points whose fractional coordinates are ordered as ``_ORDERS[p]`` (largest first)."""
+    the points whose fractional coordinates are ordered as ``_ORDERS[p]`` (largest first).
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (6, 4, 3)
+        Offsets 0/1 of each tetrahedron's corners within a cell, from (0, 0, 0) to (1, 1, 1).
+
+    Examples
+    --------
+    >>> tetrahedron_corners()[0].tolist()
+    [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]
+    """
     corners = np.zeros((6, 4, 3), dtype=np.int64)
     for p, order in enumerate(_ORDERS):
         for step, axis in enumerate(order):
