@@ -646,6 +646,38 @@ def _mat_wavelengths(path: Path, load, shapes, bands: int, wavelengths_nm, wavel
 
 
 def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+    """Read a MATLAB v4/v5 cube in a child process.
+
+    scipy's MAT v5 parser is compiled code, and some damaged files crash the whole process
+    inside it (a segmentation fault, found by ``tests/test_fuzz_io.py``): no exception reaches
+    Python. In a child process (forked from a forkserver, so a crash costs milliseconds) such a
+    file becomes one clear error and the caller survives.
+    """
+    from concurrent.futures.process import BrokenProcessPool
+
+    global _MAT5_WORKER
+    if _MAT5_WORKER is None:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        import atexit
+
+        _MAT5_WORKER = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("forkserver"))
+        atexit.register(_MAT5_WORKER.shutdown, cancel_futures=True)  # before the interpreter tears down
+    try:
+        return _MAT5_WORKER.submit(_read_mat5_here, Path(path), wavelengths_nm, wavelength_units, variable).result()
+    except BrokenProcessPool:
+        _MAT5_WORKER = None  # the worker died with the file: the next read starts a new one
+        raise SpectrumError(
+            f"{path}: a damaged MATLAB v5 file: the MAT reader stopped on it (re-save it, or as v7.3/ENVI)"
+        ) from None
+
+
+#: The child process that reads MATLAB v5 files (started on the first such read).
+_MAT5_WORKER = None
+
+
+def _read_mat5_here(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
     import scipy.io
 
     # scipy's MAT parser meets damaged files with whatever its code hits (IndexError, KeyError,
