@@ -37,6 +37,23 @@ def rgb_linear_from_image(image, space="sRGB") -> np.ndarray:
     Floating-point images are not guessed at: pass linear values to
     :func:`~spectrocolor.upsampling.upsample` directly.
 
+    Parameters
+    ----------
+    image : array_like of uint8 or uint16, shape (..., 3)
+        Encoded codes (``rgb8`` or 16-bit).
+    space : str or RGBSpace, default "sRGB"
+        The space whose transfer function decodes the codes.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Linear RGB, 0–1.
+
+    Raises
+    ------
+    ColorimetryError
+        For another dtype or a last axis other than 3, or an unknown space.
+
     Examples
     --------
     >>> import numpy as np
