@@ -42,6 +42,28 @@ def light_grid(spd, start_nm: float, stop_nm: float, argument: str = "spd") -> t
     and ``stop_nm`` (so no interpolation or extrapolation happens), with finite values.
     The values are flattened to ``(N, K)``; the caller restores ``spd.batch_shape``.
 
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)``.
+    start_nm, stop_nm : float
+        The range the metric needs, nm (both must be samples of the grid).
+    argument : str, default "spd"
+        The caller's argument name, for error messages.
+
+    Returns
+    -------
+    grid : numpy.ndarray, shape (K,)
+        The samples in ``[start_nm, stop_nm]``, nm.
+    values : numpy.ndarray, shape (N, K)
+        The lights there, each divided by its largest absolute value.
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum, an interval other than 1 or 5 nm, a grid missing ``start_nm`` or
+        ``stop_nm``, or non-finite values.
+
     Examples
     --------
     >>> from spectrocolor import Spectrum, wavelength_grid
@@ -82,6 +104,22 @@ def light_cct(S: np.ndarray, wavelengths_nm: np.ndarray) -> CCT:
     A light whose luminance Σ S ȳ Δλ is not positive has no colour: its CCT and Duv are NaN,
     and so is every metric computed from them.
 
+    Parameters
+    ----------
+    S : numpy.ndarray, shape (N, K)
+        Spectral power distributions (any scale).
+    wavelengths_nm : numpy.ndarray, shape (K,)
+        Their uniform grid, nm.
+
+    Returns
+    -------
+    CCT
+        ``cct_K`` and ``duv``, each of shape (N,).
+
+    References
+    ----------
+    CIE 015:2018 §9.5; Y. Ohno, LEUKOS 10 (1), 47–55 (2014).
+
     Examples
     --------
     >>> from spectrocolor import illuminant
@@ -98,6 +136,21 @@ def light_cct(S: np.ndarray, wavelengths_nm: np.ndarray) -> CCT:
 def in_chunks(compute, S: np.ndarray, *args) -> dict[str, np.ndarray]:
     """``compute(S_chunk, *args)`` (a dict of arrays with the chunk's lights first) over chunks
     of :data:`CHUNK` lights, concatenated: memory stays bounded for any number of lights.
+
+    Parameters
+    ----------
+    compute : callable
+        ``compute(S_chunk, *args) -> dict of str to numpy.ndarray``, each array with the
+        chunk's lights on its first axis.
+    S : numpy.ndarray, shape (N, K)
+        The lights.
+    *args : object
+        Passed on to ``compute``.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The chunks' arrays concatenated along the first axis.
 
     Examples
     --------
@@ -122,6 +175,20 @@ def tcs_reflectances(wavelengths_nm) -> np.ndarray:
 
     The 5 nm table is used as published at multiples of 5 nm and Sprague-interpolated
     (CIE 167) in between; ``wavelengths_nm`` must lie within 360–830 nm.
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        The grid, nm, within 360–830 nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (14, K)
+        Reflectance factors 0–1.
+
+    References
+    ----------
+    CIE 13.3-1995 (test colour samples); CIE 167:2005 (Sprague interpolation).
 
     Examples
     --------
@@ -152,6 +219,20 @@ def ces_reflectances(wavelengths_nm) -> np.ndarray:
 
     Tabulated at 1 nm (380–780 nm); a 5 nm grid takes every fifth row, as the standard's
     5 nm table does.
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        Whole nanometres within 380–780 nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (99, K)
+        Reflectance factors 0–1.
+
+    References
+    ----------
+    CIE 224:2017 (colour evaluation samples); ANSI/IES TM-30-20.
 
     Examples
     --------
