@@ -148,6 +148,30 @@ def spectra_to_cgats(spectrum: Spectrum, keywords: Mapping[str, str] | None = No
 def table_to_cgats(rows: Sequence[Mapping[str, object]], keywords: Mapping[str, str] | None = None) -> str:
     """CGATS.17 text of result rows (dicts with the same keys), numbered ``SAMPLE_ID`` 1…N.
 
+    Parameters
+    ----------
+    rows : sequence of mapping
+        One dict per sample, all with the keys of the first (``X``, ``Y``, ``Z``, ``name`` …
+        map to the standard CGATS field names).
+    keywords : mapping of str to str, optional
+        Extra keywords for the header.
+
+    Returns
+    -------
+    str
+        The CGATS.17 text.
+
+    Raises
+    ------
+    SpectrumError
+        For no rows.
+
+    References
+    ----------
+    ANSI CGATS.17-2009.
+
+    Examples
+    --------
     >>> print(table_to_cgats([{"name": "a", "X": 1.5, "Y": 2.0, "Z": 3.0}]).splitlines()[4])
     SAMPLE_ID SAMPLE_NAME XYZ_X XYZ_Y XYZ_Z
     """
@@ -162,6 +186,23 @@ def table_to_cgats(rows: Sequence[Mapping[str, object]], keywords: Mapping[str, 
 def spectra_to_csv(spectrum: Spectrum) -> str:
     """CSV text: ``wavelength_nm`` then one column per spectrum (batches of shape ``(N, K)``).
 
+    Parameters
+    ----------
+    spectrum : Spectrum
+        One spectrum or an ``(N, K)`` batch; unnamed spectra become ``spectrum_1``, ….
+
+    Returns
+    -------
+    str
+        The CSV text (values with 17 significant digits: they read back exactly).
+
+    Raises
+    ------
+    SpectrumError
+        For an image cube (more than two dimensions).
+
+    Examples
+    --------
     >>> spectra_to_csv(Spectrum([400, 500], [0.25, 0.5], ["tile"])).splitlines()
     ['wavelength_nm,tile', '400,0.25', '500,0.5']
     """
