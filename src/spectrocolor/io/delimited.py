@@ -55,6 +55,27 @@ def _rows(text: str, source: str) -> tuple[list[tuple[int, list[str]]], str]:
 def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spectrum:
     """Spectra from a long or wide delimited table (see the module docstring).
 
+    Parameters
+    ----------
+    text : str
+        The file's text (``,``, ``;`` with decimal commas, or tab separated).
+    source : str
+        File name, for messages.
+    percent : bool or None, default None
+        ``None`` keeps the values as written, ``True`` divides by 100, ``False`` keeps fractions.
+
+    Returns
+    -------
+    Spectrum
+        ``(N, K)`` (or ``(K,)``) with names and ``metadata`` (``format``, ``sample_fields``, …).
+
+    Raises
+    ------
+    SpectrumError
+        One line saying where the table is wrong.
+
+    Examples
+    --------
     >>> s = parse_delimited("Sample;Date;400nm;500nm;600nm\\ntile;2024-05-01;0,1;0,2;0,3\\n", "x.csv")
     >>> s.names, s.values.tolist(), s.metadata["sample_fields"]["Date"]
     (('tile',), [0.1, 0.2, 0.3], ('2024-05-01',))
