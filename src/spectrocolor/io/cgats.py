@@ -50,7 +50,23 @@ EXPECTED = "BEGIN_DATA_FORMAT … END_DATA_FORMAT, BEGIN_DATA … END_DATA with 
 
 
 def looks_like_cgats(text: str) -> bool:
-    """True if the text has a CGATS field list (``BEGIN_DATA_FORMAT`` at the start of a line)."""
+    """True if the text has a CGATS field list (``BEGIN_DATA_FORMAT`` at the start of a line).
+
+    Parameters
+    ----------
+    text : str
+        A file's text.
+
+    Returns
+    -------
+    bool
+        Whether :func:`parse_cgats` should read it.
+
+    Examples
+    --------
+    >>> looks_like_cgats("CGATS.17\\nBEGIN_DATA_FORMAT\\nSAMPLE_ID\\nEND_DATA_FORMAT\\n"), looks_like_cgats("a,b")
+    (True, False)
+    """
     return re.search(r"^\s*BEGIN_DATA_FORMAT\b", text, re.MULTILINE) is not None
 
 
