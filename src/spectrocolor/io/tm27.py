@@ -34,7 +34,23 @@ EXPECTED = "<IESTM2714> with <SpectralDistribution><SpectralData wavelength=…>
 
 
 def looks_like_tm27(text: str) -> bool:
-    """True for XML whose document element is ``IESTM2714`` (any namespace prefix)."""
+    """True for XML whose document element is ``IESTM2714`` (any namespace prefix).
+
+    Parameters
+    ----------
+    text : str
+        A file's text.
+
+    Returns
+    -------
+    bool
+        Whether :func:`parse_tm27` should read it.
+
+    Examples
+    --------
+    >>> looks_like_tm27('<IESTM2714 version="1.0"></IESTM2714>'), looks_like_tm27("<html></html>")
+    (True, False)
+    """
     head = text.lstrip()[:4096]
     return head.startswith("<") and re.search(r"<\s*(\w+:)?IESTM2714\b", head) is not None
 
