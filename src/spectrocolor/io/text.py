@@ -29,7 +29,32 @@ WAVELENGTH_LABEL = re.compile(
 
 
 def read_text(path: Path) -> str:
-    """The file's text (UTF-8, optional BOM), after checking its size; SpectrumError otherwise."""
+    """The file's text (UTF-8, optional BOM), after checking its size; SpectrumError otherwise.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+
+    Returns
+    -------
+    str
+        Its text, without a byte-order mark.
+
+    Raises
+    ------
+    SpectrumError
+        For a file larger than :data:`MAX_FILE_BYTES` or one that is not UTF-8.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "a.csv"
+    ...     _ = path.write_bytes(b"\\xef\\xbb\\xbfwavelength_nm,a")
+    ...     read_text(path)
+    'wavelength_nm,a'
+    """
     size = path.stat().st_size
     if size > MAX_FILE_BYTES:
         raise SpectrumError(
@@ -47,6 +72,18 @@ def read_text(path: Path) -> str:
 def wavelength_of(label: str) -> float | None:
     """The wavelength in nm that a column label names (see :data:`WAVELENGTH_LABEL`), or None.
 
+    Parameters
+    ----------
+    label : str
+        A column label such as ``"SPECTRAL_NM_380"``, ``"400nm"`` or ``"400"``.
+
+    Returns
+    -------
+    float or None
+        The wavelength in nm, or None for a label that names none.
+
+    Examples
+    --------
     >>> wavelength_of("SPECTRAL_NM_380"), wavelength_of("400nm"), wavelength_of("Sample")
     (380.0, 400.0, None)
     """
@@ -55,7 +92,32 @@ def wavelength_of(label: str) -> float | None:
 
 
 def number(cell: str, where: str, decimal_comma: bool = False) -> float:
-    """``cell`` as a finite float (``0,5`` accepted with ``decimal_comma``), or a SpectrumError."""
+    """``cell`` as a finite float (``0,5`` accepted with ``decimal_comma``), or a SpectrumError.
+
+    Parameters
+    ----------
+    cell : str
+        The text of one cell.
+    where : str
+        Its place, for the error message (e.g. "file, line 7, column '410'").
+    decimal_comma : bool, default False
+        Read ``,`` as the decimal separator.
+
+    Returns
+    -------
+    float
+        The finite number.
+
+    Raises
+    ------
+    SpectrumError
+        For text that is not a finite number.
+
+    Examples
+    --------
+    >>> number("0,5", "tiles.csv, line 2", decimal_comma=True)
+    0.5
+    """
     text = cell.strip()
     if decimal_comma:
         text = text.replace(",", ".")
@@ -74,6 +136,30 @@ def number_table(rows: list[list[str]], locate, decimal_comma: bool = False) -> 
     NumPy converts the whole table at once; if anything is not a finite number, each cell is
     parsed with :func:`number` so that the error names the first bad one (``locate(r, c)`` gives
     its place, e.g. "file, line 7, column '410'").
+
+    Parameters
+    ----------
+    rows : list of list of str
+        The cells, rows of equal length.
+    locate : callable
+        ``locate(row, column) -> str``: where a cell is, for error messages.
+    decimal_comma : bool, default False
+        Read ``,`` as the decimal separator.
+
+    Returns
+    -------
+    numpy.ndarray, shape (rows, cells)
+        Float64 table.
+
+    Raises
+    ------
+    SpectrumError
+        Naming the first cell that is not a finite number.
+
+    Examples
+    --------
+    >>> number_table([["1", "2"], ["3", "4"]], lambda r, c: f"line {r + 1}").tolist()
+    [[1.0, 2.0], [3.0, 4.0]]
     """
     try:
         cells = [[cell.replace(",", ".") for cell in row] for row in rows] if decimal_comma else rows
@@ -92,15 +178,15 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
 
     Parameters
     ----------
-    values
+    values : numpy.ndarray
         The numbers as written in the file.
-    declared
+    declared : float or None
         The full-scale value the file declares (100 for percent, 1 for fractions, Argyll's
         ``SPECTRAL_NORM``), or ``None`` where the format does not say.
-    percent
+    percent : bool or None
         The caller's option: ``True`` (the values are percentages), ``False`` (fractions) or
         ``None`` (follow the file; where the file does not say, keep the values as written).
-    source, how
+    source, how : str
         File name and what declared the scale, for messages.
 
     Returns
@@ -112,6 +198,12 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
     ------
     SpectrumError
         When ``percent`` contradicts what the file declares.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> apply_scale(np.array([50.0]), 100.0, None, "tiles.cgats", "PCT")
+    (array([0.5]), 'divided by 100 as the file declares (PCT)')
     """
     if declared is not None:
         if percent is not None and (declared != 1.0) != percent:
