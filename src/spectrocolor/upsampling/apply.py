@@ -385,6 +385,15 @@ def texel_coefficients(table: UpsamplingTable, rgb_linear, out_of_range: str = "
     ``Σ_j weights[j] · ρ_{nodes[j]}(λ)`` (linear interpolation between the table's wavelength
     samples), with no lookup at render time.
 
+    Parameters
+    ----------
+    table : UpsamplingTable
+        From :func:`spectrocolor.upsampling_table`.
+    rgb_linear : array_like, shape (..., 3)
+        Table coordinates of the texels.
+    out_of_range : str, default "toward-grey"
+        A key of :data:`OUT_OF_RANGE_STRATEGIES`.
+
     Returns
     -------
     nodes : ndarray (..., 4) uint32
@@ -392,6 +401,15 @@ def texel_coefficients(table: UpsamplingTable, rgb_linear, out_of_range: str = "
     weights : ndarray (..., 4) float32
         Barycentric weights (sum to 1 within float32 rounding, ~1e-7).
     exact : ndarray of bool (...)
+        Whether each texel was inside the table's cube.
+
+    Examples
+    --------
+    >>> from spectrocolor import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> nodes, weights, exact = texel_coefficients(table, [[0.5, 0.5, 0.5]])
+    >>> nodes.dtype.name, weights.dtype.name, round(float(weights.sum()), 6), exact.tolist()
+    ('uint32', 'float32', 1.0, [True])
     """
     found = lookup(table, rgb_linear, out_of_range)
     return found.nodes.astype(np.uint32), found.weights.astype(np.float32), found.exact
