@@ -64,6 +64,29 @@ def real_number(value, name: str, what: str = "a number", error: type[ValueError
                 positive: bool = False) -> float:
     """``value`` as a finite real float (not a bool, not a string), or ``error`` naming ``name``.
 
+    Parameters
+    ----------
+    value : object
+        The argument's value.
+    name : str
+        The argument's name, for the message.
+    what : str, default "a number"
+        What the argument is, for the message.
+    error : type, default ColorimetryError
+        The ``ValueError`` subclass raised.
+    positive : bool, default False
+        Require a value > 0.
+
+    Returns
+    -------
+    float
+        The value.
+
+    Raises
+    ------
+    ValueError
+        ``error``, for a bool, a non-number, NaN or infinity (or a value <= 0 with ``positive``).
+
     Examples
     --------
     >>> real_number(2, "beta")
