@@ -35,6 +35,15 @@ def xyz_block(values, weights: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (..., 3), float64
         XYZ on the weights' scale (XYZ100 for reflectance weights).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import weights
+    >>> W = weights(np.arange(400, 701, 10), illuminant="D65")
+    >>> grey = np.full((2, 31), 0.5)
+    >>> xyz_block(grey, W)[0].round(3).tolist()
+    [47.47, 50.0, 54.355]
     """
     from ..colorimetry import apply_weights
 
@@ -42,7 +51,31 @@ def xyz_block(values, weights: np.ndarray) -> np.ndarray:
 
 
 def lab_block(values, weights: np.ndarray, white_XYZ: np.ndarray) -> np.ndarray:
-    """CIELAB (L*, a*, b*) of a block of spectra, relative to ``white_XYZ`` (same scale as XYZ)."""
+    """CIELAB (L*, a*, b*) of a block of spectra, relative to ``white_XYZ`` (same scale as XYZ).
+
+    Parameters
+    ----------
+    values : array_like, shape (..., K)
+        Spectral values.
+    weights : numpy.ndarray, shape (K, 3)
+        As for :func:`xyz_block`.
+    white_XYZ : numpy.ndarray, shape (3,)
+        The reference white on the XYZ scale of the weights.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        L*, a*, b* (CIE 015:2018 §8.2.1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import weights
+    >>> W = weights(np.arange(400, 701, 10), illuminant="D65")
+    >>> grey = np.full((2, 31), 0.5)
+    >>> lab_block(grey, W, W.sum(axis=0))[0].round(3).tolist()
+    [76.069, 0.0, 0.0]
+    """
     from ..coordinates import lab
 
     return lab(xyz_block(values, weights), white_XYZ)
@@ -53,7 +86,9 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
 
     Parameters
     ----------
-    values, weights
+    values : array_like, shape (..., K)
+        As for :func:`xyz_block`.
+    weights : numpy.ndarray, shape (K, 3)
         As for :func:`xyz_block`.
     options : dict
         ``adapt_from`` (XYZ of the source white or None), ``adapt_method``, ``exposure``
@@ -65,6 +100,17 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
     ndarray, shape (..., 3)
         Integer codes (uint8 or uint16) or float64 linear / encoded RGB. Masked pixels (NaN in
         the values, e.g. an ENVI data ignore value) are black codes (0, 0, 0), or NaN floats.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import weights
+    >>> W = weights(np.arange(400, 701, 10), illuminant="D65")
+    >>> grey = np.full((2, 31), 0.5)
+    >>> options = dict(adapt_from=None, adapt_method=None, exposure=1.0, space="sRGB", gamut="clip",
+    ...                bit_depth=8, output="codes")
+    >>> rgb_block(grey, W, options)[0].tolist()
+    [187, 188, 187]
     """
     import spectrocolor as sc
 
