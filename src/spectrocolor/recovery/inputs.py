@@ -53,6 +53,21 @@ def _named_setup(key: tuple[float, float, float], observer: str, illuminant: str
 def grid_key(wavelengths) -> tuple[float, float, float]:
     """``(start_nm, stop_nm, step_nm)`` of a uniform grid given as such a triple or as an array.
 
+    Parameters
+    ----------
+    wavelengths : tuple of float or array_like
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid, nm.
+
+    Returns
+    -------
+    tuple of float
+        ``(start_nm, stop_nm, step_nm)``, hashable (a cache key).
+
+    Raises
+    ------
+    SpectrumError
+        For a triple that does not make a grid, or an array that is not a uniform grid.
+
     Examples
     --------
     >>> grid_key(np.arange(400.0, 431.0, 10.0))
@@ -82,6 +97,32 @@ def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
     ``illuminant`` takes every form of :func:`spectrocolor.canonical_illuminant` but ``None``
     (a reflectance needs a light): a CIE name, ``"blackbody:T"``, ``"D:T"``, a temperature, or a
     Spectrum on the grid.
+
+    Parameters
+    ----------
+    wavelengths : tuple of float or array_like
+        ``(start_nm, stop_nm, step_nm)`` or a uniform grid, nm.
+    observer : str or Spectrum
+        Observer name or alias, or colour-matching functions on the grid.
+    illuminant : str, float or Spectrum
+        The light (not ``None``).
+
+    Returns
+    -------
+    tuple of (Setup, str, str)
+        The setup (grid, weights ``W`` with the perfect white at Y = 100, the QP problem, and
+        lazily the solid's facets), the observer's label and the illuminant's label.
+
+    Raises
+    ------
+    ColorimetryError
+        For ``illuminant=None`` or an unknown observer or illuminant.
+
+    Examples
+    --------
+    >>> setup, observer, illuminant = setup_for((400, 700, 10), "1931", "d65")
+    >>> setup.W.shape, setup.step_nm, observer, illuminant
+    ((31, 3), 10.0, 'CIE 1931 2°', 'D65')
     """
     key = grid_key(wavelengths)
     light = canonical_illuminant(illuminant)
@@ -99,6 +140,23 @@ def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
 
 def xyz_array(XYZ, name: str = "XYZ") -> np.ndarray:
     """Finite tristimulus values of shape (..., 3) as a float array, or a clear error.
+
+    Parameters
+    ----------
+    XYZ : array_like, shape (..., 3)
+        Tristimulus values, XYZ100.
+    name : str, default "XYZ"
+        The argument's name, for messages.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Float64 values.
+
+    Raises
+    ------
+    ColorimetryError
+        For malformed input, NaN or infinity.
 
     Examples
     --------
