@@ -72,6 +72,15 @@ def cone_facets(W: np.ndarray) -> Facets:
 def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Membership of colours ``b`` (N, 3).
 
+    Parameters
+    ----------
+    facets : Facets
+        From :func:`solid_facets` (the object-colour solid) or :func:`cone_facets`.
+    b : numpy.ndarray, shape (N, 3)
+        Colours, XYZ100.
+    cone : bool
+        Whether ``facets`` describe the cone of non-negative spectra (else the solid).
+
     Returns
     -------
     ratio : (N,)
@@ -84,6 +93,14 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
         solid when the nearest boundary point lies inside a facet, and a lower bound otherwise.
     facet : (N,) int
         Index of the facet attaining ``ratio``.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> W = weights(wavelength_grid(400, 700, 10), illuminant="D65")
+    >>> ratio, excess, facet = gauge(solid_facets(W), np.array([[40.0, 40.0, 40.0], [90.0, 10.0, 5.0]]), cone=False)
+    >>> (ratio <= 1).tolist(), bool(excess[1] > 0)
+    ([True, False], True)
     """
     N = b.shape[0]
     ratio = np.empty(N)
@@ -122,6 +139,16 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
 
 def sphere_directions(n: int) -> np.ndarray:
     """``n`` unit vectors (n, 3) spread evenly over the sphere (a Fibonacci lattice).
+
+    Parameters
+    ----------
+    n : int
+        Number of directions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 3)
+        Unit vectors.
 
     Examples
     --------
