@@ -89,7 +89,8 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
         For the cone, ``max_f n_f.b / |b|`` (inside iff <= 0), 0 for ``b = 0``.
     excess : (N,)
         ``max_f n_f.(b - c) - s_f``: the distance (XYZ100 units) from ``b`` to the farthest
-        violated facet plane, <= 0 inside. Outside, it is the Euclidean distance to the
+        violated facet plane; computed only outside (for the solid, ``-inf`` inside; for the
+        cone, ``max_f n_f.b``, <= 0 inside). Outside, it is the Euclidean distance to the
         solid when the nearest boundary point lies inside a facet, and a lower bound otherwise.
     facet : (N,) int
         Index of the facet attaining ``ratio``.
