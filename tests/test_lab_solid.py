@@ -16,10 +16,11 @@ def test_the_solids_levels_are_macadam_limits_in_cielab():
     grid = sc.wavelength_grid(*lab.GRID)
     white = sc.white_point("A", wavelengths_nm=grid)
     level = solid["levels"][5]
-    expected = sc.lab(macadam_limits(level["Y"], "A", "1931", lab.GRID, samples=lab.HUES), white)
+    limit = macadam_limits(level["Y"], illuminant="A", observer="1931", wavelengths=lab.GRID, samples=lab.HUES)
+    expected = sc.lab(limit, white)
     np.testing.assert_allclose(level["lab"], expected, atol=5e-4)  # 3 decimals
     XYZ = sc.XYZ_from_lab(np.array(level["lab"]), white)
-    depth = object_colour_membership(XYZ, "A", "1931", lab.GRID).relative_depth
+    depth = object_colour_membership(XYZ, illuminant="A", observer="1931", wavelengths=lab.GRID).relative_depth
     assert np.all(np.abs(depth) < 1e-4)  # on the boundary (Lab rounded to 3 decimals)
 
 
@@ -32,7 +33,7 @@ def test_the_display_cube_is_anchored_at_black_and_the_lights_white():
 
 def test_the_section_is_the_librarys_macadam_limit():
     cut = lab.section(30.0, "D65")
-    expected = sc.xy(macadam_limits(30.0, "D65", "1931", lab.GRID, samples=180))
+    expected = sc.xy(macadam_limits(30.0, illuminant="D65", observer="1931", wavelengths=lab.GRID, samples=180))
     np.testing.assert_allclose(cut["macadam_xy"], expected, atol=5e-6)
 
 

@@ -39,9 +39,9 @@ def test_optimal_colours_are_on_the_boundary(grid, illuminant):
     depth 0 to rounding (1e-12), and so does an independent linear programme (to HiGHS's
     1e-7 feasibility tolerance); many of them have more than two transitions on these grids."""
     W = _weights(grid, illuminant)
-    o = optimal_colours(illuminant, wavelengths=grid, directions=400)
+    o = optimal_colours(illuminant=illuminant, wavelengths=grid, directions=400)
     np.testing.assert_allclose(o.reflectances @ W, o.XYZ100, rtol=0, atol=1e-12)
-    m = object_colour_membership(o.XYZ100, illuminant, wavelengths=grid)
+    m = object_colour_membership(o.XYZ100, illuminant=illuminant, wavelengths=grid)
     assert np.abs(m.relative_depth).max() < 1e-12
     np.testing.assert_allclose(_lp_scale(W, o.XYZ100[::20]), 1.0, atol=1e-7)
     # each maximises its direction: no 0/1 spectrum goes further
@@ -86,9 +86,9 @@ def test_random_reflectances_inside_and_scaled_outside():
 @pytest.mark.parametrize(("grid", "illuminant", "Y"), [(GRID, "D65", 30.0), ((380.0, 780.0, 5.0), "A", 70.0),
                                                        ((380.0, 780.0, 20.0), "F2", 5.0)])
 def test_macadam_limits_have_the_requested_luminance_and_are_on_the_boundary(grid, illuminant, Y):
-    XYZ = macadam_limits(Y, illuminant, wavelengths=grid, samples=90)
+    XYZ = macadam_limits(Y, illuminant=illuminant, wavelengths=grid, samples=90)
     np.testing.assert_allclose(XYZ[:, 1], Y, atol=1e-9)
-    m = object_colour_membership(XYZ, illuminant, wavelengths=grid)
+    m = object_colour_membership(XYZ, illuminant=illuminant, wavelengths=grid)
     assert np.abs(m.relative_depth).max() < 1e-12
     np.testing.assert_allclose(_lp_scale(_weights(grid, illuminant), XYZ[::9]), 1.0, atol=1e-7)
 

@@ -61,7 +61,7 @@ def _colours(W, rng, n, hard=True):
 
 def _check(grid, illuminant, bounds, b, kinds, W):
     """The property; returns the number of feasible colours flagged not converged by kind."""
-    r = smoothest_reflectance(b, illuminant, wavelengths=grid, bounds=bounds)  # never raises
+    r = smoothest_reflectance(b, illuminant=illuminant, wavelengths=grid, bounds=bounds)  # never raises
     upper = 1.0 if bounds == "unit" else np.inf
     inside = kinds != "outside"
     assert np.all(r.feasible[inside])
@@ -105,7 +105,7 @@ def test_boundary_colours_from_supporting_planes_are_answered():
     """Optimal colours (on the boundary, many transitions): answered, exact where converged."""
     grid = (380.0, 780.0, 10.0)
     W = _weights(grid, "D65")
-    b = optimal_colours("D65", wavelengths=grid, directions=300).XYZ100
+    b = optimal_colours(illuminant="D65", wavelengths=grid, directions=300).XYZ100
     _check(grid, "D65", "unit", b, np.full(len(b), "boundary"), W)
 
 

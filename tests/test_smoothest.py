@@ -176,7 +176,7 @@ def test_every_colour_solved_at_relative_depth_1e_9(step, illuminant):
     rng = np.random.default_rng(7)
     n = 1000 if step == 10.0 else 500
     b = np.concatenate([_near_boundary(W, n, rng, [1e-9]), _towards_facets(W, n, rng, 1e-9)])
-    r = smoothest_reflectance(b, illuminant, wavelengths=grid, bounds="unit")
+    r = smoothest_reflectance(b, illuminant=illuminant, wavelengths=grid, bounds="unit")
     rho = r.spectrum.values
     assert np.all(r.feasible) and np.all(r.certificate.converged)
     assert np.abs(sc.tristimulus(r.spectrum, observer="1931", illuminant=illuminant) - b).max() <= 1e-10
@@ -399,8 +399,8 @@ def test_ill_conditioned_colours_at_depth_1e_9_are_certified(grid, illuminant, X
     rounding level relative to the colour and optimality checked independently."""
     W = _weights(grid, illuminant)
     b = np.array([XYZ] * 3)
-    r = smoothest_reflectance(b, illuminant, wavelengths=grid)
-    one = smoothest_reflectance(XYZ, illuminant, wavelengths=grid)
+    r = smoothest_reflectance(b, illuminant=illuminant, wavelengths=grid)
+    one = smoothest_reflectance(XYZ, illuminant=illuminant, wavelengths=grid)
     assert np.all(r.certificate.converged) and one.certificate.converged
     for rho in (*r.spectrum.values, one.spectrum.values):
         assert rho.min() >= 0.0 and rho.max() <= 1.0
@@ -441,7 +441,7 @@ def test_vertices_with_unlit_samples_are_certified():
     W = _weights(grid, "LED-B1")
     assert np.any(np.all(W == 0, axis=1))
     R = (np.random.default_rng(5).normal(size=(60, 3)) @ W.T > 0).astype(float)
-    r = smoothest_reflectance(R @ W, "LED-B1", wavelengths=grid)
+    r = smoothest_reflectance(R @ W, illuminant="LED-B1", wavelengths=grid)
     assert np.all(r.certificate.converged)
     for i in range(0, 60, 6):
         assert_kkt(W, 10.0, r.spectrum.values[i], 1.0, mu_hint=r.multipliers[i])

@@ -62,7 +62,7 @@ def test_roughness_excess_within_the_recorded_bound_at_random_points():
     rho = upsample(table, t).reflectance
     step = float(table.wavelengths_nm[1] - table.wavelengths_nm[0])
     interpolated = np.sum(np.diff(rho, axis=-1) ** 2, axis=-1) / step
-    optimum = sc.smoothest_reflectance(t @ table.matrix.T, "D65", "1931", (380, 780, 5))
+    optimum = sc.smoothest_reflectance(t @ table.matrix.T, illuminant="D65", observer="1931", wavelengths=(380, 780, 5))
     assert optimum.certificate.converged.all()
     excess = interpolated - optimum.roughness
     cell = np.minimum((t * (table.resolution - 1)).astype(int), table.resolution - 2)

@@ -34,7 +34,7 @@ def test_region_matches_brute_force_and_does_not_depend_on_Y(illuminant):
     xy = _chromaticity_grid()
     signs = []
     for Y in (5.0, 40.0):
-        rho = smoothest_reflectance(_xyz(xy, Y), illuminant, wavelengths=GRID,
+        rho = smoothest_reflectance(_xyz(xy, Y), illuminant=illuminant, wavelengths=GRID,
                                     bounds=None).spectrum.values
         signs.append(rho.min(axis=1) >= 0)
     np.testing.assert_array_equal(signs[0], signs[1])  # linear in XYZ: Y only scales ρ
@@ -61,7 +61,7 @@ def test_boundary_contains_the_end_lines():
             ends = d.region_xy[[edge, (edge + 1) % len(d.region_xy)]]
             np.testing.assert_allclose(ends @ line[:2] + line[2], 0, atol=1e-12)
             # on that edge the solution is zero at the end sample and positive elsewhere
-            rho = smoothest_reflectance(_xyz(ends.mean(axis=0), 30.0), ill, wavelengths=GRID,
+            rho = smoothest_reflectance(_xyz(ends.mean(axis=0), 30.0), illuminant=ill, wavelengths=GRID,
                                         bounds=None).spectrum.values
             assert abs(rho[k]) < 1e-12 and np.delete(rho, k).min() > 0
 
@@ -74,14 +74,14 @@ def test_max_luminance_factor_is_where_rho_reaches_one(illuminant):
     ymax = d.max_luminance_factor(xy)
     assert np.all((ymax > 0) & (ymax <= 1 + 1e-9))
     for factor, below in ((0.999, True), (1.001, False)):
-        r = smoothest_reflectance(_xyz(xy, 100 * factor * ymax), illuminant,
+        r = smoothest_reflectance(_xyz(xy, 100 * factor * ymax), illuminant=illuminant,
                                   wavelengths=GRID, bounds=None).spectrum.values
         assert np.all((r.max(axis=1) <= 1) == below)
     # below the limit the bounded (unit) and unconstrained solutions coincide
     b = _xyz(xy, 90 * ymax)
     np.testing.assert_allclose(
-        smoothest_reflectance(b, illuminant, wavelengths=GRID).spectrum.values,
-        smoothest_reflectance(b, illuminant, wavelengths=GRID, bounds=None).spectrum.values,
+        smoothest_reflectance(b, illuminant=illuminant, wavelengths=GRID).spectrum.values,
+        smoothest_reflectance(b, illuminant=illuminant, wavelengths=GRID, bounds=None).spectrum.values,
         atol=1e-12)
     # the white of the same weights reaches Y/Y0 = 1 (the constant reflectance 1)
     white = np.asarray(sc.weights(sc.wavelength_grid(*GRID), observer="1931", illuminant=illuminant)).sum(axis=0)
@@ -105,7 +105,7 @@ def test_generating_functions_touch_zero_with_zero_slope_and_stay_below_the_opti
 
     g = generating_functions(illuminant, wavelengths=GRID)
     XYZ = g.luminance_factor[:, None] * 100 * _xyz(g.xy, 1.0)
-    rho = smoothest_reflectance(XYZ, illuminant, wavelengths=GRID, bounds=None).spectrum.values
+    rho = smoothest_reflectance(XYZ, illuminant=illuminant, wavelengths=GRID, bounds=None).spectrum.values
     np.testing.assert_allclose(rho, g.reflectance, atol=1e-9)
     np.testing.assert_allclose(g.reflectance.max(axis=1), 1.0, atol=1e-12)
     interior = g.solution_class == "1"
@@ -116,7 +116,7 @@ def test_generating_functions_touch_zero_with_zero_slope_and_stay_below_the_opti
     assert around.max() < 1e-9 and rows.min() > -1e-9
     assert np.all(g.luminance_factor <= g.max_luminance_factor + 1e-12)
     optimal = g.max_luminance_factor[:, None] * 100 * _xyz(g.xy, 1.0)
-    depth = object_colour_membership(optimal, illuminant, wavelengths=GRID).relative_depth
+    depth = object_colour_membership(optimal, illuminant=illuminant, wavelengths=GRID).relative_depth
     assert np.abs(depth).max() < 1e-12
 
 

@@ -148,7 +148,8 @@ def reflectance_lab(x: float, y: float, Y: float, illuminant="D65", observer: st
         "wavelengths_nm": wavelengths.tolist(),
         "XYZ": np.round(XYZ, 6).tolist(),
         "solutions": solutions,
-        "max_Y": round(float(max_luminance_factor(values[:2], light, observer, grid)), 4),
+        "max_Y": round(float(max_luminance_factor(values[:2], illuminant=light, observer=observer,
+                                                  wavelengths=grid)), 4),
         "valid_up_to_Y": None if not np.isfinite(valid) else round(float(valid) * 100.0, 4),
         "locus_xy": np.round(spectral_locus(observer).xy, 5).tolist(),
         "white_xy": np.round(chromaticity(white), 6).tolist(),
@@ -164,7 +165,7 @@ def reflectance_lab(x: float, y: float, Y: float, illuminant="D65", observer: st
 def _domain(light: str, observer: str, grid: tuple):
     from ..recovery.validity import domain_of_validity
 
-    return domain_of_validity(light, observer, grid)
+    return domain_of_validity(light, observer=observer, wavelengths=grid)
 
 
 @lru_cache(maxsize=64)
@@ -183,7 +184,8 @@ def macadam_xy(Y: float, illuminant="D65", observer: str = "1931", step_nm: str 
         raise ColorimetryError(f"Y: the MacAdam limit needs 0 < Y < 100, got {Y!r}")
     light = canonical_illuminant(illuminant)
     grid = (380.0, 780.0, STEPS_NM.get(str(step_nm)))
-    return np.round(chromaticity(macadam_limits(float(Y), light, observer, grid, samples=180)), 5).tolist()
+    limit = macadam_limits(float(Y), illuminant=light, observer=observer, wavelengths=grid, samples=180)
+    return np.round(chromaticity(limit), 5).tolist()
 
 
 def reflectance_lab_options() -> dict:

@@ -82,7 +82,7 @@ def solid(illuminant="D65", display: str = "sRGB") -> dict:
     white = white_point(light, wavelengths_nm=wavelength_grid(*GRID))
     levels = []
     for Y in LEVELS_Y:
-        XYZ = macadam_limits(Y, light, "1931", GRID, samples=HUES)
+        XYZ = macadam_limits(Y, illuminant=light, observer="1931", wavelengths=GRID, samples=HUES)
         levels.append({"Y": Y, "lab": np.round(lab(XYZ, white), 3).tolist(),
                        "rgb8": _shown(XYZ, white, display).tolist()})
     space = rgb_space(display)
@@ -126,7 +126,8 @@ def section(Y: float, illuminant="D65", display: str = "sRGB") -> dict:
     white = white_point(light, wavelengths_nm=wavelength_grid(*GRID))
     return {
         "Y": float(Y),
-        "macadam_xy": np.round(xy(macadam_limits(float(Y), light, "1931", GRID, samples=180)), 5).tolist(),
+        "macadam_xy": np.round(xy(macadam_limits(float(Y), illuminant=light, observer="1931", wavelengths=GRID,
+                                                 samples=180)), 5).tolist(),
         "display_xy": np.round(rgb_space(display).primaries_xy, 5).tolist(),
         "white_xy": np.round(xy(white), 5).tolist(),
         "locus_xy": np.round(spectral_locus("1931").xy, 5).tolist(),
@@ -163,7 +164,8 @@ def mismatch(sample: int, illuminant="D65", second_illuminant="A", display: str 
     W1, W2 = weights(grid, illuminant=first), weights(grid, illuminant=second)
     reflectance = tcs_reflectances(grid)[sample - 1]
     XYZ1, XYZ2 = reflectance @ W1, reflectance @ W2
-    region = metamer_mismatch_region(XYZ1, first, second, "1931", GRID, directions=100)
+    region = metamer_mismatch_region(XYZ1, illuminant=first, second_illuminant=second, observer="1931",
+                                     wavelengths=GRID, directions=100)
     white2 = W2.sum(axis=0)
     return {
         "sample": int(sample), "illuminant": illuminant_label(first), "second_illuminant": illuminant_label(second),

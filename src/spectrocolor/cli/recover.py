@@ -99,8 +99,8 @@ def _run(args) -> int:
         names = [f"colour_{i + 1}" for i in range(len(XYZ))]
     bounds = None if args.bounds == "none" else args.bounds
     # one colour alone: the library's error (one line, with the white of this grid) says it all
-    result = smoothest_reflectance(XYZ[0] if args.xyz is not None else XYZ, args.illuminant,
-                                   args.observer, grid, bounds)
+    result = smoothest_reflectance(XYZ[0] if args.xyz is not None else XYZ, illuminant=args.illuminant,
+                                   observer=args.observer, wavelengths=grid, bounds=bounds)
     feasible = np.atleast_1d(result.feasible)
     values = result.spectrum.values.reshape(len(feasible), -1)
     for name, ok, dist in zip(names, feasible, np.atleast_1d(result.distance_outside),

@@ -254,7 +254,7 @@ GAMUT_STRATEGIES.add(
 )
 GAMUT_STRATEGIES.add(
     "preserve-luminance", preserve_luminance,
-    "add white until no channel is negative, keeping luminance (Zawischa eqs. 20-21), then clip over-range",
+    "set negative channels to 0 and scale the others to keep luminance (Zawischa eqs. 20-21), then clip above 1",
 )
 GAMUT_STRATEGIES.add(
     "desaturate", desaturate, "move towards the grey of equal luminance along constant hue: the least change"

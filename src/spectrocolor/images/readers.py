@@ -657,10 +657,9 @@ def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> Spectr
 
     global _MAT5_WORKER
     if _MAT5_WORKER is None:
+        import atexit
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
-
-        import atexit
 
         _MAT5_WORKER = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("forkserver"))
         atexit.register(_MAT5_WORKER.shutdown, cancel_futures=True)  # before the interpreter tears down

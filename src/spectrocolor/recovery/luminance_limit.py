@@ -17,10 +17,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..illuminants import DEFAULT_ILLUMINANT
+from ..observers import DEFAULT_OBSERVER
 from .inputs import DEFAULT_WAVELENGTHS, setup_for
 
 
-def max_luminance_factor(xy, illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS) -> np.ndarray:
+def max_luminance_factor(xy, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER,
+                         wavelengths=DEFAULT_WAVELENGTHS) -> np.ndarray:
     """The largest luminance factor Y (%) of an object colour with chromaticity ``xy``.
 
     Parameters

@@ -23,6 +23,8 @@ from ..colorimetry import weights
 from ..coordinates import lab
 from ..differences import delta_e_2000
 from ..errors import SpectrumError
+from ..illuminants import DEFAULT_ILLUMINANT
+from ..observers import DEFAULT_OBSERVER
 from ..spectrum import Spectrum
 
 
@@ -32,7 +34,7 @@ def _reflectance(spectrum, argument: str) -> Spectrum:
     return spectrum
 
 
-def cohen_projector(wavelengths_nm, illuminant="D65", observer="1931") -> np.ndarray:
+def cohen_projector(wavelengths_nm, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER) -> np.ndarray:
     """Cohen's matrix ``R`` (K, K): the orthogonal projector onto the span of the weights.
 
     ``R = W (Wᵀ W)⁻¹ Wᵀ``: ``R ρ`` is the fundamental metamer of ρ, ``(I − R) ρ`` its
@@ -69,7 +71,7 @@ def cohen_projector(wavelengths_nm, illuminant="D65", observer="1931") -> np.nda
     return W @ np.linalg.solve(W.T @ W, W.T)
 
 
-def fundamental_metamer(spectrum: Spectrum, illuminant="D65", observer="1931") -> Spectrum:
+def fundamental_metamer(spectrum: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER) -> Spectrum:
     """The fundamental metamer ``R ρ`` of reflectance(s) ``(..., K)``: same XYZ, no black.
 
     Parameters
@@ -101,11 +103,11 @@ def fundamental_metamer(spectrum: Spectrum, illuminant="D65", observer="1931") -
     [29.3969, 50.8161, 5.5021]
     """
     s = _reflectance(spectrum, "spectrum")
-    R = cohen_projector(s.wavelengths_nm, illuminant, observer)
+    R = cohen_projector(s.wavelengths_nm, illuminant=illuminant, observer=observer)
     return Spectrum(s.wavelengths_nm, s.values @ R.T, s.names)
 
 
-def metameric_black(spectrum: Spectrum, illuminant="D65", observer="1931") -> Spectrum:
+def metameric_black(spectrum: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER) -> Spectrum:
     """The metameric black ``ρ − R ρ``: tristimulus values exactly zero (to rounding).
 
     Parameters
@@ -135,7 +137,7 @@ def metameric_black(spectrum: Spectrum, illuminant="D65", observer="1931") -> Sp
     True
     """
     s = _reflectance(spectrum, "spectrum")
-    R = cohen_projector(s.wavelengths_nm, illuminant, observer)
+    R = cohen_projector(s.wavelengths_nm, illuminant=illuminant, observer=observer)
     return Spectrum(s.wavelengths_nm, s.values - s.values @ R.T, s.names)
 
 

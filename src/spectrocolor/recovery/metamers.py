@@ -31,7 +31,8 @@ from ..colorimetry import weights
 from ..coordinates import lab
 from ..differences import delta_e_2000
 from ..errors import ColorimetryError
-from ..illuminants import canonical_illuminant_name
+from ..illuminants import DEFAULT_ILLUMINANT, canonical_illuminant_name
+from ..observers import DEFAULT_OBSERVER
 from ..spectrum import Spectrum, wavelength_grid
 from . import qp, zonotope
 from .certificate import Certificate, certify
@@ -167,9 +168,10 @@ def _polish(x: np.ndarray, A: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def metamer_mismatch_region(
     XYZ,
-    illuminant="D65",
+    *,
+    illuminant=DEFAULT_ILLUMINANT,
     second_illuminant="A",
-    observer="1931",
+    observer=DEFAULT_OBSERVER,
     wavelengths=DEFAULT_WAVELENGTHS,
     directions: int | np.ndarray = 200,
 ) -> MismatchRegion:
@@ -221,7 +223,7 @@ def metamer_mismatch_region(
         raise ColorimetryError(f"XYZ: expected one colour of shape (3,), got {b.shape}")
     setup, W2, obs, ill, ill2 = _pair_weights(wavelengths, observer, illuminant,
                                               second_illuminant)
-    member = object_colour_membership(b, illuminant, observer, wavelengths)
+    member = object_colour_membership(b, illuminant=illuminant, observer=observer, wavelengths=wavelengths)
     if not member.inside:
         raise ColorimetryError(
             f"XYZ: {b.tolist()} is outside the object-colour solid for illuminant {ill} "
@@ -454,10 +456,11 @@ def most_different_metamer(
                 "resample it first")
         rho = sample.values
     else:
-        rho = smoothest_reflectance(sample, illuminant, observer, wavelengths).spectrum.values
+        rho = smoothest_reflectance(sample, illuminant=illuminant, observer=observer,
+                                    wavelengths=wavelengths).spectrum.values
     XYZ1, reference = rho @ setup.W, rho @ W2
-    region = metamer_mismatch_region(XYZ1, illuminant, second_illuminant, observer,
-                                     wavelengths, directions)
+    region = metamer_mismatch_region(XYZ1, illuminant=illuminant, second_illuminant=second_illuminant,
+                                     observer=observer, wavelengths=wavelengths, directions=directions)
     white2 = W2.sum(axis=0)
     de = delta_e_2000(lab(reference, white2), lab(region.boundary_XYZ100, white2))
     far = region.boundary_XYZ100[int(np.argmax(de))]

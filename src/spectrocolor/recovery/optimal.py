@@ -28,6 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..illuminants import DEFAULT_ILLUMINANT
+from ..observers import DEFAULT_OBSERVER
 from . import zonotope
 from .inputs import DEFAULT_WAVELENGTHS, setup_for, xyz_array
 
@@ -54,7 +56,7 @@ class SolidMembership:
 
 
 def object_colour_membership(
-    XYZ, illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS
+    XYZ, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER, wavelengths=DEFAULT_WAVELENGTHS
 ) -> SolidMembership:
     """Exact membership test of ``XYZ`` (..., 3) (white ``Y = 100``) in the object-colour solid.
 
@@ -119,7 +121,7 @@ class OptimalColours:
 
 
 def optimal_colours(
-    illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS, directions=2000
+    *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER, wavelengths=DEFAULT_WAVELENGTHS, directions=2000
 ) -> OptimalColours:
     """Optimal colours: the boundary of the object-colour solid from supporting hyperplanes.
 
@@ -175,8 +177,9 @@ def optimal_colours(
 
 def macadam_limits(
     luminance_factor: float,
-    illuminant="D65",
-    observer="1931",
+    *,
+    illuminant=DEFAULT_ILLUMINANT,
+    observer=DEFAULT_OBSERVER,
     wavelengths=DEFAULT_WAVELENGTHS,
     samples: int = 720,
 ) -> np.ndarray:

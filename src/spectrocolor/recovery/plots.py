@@ -177,7 +177,8 @@ def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65"
     from .optimal import macadam_limits
 
     curves = [np.vstack([c, c[:1]]) for c in (
-        xy(macadam_limits(Y, illuminant, observer, wavelengths)) for Y in luminance_factors)]
+        xy(macadam_limits(Y, illuminant=illuminant, observer=observer, wavelengths=wavelengths))
+        for Y in luminance_factors)]
     return chromaticity_diagram(
         spaces=(), whites=(illuminant,), planckian=False, fill=False,
         curves=curves, curve_labels=[f"Y = {Y:g} %" for Y in luminance_factors],

@@ -33,6 +33,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..illuminants import DEFAULT_ILLUMINANT
+from ..observers import DEFAULT_OBSERVER
 from ..spectrum import Spectrum
 from . import face, qp, zonotope
 from .certificate import Certificate, certify
@@ -122,8 +124,9 @@ def _face_or_flag(W, Q, b, lower, upper, facet_tolerance):
 
 def smoothest_reflectance(
     XYZ,
-    illuminant="D65",
-    observer="1931",
+    *,
+    illuminant=DEFAULT_ILLUMINANT,
+    observer=DEFAULT_OBSERVER,
     wavelengths=DEFAULT_WAVELENGTHS,
     bounds: str | None = "unit",
 ) -> SmoothestResult:

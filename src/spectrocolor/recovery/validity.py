@@ -32,6 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..illuminants import DEFAULT_ILLUMINANT
+from ..observers import DEFAULT_OBSERVER
 from .inputs import DEFAULT_WAVELENGTHS, setup_for
 
 #: Chromaticity triangle x, y, z ≥ 0 that the clipping starts from.
@@ -172,7 +174,7 @@ def _clip(polygon: np.ndarray, labels: np.ndarray, line: np.ndarray, label: floa
 
 
 def domain_of_validity(
-    illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS
+    illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSERVER, wavelengths=DEFAULT_WAVELENGTHS
 ) -> DomainOfValidity:
     """The domain of validity of the unconstrained smoothest reflectance.
 
@@ -248,7 +250,8 @@ def _xy(XYZ):
         return np.where(total > 0, XYZ[..., :2] / np.where(total > 0, total, 1.0), np.nan)
 
 
-def boundary_locus(illuminant="D65", observer="1931", wavelengths=DEFAULT_WAVELENGTHS) -> BoundaryLocus:
+def boundary_locus(illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSERVER,
+                   wavelengths=DEFAULT_WAVELENGTHS) -> BoundaryLocus:
     """The left and right branches of van Trigt's boundary locus for one illuminant.
 
     Parameters
@@ -323,7 +326,7 @@ class GeneratingFunctions:
     max_luminance_factor: np.ndarray
 
 
-def generating_functions(illuminant="D65", observer="1931",
+def generating_functions(illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSERVER,
                          wavelengths=DEFAULT_WAVELENGTHS) -> GeneratingFunctions:
     """Van Trigt's generating functions ``ρ(λ; λ₁)`` with ``Y(λ₁)`` and ``Y_M(λ₁)``.
 
@@ -354,7 +357,7 @@ def generating_functions(illuminant="D65", observer="1931",
     """
     from . import zonotope
 
-    domain = domain_of_validity(illuminant, observer, wavelengths)
+    domain = domain_of_validity(illuminant, observer=observer, wavelengths=wavelengths)
     setup, _, _ = setup_for(wavelengths, observer, illuminant)
     grid, labels, poly = domain.wavelengths_nm, domain.edge_wavelengths_nm, domain.region_xy
     before = np.roll(labels, 1)  # the edge that ends at vertex i

@@ -214,7 +214,8 @@ def _solve_checked(XYZ100, illuminant, observer, wavelengths):
     """Smoothest bounded reflectances, re-checked here; (ρ, μ, roughness, ok)."""
     from ..recovery.smoothest import smoothest_reflectance
 
-    result = smoothest_reflectance(XYZ100, illuminant, observer, wavelengths, bounds="unit")
+    result = smoothest_reflectance(XYZ100, illuminant=illuminant, observer=observer, wavelengths=wavelengths,
+                                   bounds="unit")
     rho = np.asarray(result.spectrum.values, dtype=float)
     return rho, np.asarray(result.multipliers, dtype=float), result, (
         np.asarray(result.feasible) & np.asarray(result.certificate.converged))
