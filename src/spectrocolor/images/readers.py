@@ -32,6 +32,7 @@ anything else (or no unit) is an error unless ``wavelength_units=`` says what th
 from __future__ import annotations
 
 import re
+import struct
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -240,8 +241,8 @@ def _read_tiff(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
 
     try:
         tif = tifffile.TiffFile(path)
-    except tifffile.TiffFileError as exc:
-        raise SpectrumError(f"{path}: not a TIFF file ({exc})") from None
+    except (tifffile.TiffFileError, struct.error) as exc:  # struct.error: cut right after the signature
+        raise SpectrumError(f"{path}: not a readable TIFF file ({exc})") from None
     with tif:
         try:
             series = tif.series[0]
