@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..illuminants import illuminant_label
 from .apply import colours_under
 from .table import UpsamplingTable
 
@@ -146,7 +147,7 @@ def relight(table: UpsamplingTable, rgb_linear, illuminant, adaptation: str | No
     method = "bradford" if adaptation is None else adaptation
     to_display = adaptation_matrix(seen_white, display.white_XYZ, method)
     XYZ_display = XYZ @ to_display.T
-    label = illuminant if isinstance(illuminant, str) else "custom illuminant"
+    label = illuminant_label(illuminant)
     return Relit(XYZ_display, display.rgb_linear_from_XYZ(XYZ_display), exact, label,
                  adaptation, display.name)
 
