@@ -160,3 +160,14 @@ def in_viewport(pg, selector):
     return pg.evaluate("""(sel) => { const r = document.querySelector(sel).getBoundingClientRect();
         return r.height > 0 && r.top >= 0 && r.left >= 0 && r.bottom <= innerHeight + 0.5
             && r.right <= innerWidth + 0.5; }""", selector)
+
+
+def open_lab(browser, url, size=DESKTOP, timeout_ms=30000):
+    """A lab page at ``url`` once its first answer is drawn (``body[data-ready]``); returns the page
+    and the list that collects its page errors."""
+    page = browser.new_page(viewport={"width": size[0], "height": size[1]})
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(url)
+    page.wait_for_selector("body[data-ready=true]", timeout=timeout_ms)
+    return page, errors

@@ -6,19 +6,10 @@ import json
 
 import pytest
 
-from appbrowser import AXE, DESKTOP, PHONE
+from appbrowser import AXE, DESKTOP, PHONE, open_lab
 from spectrocolor.app import light_lab as lab
 
 pytestmark = pytest.mark.browser
-
-
-def open_lab(browser, url, size=DESKTOP):
-    page = browser.new_page(viewport={"width": size[0], "height": size[1]})
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(url)
-    page.wait_for_selector("body[data-ready=true]")
-    return page, errors
 
 
 def shown_numbers(page) -> dict:

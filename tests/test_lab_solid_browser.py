@@ -6,22 +6,13 @@ import json
 
 import pytest
 
-from appbrowser import AXE, DESKTOP, PHONE
+from appbrowser import AXE, DESKTOP, PHONE, open_lab
 
 pytestmark = pytest.mark.browser
 
 
-def open_lab(browser, url, size=DESKTOP):
-    page = browser.new_page(viewport={"width": size[0], "height": size[1]})
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(url)
-    page.wait_for_selector("body[data-ready=true]", timeout=60000)
-    return page, errors
-
-
 def test_turning_cutting_and_the_mismatch_region(browser, base_url, artifacts_dir):
-    page, errors = open_lab(browser, base_url + "labs/solid")
+    page, errors = open_lab(browser, base_url + "labs/solid", timeout_ms=60000)
     before = page.eval_on_selector("#solid", "c => c.toDataURL()")
     page.click("button[aria-label='Turn right']")
     page.wait_for_function("location.hash.includes('yaw=50')")
@@ -40,7 +31,7 @@ def test_turning_cutting_and_the_mismatch_region(browser, base_url, artifacts_di
 
 def test_no_serious_accessibility_violations(browser, base_url):
     for size in (DESKTOP, PHONE):
-        page, errors = open_lab(browser, base_url + "labs/solid", size)
+        page, errors = open_lab(browser, base_url + "labs/solid", size, timeout_ms=60000)
         page.add_script_tag(path=str(AXE))
         result = json.loads(page.evaluate("async () => JSON.stringify(await axe.run(document))"))
         violations = [v for v in result["violations"] if v["impact"] in ("serious", "critical")]

@@ -45,3 +45,29 @@ export function wireCommon(undo, redo) {
     }
   });
 }
+
+/** The square CIE xy plot (x 0–0.8, y 0–0.9) of a canvas: its box and the x, y → pixel maps. */
+export function xyFrame(width, height) {
+  const size = Math.min(width - 56, height - 44);
+  const box = { x: 48, y: 8, w: size, h: size };
+  return { box, X: (x) => box.x + (x / 0.8) * box.w, Y: (y) => box.y + box.h - (y / 0.9) * box.h };
+}
+
+/** The frame, tick values and axis label of an xy plot. */
+export function drawXyAxes(ctx, { box, X, Y }) {
+  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.lineWidth = 1; ctx.font = "11px system-ui, sans-serif";
+  ctx.strokeRect(box.x, box.y, box.w, box.h);
+  ctx.textAlign = "center";
+  for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), X(v), box.y + box.h + 15);
+  ctx.fillText("x", box.x + box.w / 2, box.y + box.h + 30);
+  ctx.textAlign = "right";
+  for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
+}
+
+/** Stroke a polyline of chromaticities (closed on request) in the current style. */
+export function xyPath(ctx, { X, Y }, points, close) {
+  ctx.beginPath();
+  points.forEach(([x, y], k) => (k ? ctx.lineTo(X(x), Y(y)) : ctx.moveTo(X(x), Y(y))));
+  if (close) ctx.closePath();
+  ctx.stroke();
+}

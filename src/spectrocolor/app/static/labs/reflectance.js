@@ -3,7 +3,7 @@
 // chromaticity and the domain of validity (POST /api/lab/reflectance), and the MacAdam limit at Y
 // (POST /api/lab/reflectance/macadam). Nothing is computed here but the drawing.
 
-import { $, api, context, css, fmt, showError, wireCommon } from "./common.js";
+import { $, api, context, css, fmt, showError, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
 
 const DEFAULTS = { light: "D65", step: "5", x: 0.45, y: 0.4, Y: 30 };
 
@@ -133,28 +133,15 @@ function drawSpectrum() {
 function drawDiagram() {
   const canvas = $("diagram");
   const { ctx, width, height } = context(canvas);
-  const size = Math.min(width - 56, height - 44);
-  const box = { x: 48, y: 8, w: size, h: size };
+  const frame = xyFrame(width, height);
+  const { box, X, Y } = frame;
   canvas.dataset.box = JSON.stringify(box);
-  const X = (x) => box.x + (x / 0.8) * box.w;
-  const Y = (y) => box.y + box.h - (y / 0.9) * box.h;
   const cells = result.valid_cells;
   ctx.fillStyle = "rgba(46, 160, 67, 0.35)";
   const cw = box.w / cells.size, ch = box.h / cells.size;
   for (const [i, j] of cells.cells) ctx.fillRect(box.x + i * cw, box.y + box.h - (j + 1) * ch, cw + 0.5, ch + 0.5);
-  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.lineWidth = 1; ctx.font = "11px system-ui, sans-serif";
-  ctx.strokeRect(box.x, box.y, box.w, box.h);
-  ctx.textAlign = "center";
-  for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), X(v), box.y + box.h + 15);
-  ctx.fillText("x", box.x + box.w / 2, box.y + box.h + 30);
-  ctx.textAlign = "right";
-  for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
-  const path = (points, close) => {
-    ctx.beginPath();
-    points.forEach(([x, y], k) => (k ? ctx.lineTo(X(x), Y(y)) : ctx.moveTo(X(x), Y(y))));
-    if (close) ctx.closePath();
-    ctx.stroke();
-  };
+  drawXyAxes(ctx, frame);
+  const path = (points, close) => xyPath(ctx, frame, points, close);
   ctx.strokeStyle = "#5b5b66"; ctx.lineWidth = 1.5; path(result.locus_xy, true);
   ctx.setLineDash([5, 4]); ctx.strokeStyle = "#1b1b1f"; path(result.domain_xy, true); ctx.setLineDash([]);
   if (macadam && macadam.length) { ctx.strokeStyle = "#c05600"; ctx.lineWidth = 2; path(macadam, true); }

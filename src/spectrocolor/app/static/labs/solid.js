@@ -2,7 +2,7 @@
 // colours, the display cube's edges), a section at Y and a sample's metamer mismatch region; the
 // page only projects and draws them (a rotatable orthographic view on a 2-D canvas).
 
-import { $, api, context, css, showError, wireCommon } from "./common.js";
+import { $, api, context, css, showError, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
 
 const DEFAULTS = { light: "D65", display: "sRGB", Y: 50, sample: 1, second: "A", yaw: 35, pitch: 20, mismatch: 0 };
 
@@ -160,23 +160,10 @@ function drawSolid() {
 
 function drawSection() {
   const { ctx, width, height } = context($("section"));
-  const size = Math.min(width - 56, height - 44);
-  const box = { x: 48, y: 8, w: size, h: size };
-  const X = (x) => box.x + (x / 0.8) * box.w;
-  const Y = (y) => box.y + box.h - (y / 0.9) * box.h;
-  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.lineWidth = 1; ctx.font = "11px system-ui, sans-serif";
-  ctx.strokeRect(box.x, box.y, box.w, box.h);
-  ctx.textAlign = "center";
-  for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), X(v), box.y + box.h + 15);
-  ctx.fillText("x", box.x + box.w / 2, box.y + box.h + 30);
-  ctx.textAlign = "right";
-  for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
-  const path = (points, close) => {
-    ctx.beginPath();
-    points.forEach(([x, y], k) => (k ? ctx.lineTo(X(x), Y(y)) : ctx.moveTo(X(x), Y(y))));
-    if (close) ctx.closePath();
-    ctx.stroke();
-  };
+  const frame = xyFrame(width, height);
+  const { box, X, Y } = frame;
+  drawXyAxes(ctx, frame);
+  const path = (points, close) => xyPath(ctx, frame, points, close);
   ctx.strokeStyle = "#5b5b66"; ctx.lineWidth = 1.5; path(section.locus_xy, true);
   ctx.strokeStyle = "#000000"; path(section.display_xy, true);
   ctx.strokeStyle = "#c05600"; ctx.lineWidth = 2.5; path(section.macadam_xy, true);
