@@ -66,3 +66,19 @@ def test_errors_name_the_argument():
         optimal_colours(wavelengths=GRID, directions=[[np.nan, 0.0, 1.0]])
     with pytest.raises(sc.ColorimetryError, match="samples"):
         macadam_limits(20.0, wavelengths=GRID, samples="many")
+
+
+@settings(max_examples=60, deadline=None)
+@given(direction=st.tuples(*[st.floats(-1.0, 2.0)] * 3), exponent=st.integers(-1070, 1020),
+       bounds=st.sampled_from(["unit", "nonnegative"]))
+def test_any_scale_is_answered(direction, exponent, bounds):
+    """Tiny (down to subnormal) and huge colours: feasible ones get a finite spectrum within the
+    bounds, infeasible ones NaN and a positive distance; never feasible with a NaN spectrum."""
+    XYZ = np.ldexp(np.array(direction), exponent)
+    r = smoothest_reflectance(XYZ[None], wavelengths=GRID, bounds=bounds)
+    rho = r.spectrum.values[0]
+    if r.feasible[0]:
+        assert np.all(np.isfinite(rho)) and rho.min() >= 0.0
+        assert bounds == "nonnegative" or rho.max() <= 1.0
+    else:
+        assert np.all(np.isnan(rho)) and r.distance_outside[0] > 0

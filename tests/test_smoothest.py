@@ -445,3 +445,70 @@ def test_vertices_with_unlit_samples_are_certified():
     assert np.all(r.certificate.converged)
     for i in range(0, 60, 6):
         assert_kkt(W, 10.0, r.spectrum.values[i], 1.0, mu_hint=r.multipliers[i])
+
+
+def _in_cone_by_lp(W, b):
+    """Independent membership in {ρ @ W : ρ ≥ 0}: a linear programme's verdict."""
+    from scipy.optimize import linprog
+
+    res = linprog(np.zeros(W.shape[0]), A_eq=W.T, b_eq=b, bounds=[(0, None)] * W.shape[0],
+                  method="highs")
+    return res.status == 0
+
+
+# outside the spectrum locus (Z = 0 with X/Y far below the red end's; Z > 4 Y) and inside
+_SCALE_FREE = [([0.9, 1.0, 0.0], False), ([0.5, 1.0, 5.0], False), ([0.2, 1.0, 0.3], True),
+               ([1.0, 1.0, 1.0], True)]
+
+
+@pytest.mark.parametrize("bounds", ["unit", "nonnegative"])
+@pytest.mark.parametrize(("direction", "inside"), _SCALE_FREE)
+@pytest.mark.parametrize("exponent", [-1000, -850, -300, -60, -20])
+def test_tiny_colours_are_classified_and_solved_at_any_scale(bounds, direction, inside, exponent):
+    """Regression: Y ≈ 1e-256 outside the locus gave feasible=True, a NaN spectrum and
+    converged=False. Near black the solid is the cone of non-negative spectra, so a tiny colour
+    is inside iff its direction is (checked by an LP at scale 1), and the solution scales
+    exactly with a power of two (the programme is homogeneous)."""
+    W = _weights()
+    d = np.array(direction)
+    assert _in_cone_by_lp(W, 40.0 * d) == inside
+    b = np.ldexp(d, exponent)
+    r = smoothest_reflectance(b[None], wavelengths=GRID, bounds=bounds)
+    assert r.feasible[0] == inside
+    if not inside:
+        assert np.all(np.isnan(r.spectrum.values)) and r.distance_outside[0] > 0
+        assert r.method[0] == "infeasible"
+        return
+    assert r.certificate.converged[0] and r.distance_outside[0] == 0
+    reference = smoothest_reflectance(d[None], wavelengths=GRID, bounds="nonnegative")
+    np.testing.assert_array_equal(r.spectrum.values, np.ldexp(reference.spectrum.values, exponent))
+    np.testing.assert_array_equal(r.multipliers, np.ldexp(reference.multipliers, exponent))
+
+
+@pytest.mark.parametrize(("direction", "inside"), _SCALE_FREE)
+@pytest.mark.parametrize("exponent", [-40, -25])
+def test_colours_just_below_the_white_are_classified_by_the_cone_at_white(direction, inside,
+                                                                          exponent):
+    """By the symmetry ρ → 1 − ρ, ``white − d`` is in the solid iff the tiny ``d`` is in the cone;
+    inside, the result is certified (ρ = 1 − the cone solution for d)."""
+    W = _weights()
+    d = np.ldexp(np.array(direction), exponent)
+    b = W.sum(axis=0) - d
+    r = smoothest_reflectance(b[None], wavelengths=GRID)
+    assert r.feasible[0] == inside
+    if inside:
+        assert r.certificate.converged[0]
+        assert_kkt(W, GRID[2], r.spectrum.values[0], 1.0, mu_hint=r.multipliers[0])
+    else:
+        assert r.distance_outside[0] > 0 and np.all(np.isnan(r.spectrum.values))
+
+
+@pytest.mark.parametrize("exponent", [300, 900, 1000])
+def test_huge_non_negative_colours_scale_exactly(exponent):
+    """With ρ ≥ 0 alone any scale is feasible; 2^k b gives 2^k times the solution for b
+    (no overflow in the membership test or the solver)."""
+    d = np.array([0.2, 1.0, 0.3])
+    r = smoothest_reflectance(np.ldexp(d, exponent)[None], wavelengths=GRID, bounds="nonnegative")
+    reference = smoothest_reflectance(d[None], wavelengths=GRID, bounds="nonnegative")
+    assert r.feasible[0] and r.certificate.converged[0]
+    np.testing.assert_array_equal(r.spectrum.values, np.ldexp(reference.spectrum.values, exponent))

@@ -180,74 +180,35 @@ def smoothest_reflectance(
     prob = setup.problem
     shape = b_in.shape[:-1]
     b = b_in.reshape(-1, 3)
-    N, K = b.shape[0], prob.size
-    rho, mu = qp.solve_unconstrained(prob, b)
-    converged = np.ones(N, dtype=bool)
-    feasible = np.ones(N, dtype=bool)
-    distance = np.zeros(N)
-    method = np.full(N, "unconstrained", dtype=object)
-    lower, upper = (None, None) if bounds is None else (0.0, 1.0 if bounds == "unit" else np.inf)
-    if bounds is not None:
-        cone = bounds == "nonnegative"
-        facets = setup.cone if cone else setup.solid
-        black = np.all(b == 0, axis=1)
-        white = np.zeros(N, dtype=bool) if cone else np.all(b == setup.white, axis=1)
-        # the unconstrained solution within the bounds certifies feasibility by itself
-        check = np.flatnonzero(~np.all((rho >= lower) & (rho <= upper), axis=1) & ~black & ~white)
-        depth = np.ones(N)
-        ratio, excess, _ = zonotope.gauge(facets, b[check], cone)
-        depth[check] = -ratio if cone else 1.0 - ratio
-        distance[check] = np.maximum(excess, 0.0)
-        on_boundary = np.abs(depth) <= BOUNDARY_TOLERANCE
-        feasible = depth >= -BOUNDARY_TOLERANCE
-        distance[feasible] = 0.0
-        todo = check[feasible[check] & ~on_boundary[check]]
-        if todo.size:
-            sol = qp.solve_bounded(prob, b[todo], lower, upper)
-            rho[todo], mu[todo] = sol.rho, sol.mu
-            converged[todo] = sol.converged
-            method[todo] = np.asarray(qp.METHODS, dtype=object)[sol.method]
-            # a colour that close to the boundary that the active-set methods could not
-            # settle is tried on its face; the certificate decides whether that is exact
-            near = todo[~sol.converged & (depth[todo] <= NEAR_BOUNDARY)]
-            if near.size:
-                got = _boundary_solutions(setup, b[near], lower, upper, NEAR_BOUNDARY)
-                passed = certify(prob.W, prob.step_nm, b[near], got[0], got[1], lower, upper,
-                                 got[3]).converged
-                take = near[passed]
-                rho[take], mu[take] = got[0][passed], got[1][passed]
-                converged[take] = True
-                method[take] = "boundary face"
-        if on_boundary.any():
-            idx = np.flatnonzero(on_boundary)
-            rho[idx], mu[idx], _, converged[idx] = _boundary_solutions(
-                setup, b[idx], lower, upper)
-            method[idx] = "boundary face"
-        # black and white have one reflectance each; zero multipliers certify them
-        rho[black], mu[black] = 0.0, 0.0
-        rho[white], mu[white] = 1.0, 0.0
-        method[black | white] = "black or white"
-        rho[~feasible], mu[~feasible] = np.nan, np.nan
-        converged[~feasible] = False
-        method[~feasible] = "infeasible"
-        if not shape and not feasible[0]:
-            what = "object-colour solid" if bounds == "unit" else "cone of non-negative spectra"
-            white_text = ", ".join(f"{v:.8g}" for v in setup.white)
-            raise ColorimetryError(
-                f"XYZ: {b_in.tolist()} is outside the {what} for illuminant {ill}, observer "
-                f"{obs} on {setup.grid[0]:g}–{setup.grid[-1]:g} nm at {setup.step_nm:g} nm "
-                f"(distance ≥ {distance[0]:.4g} XYZ100); no reflectance with bounds={bounds!r} "
-                f"produces it. XYZ must be on this grid's scale: here the perfect white is "
-                f"XYZ = ({white_text}), which can differ slightly from tabulated white points"
-            )
-    certificate = certify(prob.W, prob.step_nm, b, rho, mu, lower, upper, converged)
-    result_rho = rho.reshape(*shape, K)
+    K = prob.size
+    if bounds is None:
+        rho, mu = qp.solve_unconstrained(prob, b)
+        feasible = np.ones(len(b), dtype=bool)
+        distance = np.zeros(len(b))
+        method = np.full(len(b), "unconstrained", dtype=object)
+        certificate = certify(prob.W, prob.step_nm, b, rho, mu, None, None, feasible)
+    elif bounds == "nonnegative":
+        rho, mu, feasible, distance, method, certificate = _solve_scaled(setup, b)
+    else:
+        rho, mu, feasible, distance, method, certificate = _solve_unit(setup, b)
+    if not shape and not feasible[0]:
+        what = "object-colour solid" if bounds == "unit" else "cone of non-negative spectra"
+        white_text = ", ".join(f"{v:.8g}" for v in setup.white)
+        raise ColorimetryError(
+            f"XYZ: {b_in.tolist()} is outside the {what} for illuminant {ill}, observer "
+            f"{obs} on {setup.grid[0]:g}–{setup.grid[-1]:g} nm at {setup.step_nm:g} nm "
+            f"(distance ≥ {distance[0]:.4g} XYZ100); no reflectance with bounds={bounds!r} "
+            f"produces it. XYZ must be on this grid's scale: here the perfect white is "
+            f"XYZ = ({white_text}), which can differ slightly from tabulated white points"
+        )
+    with np.errstate(over="ignore"):
+        roughness = prob.objective(rho)
     return SmoothestResult(
-        spectrum=Spectrum(setup.grid, result_rho),
+        spectrum=Spectrum(setup.grid, rho.reshape(*shape, K)),
         XYZ100=b_in,
         feasible=feasible.reshape(shape),
         distance_outside=distance.reshape(shape),
-        roughness=prob.objective(rho).reshape(shape),
+        roughness=roughness.reshape(shape),
         multipliers=mu.reshape(*shape, 3),
         certificate=certificate.reshape(shape),
         method=method.astype(str).reshape(shape),
@@ -255,3 +216,148 @@ def smoothest_reflectance(
         observer=obs,
         illuminant=ill,
     )
+
+
+def _binary_exponents(b: np.ndarray, reference: float) -> np.ndarray:
+    """Per colour, the power of two that brings ``max |b|`` to the scale of ``reference``
+    (0 for black)."""
+    top = np.abs(b).max(axis=1)
+    return np.where(top > 0, np.frexp(top)[1] - np.frexp(reference)[1], 0)
+
+
+def _solve_scaled(setup: Setup, b: np.ndarray):
+    """``bounds="nonnegative"``, solved at the scale of the white and scaled back exactly.
+
+    The programme with ``ρ ≥ 0`` is homogeneous: ``ρ`` solves it for ``b`` with multipliers
+    ``μ`` iff ``2^e ρ`` does for ``2^e b`` with ``2^e μ``, and every rounding error scales by
+    the same power of two. So each colour is solved and certified at the scale of the white,
+    where membership, the solver's tolerances and the certificate are all well within the
+    floating-point range (a colour of ``Y = 1e-256`` would otherwise underflow ``|b|²`` and
+    a colour of ``Y = 1e300`` overflow it), and scaled back. A result that does not survive
+    the scaling exactly (it would be subnormal or overflow) is reported not converged.
+
+    Returns rho, mu, feasible, distance, method and the certificate (measures scaled back).
+    """
+    prob = setup.problem
+    e = _binary_exponents(b, float(np.abs(setup.white).max()))
+    scaled = np.ldexp(b, -e[:, None])
+    rho, mu, feasible, distance, method, converged = _solve_bounded(setup, scaled, 0.0, np.inf)
+    cert = certify(prob.W, prob.step_nm, scaled, rho, mu, 0.0, np.inf, converged)
+    with np.errstate(over="ignore"):
+        rho_out, mu_out = np.ldexp(rho, e[:, None]), np.ldexp(mu, e[:, None])
+        exact = (np.all(np.ldexp(rho_out, -e[:, None]) == rho, axis=1)
+                 & np.all(np.ldexp(mu_out, -e[:, None]) == mu, axis=1))
+        certificate = Certificate(
+            np.ldexp(cert.primal_residual, e), cert.bound_violation,
+            np.ldexp(cert.multiplier_sign_violation, e), np.ldexp(cert.stationarity, e),
+            cert.rounding_ratio, cert.converged & exact)
+        distance = np.ldexp(distance, e)
+    return rho_out, mu_out, feasible, distance, method, certificate
+
+
+#: Colours within this fraction of the white (per component) of black or of the white are
+#: first solved as cone colours at their own scale (:func:`_solve_unit`).
+NEAR_VERTEX = 2.0 ** -10
+
+
+def _solve_unit(setup: Setup, b: np.ndarray):
+    """``bounds="unit"``: near black and near the white by the cone at that vertex, else directly.
+
+    Near black the object-colour solid is the cone of non-negative spectra: a colour at
+    ``Y = 1e-256`` is inside the solid iff it is inside the cone, a question the solid's
+    facets (offsets of the size of the white) cannot resolve below about ``1e-16`` of the
+    white, but the cone's (through black) can at any scale. Such colours are solved with
+    ``ρ ≥ 0`` at their own scale (:func:`_solve_scaled`); where that solution stays ``≤ 1`` it
+    is the solution with ``0 ≤ ρ ≤ 1`` too (same KKT conditions, upper bound inactive). Near the
+    white, ``white − b`` is exact and the same holds for ``1 − ρ`` by the symmetry ``ρ → 1 − ρ``
+    of the programme. Other colours, and vertex colours whose solution reaches the other bound,
+    are solved directly.
+    """
+    prob = setup.problem
+    N, K = len(b), prob.size
+    rho, mu = np.full((N, K), np.nan), np.full((N, 3), np.nan)
+    feasible, converged = np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
+    distance, method = np.zeros(N), np.full(N, "infeasible", dtype=object)
+    done = np.zeros(N, dtype=bool)
+    for flip in (False, True):
+        d = setup.white - b if flip else b
+        near = np.flatnonzero(~done & np.any(d != 0, axis=1)
+                              & np.all(np.abs(d) <= NEAR_VERTEX * setup.white, axis=1))
+        if near.size == 0:
+            continue
+        r, m, f, dist, meth, cert = _solve_scaled(setup, d[near])
+        # the solution with ρ ≥ 0 is the unit one where it stays ≤ 1 (converged or not: at
+        # this scale the solid's facets cannot do better); a failed cone solve (NaN) goes on
+        with np.errstate(invalid="ignore"):
+            take = ~f | np.all(r <= 1.0, axis=1)
+        idx = near[take]
+        rho[idx] = 1.0 - r[take] if flip else r[take]
+        mu[idx] = -m[take] if flip else m[take]
+        feasible[idx], distance[idx], method[idx] = f[take], dist[take], meth[take]
+        # settled; the certificate below, on the values returned, is the verdict
+        converged[idx] = f[take] & np.all(np.isfinite(r[take]), axis=1)
+        done[idx] = True
+    rest = np.flatnonzero(~done)
+    if rest.size:
+        got = _solve_bounded(setup, b[rest], 0.0, 1.0)
+        for out, value in zip((rho, mu, feasible, distance, method, converged), got, strict=True):
+            out[rest] = value
+    certificate = certify(prob.W, prob.step_nm, b, rho, mu, 0.0, 1.0, converged)
+    return rho, mu, feasible, distance, method, certificate
+
+
+def _solve_bounded(setup: Setup, b: np.ndarray, lower: float, upper: float):
+    """Every colour ``b`` (N, 3) with ``lower ≤ ρ ≤ upper`` (``upper`` 1 or ∞): membership, then
+    the batched solver, boundary faces, black and white.
+
+    Returns rho, mu, feasible, distance, method and whether each colour settled (not yet
+    certified; NaN for infeasible colours).
+    """
+    prob = setup.problem
+    N = len(b)
+    rho, mu = qp.solve_unconstrained(prob, b)
+    converged = np.ones(N, dtype=bool)
+    distance = np.zeros(N)
+    method = np.full(N, "unconstrained", dtype=object)
+    cone = not np.isfinite(upper)
+    facets = setup.cone if cone else setup.solid
+    black = np.all(b == 0, axis=1)
+    white = np.zeros(N, dtype=bool) if cone else np.all(b == setup.white, axis=1)
+    # the unconstrained solution within the bounds certifies feasibility by itself
+    check = np.flatnonzero(~np.all((rho >= lower) & (rho <= upper), axis=1) & ~black & ~white)
+    depth = np.ones(N)
+    ratio, excess, _ = zonotope.gauge(facets, b[check], cone)
+    depth[check] = -ratio if cone else 1.0 - ratio
+    distance[check] = np.maximum(excess, 0.0)
+    on_boundary = np.abs(depth) <= BOUNDARY_TOLERANCE
+    feasible = depth >= -BOUNDARY_TOLERANCE
+    distance[feasible] = 0.0
+    todo = check[feasible[check] & ~on_boundary[check]]
+    if todo.size:
+        sol = qp.solve_bounded(prob, b[todo], lower, upper)
+        rho[todo], mu[todo] = sol.rho, sol.mu
+        converged[todo] = sol.converged
+        method[todo] = np.asarray(qp.METHODS, dtype=object)[sol.method]
+        # a colour that close to the boundary that the active-set methods could not
+        # settle is tried on its face; the certificate decides whether that is exact
+        near = todo[~sol.converged & (depth[todo] <= NEAR_BOUNDARY)]
+        if near.size:
+            got = _boundary_solutions(setup, b[near], lower, upper, NEAR_BOUNDARY)
+            passed = certify(prob.W, prob.step_nm, b[near], got[0], got[1], lower, upper,
+                             got[3]).converged
+            take = near[passed]
+            rho[take], mu[take] = got[0][passed], got[1][passed]
+            converged[take] = True
+            method[take] = "boundary face"
+    if on_boundary.any():
+        idx = np.flatnonzero(on_boundary)
+        rho[idx], mu[idx], _, converged[idx] = _boundary_solutions(setup, b[idx], lower, upper)
+        method[idx] = "boundary face"
+    # black and white have one reflectance each; zero multipliers certify them
+    rho[black], mu[black] = 0.0, 0.0
+    rho[white], mu[white] = 1.0, 0.0
+    method[black | white] = "black or white"
+    rho[~feasible], mu[~feasible] = np.nan, np.nan
+    converged[~feasible] = False
+    method[~feasible] = "infeasible"
+    return rho, mu, feasible, distance, method, converged
