@@ -36,6 +36,7 @@ from spectrocolor.spreadsheet import neutralise_cell
 from . import compute
 from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
 from .lab_routes import router as lab_router
+from .relight_routes import router as relight_router
 from .uploads import Busy, UploadParser
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
@@ -226,6 +227,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
 
     app.mount("/static", StaticFiles(directory=static), name="static")
     app.include_router(lab_router)
+    app.include_router(relight_router)
 
     @app.get("/api/options")
     def options():

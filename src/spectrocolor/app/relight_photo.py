@@ -1,0 +1,304 @@
+"""Setting 4's photo: an uploaded picture seen under the setting's illuminant (issue 17).
+
+A photo (PNG or JPEG, 8-bit sRGB codes) is taken to show surfaces under a declared *source*
+light (default D65). Each pixel's colour gets the reflectance of a spectral upsampling table
+(:func:`spectrocolor.upsampling.upsampling_table`: exact colour, ``0 ≤ ρ ≤ 1``), built once per
+source light, observer and bin grid and kept (:func:`photo_table`), and is then seen under the
+illuminant the setting shows -- its own bin levels, edited or not -- by
+:func:`spectrocolor.upsampling.relight`, with the chosen chromatic adaptation. The relit colours
+are shown on sRGB with the page's gamut strategy.
+
+Photos are read and shown as sRGB, the space a browser shows an untagged PNG in; embedded ICC
+profiles are not applied. A photo larger than :data:`MAX_SHOWN_SIDE_PX` on its long side is
+downscaled (Lanczos, on the codes) before relighting; both pictures of the answer have the
+shown size. Only the distinct colours of a photo are relit (a photo of a million pixels has far
+fewer colours), then mapped back to the pixels.
+
+This module is the worker side: :func:`relight_photo` runs in a worker process of
+:mod:`spectrocolor.app.relight_routes`, and everything a hostile file makes it raise becomes one
+:class:`~spectrocolor.errors.SpectrumError`.
+
+References
+----------
+P. Sällström, *SPECTRA*, USIP Report 99-05 (1999), setting 4 (seed 002).
+C. van Trigt, "Smoothest reflectance functions. I. Definition and main results", J. Opt. Soc.
+Am. A 7, 1891–1904 (1990).
+"""
+
+from __future__ import annotations
+
+import base64
+import binascii
+import io
+import time
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import SpectrumError
+
+__all__ = ["SOURCES", "ADAPTATIONS", "DEFAULT_ADAPTATION", "MAX_SHOWN_SIDE_PX",
+           "MAX_PHOTO_PIXELS", "TABLE_RESOLUTION", "OUT_OF_RANGE", "photo_table", "decode_photo",
+           "relight_codes", "relight_photo"]
+
+#: Lights a photo may be declared as taken under (the table's illuminant), the default first.
+SOURCES = ("D65", "D50", "A", "F11")
+#: How the viewer is adapted, the default first: [label, one-line explanation].
+ADAPTATIONS = {
+    "none": ("none (white balance of the photo kept)",
+             "the viewer stays adapted to the photo's light, like a camera with fixed white "
+             "balance: a white wall under A looks orange"),
+    "von kries": ("von Kries (cone responses)",
+                  "the viewer adapts to the new light, von Kries scaling of the "
+                  "Hunt-Pointer-Estévez cone responses: what remains is colour inconstancy"),
+    "bradford": ("Bradford",
+                 "the viewer adapts to the new light, Bradford transform: the perfect white "
+                 "looks white again, only colour inconstancy remains"),
+}
+DEFAULT_ADAPTATION = "none"
+#: Longest side of the pictures shown, px; larger photos are downscaled before relighting.
+MAX_SHOWN_SIDE_PX = 1024
+#: Largest photo decoded, pixels (from the header, before any pixel is decoded).
+MAX_PHOTO_PIXELS = 40_000_000
+#: Nodes per axis of the upsampling table (the library's default).
+TABLE_RESOLUTION = 17
+#: The library's strategy for colours the table cannot reproduce exactly.
+OUT_OF_RANGE = "toward-grey"
+SPACE = "sRGB"
+
+_PNG = b"\x89PNG\r\n\x1a\n"
+_JPEG = b"\xff\xd8\xff"
+
+
+@lru_cache(maxsize=8)
+def photo_table(source: str, observer: str, step_nm: float):
+    """The sRGB upsampling table under ``source`` on the explorer's grid, built once and kept.
+
+    Parameters
+    ----------
+    source : str
+        One of :data:`SOURCES`.
+    observer : str
+        Observer name as the explorer sends it (``"1931"``, ``"1964"``, ...).
+    step_nm : float
+        The explorer's bin width, nm (its grid is 400-700 nm).
+
+    Returns
+    -------
+    spectrocolor.upsampling.UpsamplingTable
+
+    Examples
+    --------
+    >>> table = photo_table("D65", "1931", 10.0)
+    >>> table.space, table.illuminant, table.reflectance.shape
+    ('sRGB', 'D65', (17, 17, 17, 31))
+    >>> photo_table("D65", "1931", 10.0) is table   # kept, not rebuilt
+    True
+    """
+    from ..upsampling import upsampling_table
+    from . import compute
+
+    return upsampling_table(SPACE, source, observer, (compute.START_NM, compute.STOP_NM, step_nm),
+                            resolution=TABLE_RESOLUTION, measure_excess=False)
+
+
+def _bad(what: str) -> SpectrumError:
+    return SpectrumError(f"image: {what}")
+
+
+def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
+    """8-bit RGB codes of a PNG or JPEG, downscaled to :data:`MAX_SHOWN_SIDE_PX` at most.
+
+    Parameters
+    ----------
+    data : bytes
+        The file's bytes.
+
+    Returns
+    -------
+    codes : numpy.ndarray of uint8, shape (H, W, 3)
+        ``rgb8`` codes (alpha dropped, grey repeated, palettes expanded).
+    size : (int, int)
+        The photo's own width and height, px.
+
+    Raises
+    ------
+    SpectrumError
+        For anything but an 8-bit PNG or a JPEG, a damaged file, or more than
+        :data:`MAX_PHOTO_PIXELS` pixels.
+
+    Examples
+    --------
+    >>> import io
+    >>> from PIL import Image
+    >>> buffer = io.BytesIO()
+    >>> Image.new("RGB", (2048, 512), (200, 10, 30)).save(buffer, "PNG")
+    >>> codes, size = decode_photo(buffer.getvalue())
+    >>> codes.shape, size, codes[0, 0].tolist()
+    ((256, 1024, 3), (2048, 512), [200, 10, 30])
+    """
+    from PIL import Image
+
+    if data[:8] != _PNG and data[:3] != _JPEG:
+        raise _bad("not a PNG or JPEG file (accepted: .png, .jpg)")
+    if data[:8] == _PNG and len(data) > 24 and data[24] == 16:
+        raise _bad("16-bit PNG is not read (it would be cut to 8 bits); save it as an 8-bit PNG")
+    try:
+        with Image.open(io.BytesIO(data), formats=("PNG", "JPEG")) as image:
+            width, height = image.size
+            if width * height > MAX_PHOTO_PIXELS:
+                raise _bad(f"{width} x {height} pixels; at most {MAX_PHOTO_PIXELS} are read")
+            scale = min(1.0, MAX_SHOWN_SIDE_PX / max(width, height, 1))
+            shown = (max(1, round(width * scale)), max(1, round(height * scale)))
+            if image.format == "JPEG":
+                image.draft("RGB", shown)  # decode at a reduced scale where JPEG allows it
+            rgb = image.convert("RGB")
+            if rgb.size != shown:
+                rgb = rgb.resize(shown, Image.Resampling.LANCZOS)
+            codes = np.asarray(rgb, dtype=np.uint8)
+    except SpectrumError:
+        raise
+    except Exception as exc:  # Pillow raises many types on damaged files: one error
+        raise _bad(f"cannot be read as a PNG or JPEG ({exc.__class__.__name__}: "
+                   f"{str(exc)[:120]})") from None
+    return codes, (width, height)
+
+
+def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: str) -> dict:
+    """Relit ``rgb8`` codes of a photo and what was done to its pixels.
+
+    Parameters
+    ----------
+    codes : numpy.ndarray of uint8, shape (H, W, 3)
+        The photo's sRGB codes.
+    table : spectrocolor.upsampling.UpsamplingTable
+        sRGB table under the photo's light (:func:`photo_table`).
+    illuminant : str or Spectrum
+        The new light.
+    adaptation : str
+        A key of :data:`ADAPTATIONS`.
+    gamut : str
+        The display's gamut strategy for relit colours sRGB cannot show.
+
+    Returns
+    -------
+    dict
+        ``codes`` (uint8, like the input), ``outside_solid`` (pixels the table could not
+        reproduce exactly: colours outside the object-colour solid, moved by
+        :data:`OUT_OF_RANGE`), ``out_of_gamut`` (relit pixels sRGB cannot show, handled by
+        ``gamut``), ``colours`` (distinct colours relit).
+
+    Examples
+    --------
+    >>> photo = np.array([[[255, 255, 255], [128, 128, 128]]], dtype=np.uint8)
+    >>> same = relight_codes(photo, photo_table("D65", "1931", 10.0), "D65", "none", "clip")
+    >>> same["codes"].tolist() == photo.tolist(), same["colours"]
+    (True, 2)
+    """
+    from ..display.render import render
+    from ..upsampling import relight, rgb_linear_from_image
+
+    packed = (codes[..., 0].astype(np.uint32) << 16) | (codes[..., 1].astype(np.uint32) << 8) \
+        | codes[..., 2]
+    distinct, where = np.unique(packed.ravel(), return_inverse=True)
+    colour_codes = np.stack([(distinct >> 16) & 255, (distinct >> 8) & 255, distinct & 255],
+                            axis=-1).astype(np.uint8)
+    relit = relight(table, rgb_linear_from_image(colour_codes, SPACE), illuminant,
+                    adaptation=None if adaptation == "none" else adaptation,
+                    out_of_range=OUT_OF_RANGE)
+    shown = render(relit.XYZ100, space=SPACE, gamut=gamut, bit_depth=8)
+    counts = np.bincount(where, minlength=len(distinct))
+    return {"codes": shown.codes.astype(np.uint8)[where].reshape(codes.shape),
+            "outside_solid": int(counts[~relit.exact].sum()),
+            "out_of_gamut": int(counts[~shown.in_gamut].sum()),
+            "colours": int(len(distinct))}
+
+
+def _png_base64(codes: np.ndarray) -> str:
+    from PIL import Image
+
+    buffer = io.BytesIO()
+    Image.fromarray(codes, "RGB").save(buffer, "PNG", compress_level=1)
+    return base64.b64encode(buffer.getvalue()).decode("ascii")
+
+
+def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer: str,
+                  source: str = SOURCES[0], adaptation: str = DEFAULT_ADAPTATION,
+                  gamut: str = "clip") -> dict:
+    """The API answer: a photo as taken and relit under setting 4's illuminant (PNG, base64).
+
+    Parameters
+    ----------
+    image_base64 : str
+        The PNG or JPEG file, base64-encoded.
+    illuminant_levels : sequence of float
+        The setting's illuminant, bin levels on the explorer's grid (400-700 nm at ``step_nm``).
+    step_nm : float
+        Bin width, nm.
+    observer : str
+        Observer (``"1931"``, ``"1964"``, ``"2015-2"``, ``"2015-10"``).
+    source : str
+        The light the photo was taken under, one of :data:`SOURCES`.
+    adaptation : str
+        A key of :data:`ADAPTATIONS` (default :data:`DEFAULT_ADAPTATION`).
+    gamut : str
+        Gamut strategy for relit colours outside sRGB.
+
+    Returns
+    -------
+    dict
+        ``taken_png`` and ``relit_png`` (base64 PNG of the shown size), ``width``/``height``
+        (shown), ``photo_width``/``photo_height`` (the file's), ``downscaled``, ``pixels``,
+        ``outside_solid``, ``out_of_range`` (the strategy), ``out_of_gamut``, ``gamut``,
+        ``colours``, ``source``, ``adaptation``, ``space``, ``table`` (resolution, nodes) and
+        ``relight_ms`` (the work after decoding, ms).
+
+    Raises
+    ------
+    SpectrumError
+        For a damaged or unaccepted image, an unknown source or adaptation.
+
+    Examples
+    --------
+    >>> import io
+    >>> from PIL import Image
+    >>> buffer = io.BytesIO()
+    >>> Image.new("RGB", (4, 3), (255, 255, 255)).save(buffer, "PNG")
+    >>> photo = base64.b64encode(buffer.getvalue()).decode()
+    >>> answer = relight_photo(photo, [30.0] * 31, 10.0, "1931")   # white under E, unadapted
+    >>> answer["pixels"], answer["outside_solid"], answer["out_of_range"]
+    (12, 0, 'toward-grey')
+    """
+    from ..spectrum import Spectrum
+    from . import compute
+
+    if source not in SOURCES:
+        raise SpectrumError(f"source: {source!r} is not one of {', '.join(SOURCES)}")
+    if adaptation not in ADAPTATIONS:
+        raise SpectrumError(f"adaptation: {adaptation!r} is not one of {', '.join(ADAPTATIONS)}")
+    try:
+        data = base64.b64decode(image_base64, validate=True)
+    except (binascii.Error, ValueError):
+        raise _bad("not valid base64 (send the file's bytes base64-encoded)") from None
+    codes, (width, height) = decode_photo(data)
+    start = time.perf_counter()
+    table = photo_table(source, observer, float(step_nm))
+    light = Spectrum(compute.grid(float(step_nm)), np.asarray(illuminant_levels, dtype=float))
+    relit = relight_codes(codes, table, light, adaptation, gamut)
+    answer = {
+        "relit_png": _png_base64(relit["codes"]),
+        "taken_png": _png_base64(codes),
+        "width": int(codes.shape[1]), "height": int(codes.shape[0]),
+        "photo_width": int(width), "photo_height": int(height),
+        "downscaled": bool(codes.shape[1] != width or codes.shape[0] != height),
+        "max_side_px": MAX_SHOWN_SIDE_PX,
+        "pixels": int(codes.shape[0] * codes.shape[1]),
+        "colours": relit["colours"],
+        "outside_solid": relit["outside_solid"], "out_of_range": OUT_OF_RANGE,
+        "out_of_gamut": relit["out_of_gamut"], "gamut": gamut,
+        "source": source, "adaptation": adaptation, "space": SPACE,
+        "table": {"resolution": table.resolution, "nodes": int(table.resolution ** 3),
+                  "moved_nodes": int(np.count_nonzero(table.node_status))},
+    }
+    answer["relight_ms"] = round(1000 * (time.perf_counter() - start), 1)
+    return answer

@@ -1,0 +1,129 @@
+"""HTTP route of setting 4's photo: ``POST /api/relight`` (issue 17).
+
+The body is JSON: the photo's file base64-encoded, the setting's illuminant as bin levels and the
+choices (source light, adaptation, gamut strategy). The answer is
+:func:`spectrocolor.app.relight_photo.relight_photo`'s, computed in a worker process (spawned on
+first use, so nothing of the server is copied into it) that keeps its upsampling tables between
+requests: a hostile file cannot stop the server, and other clients are answered meanwhile. At
+most :data:`RELIGHT_WORKERS` photos are relit at a time; a request waits up to
+:data:`RELIGHT_WAIT_S` for a turn, then gets 429. The body is limited like every other by the
+server's guard (``MAX_BODY_BYTES``, 413 beyond), so a photo file may have up to
+:data:`MAX_PHOTO_BYTES` bytes. Every error has the server's one shape, ``{"error": "..."}``.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import multiprocessing
+import threading
+from concurrent.futures.process import BrokenProcessPool
+from typing import Annotated, Literal
+
+from fastapi import APIRouter
+from fastapi.responses import JSONResponse
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from ..errors import SpectrumError
+from . import compute
+from .relight_photo import ADAPTATIONS, DEFAULT_ADAPTATION, MAX_SHOWN_SIDE_PX, SOURCES, relight_photo
+
+#: Photos relit at the same time (each worker keeps its own tables).
+RELIGHT_WORKERS = 1
+#: Longest wait for a free worker, s (then 429), and longest relight, s.
+RELIGHT_WAIT_S, RELIGHT_TIMEOUT_S = 20.0, 60.0
+#: Largest photo file: base64 makes 4 characters of 3 bytes, within the server's 2 MB body.
+MAX_PHOTO_BYTES = 1_400_000
+_MAX_BASE64 = 4 * ((MAX_PHOTO_BYTES + 2) // 3)
+
+router = APIRouter()
+
+Level = Annotated[float, Field(ge=0, le=compute.FULL_LEVEL, allow_inf_nan=False)]
+
+
+class RelightRequest(BaseModel):
+    """A photo and setting 4's illuminant (bin levels on the explorer's grid)."""
+
+    model_config = ConfigDict(extra="forbid")
+    image: Annotated[str, Field(min_length=1, max_length=_MAX_BASE64)]
+    illuminant: Annotated[list[Level], Field(min_length=31, max_length=301)]
+    step_nm: Literal[10, 5, 2, 1] = 10
+    observer: Literal["1931", "1964", "2015-2", "2015-10"] = "1931"
+    source: Literal[SOURCES] = SOURCES[0]  # type: ignore[valid-type]
+    adaptation: Literal[tuple(ADAPTATIONS)] = DEFAULT_ADAPTATION  # type: ignore[valid-type]
+    gamut: Literal["flag", "clip", "preserve-luminance", "desaturate"] = "clip"
+
+    @model_validator(mode="before")
+    @classmethod
+    def _no_bool_step(cls, data):
+        if isinstance(data, dict) and isinstance(data.get("step_nm"), bool):
+            raise ValueError("step_nm: expected a number of nm (10, 5, 2 or 1), got a boolean")
+        return data
+
+    @model_validator(mode="after")
+    def _check(self):
+        bins = len(compute.grid(float(self.step_nm)))
+        if len(self.illuminant) != bins:
+            raise ValueError(f"illuminant has {len(self.illuminant)} bins; step {self.step_nm} nm "
+                             f"over 400-700 nm needs {bins}")
+        if max(self.illuminant) <= 0:
+            raise ValueError("illuminant is dark everywhere (all levels 0): nothing is lit")
+        return self
+
+
+class _Workers:
+    """At most ``count`` relights at once, each in a worker process that keeps its tables."""
+
+    def __init__(self, count: int):
+        self._slots = threading.BoundedSemaphore(count)
+        self._lock = threading.Lock()
+        self._count = count
+        self._pool: concurrent.futures.ProcessPoolExecutor | None = None
+
+    def run(self, *args):
+        if not self._slots.acquire(timeout=RELIGHT_WAIT_S):
+            return None
+        try:
+            with self._lock:
+                if self._pool is None:
+                    self._pool = concurrent.futures.ProcessPoolExecutor(
+                        self._count, mp_context=multiprocessing.get_context("spawn"))
+                pool = self._pool
+            return pool.submit(relight_photo, *args).result(timeout=RELIGHT_TIMEOUT_S)
+        except concurrent.futures.TimeoutError:
+            raise SpectrumError(f"image: relighting took more than {RELIGHT_TIMEOUT_S:g} s; "
+                                "send a smaller photo") from None
+        except BrokenProcessPool:
+            self.close(wait=False)  # a worker died (out of memory?): start afresh next time
+            raise SpectrumError("image: the worker stopped on this photo (out of memory?); "
+                                "send a smaller photo") from None
+        finally:
+            self._slots.release()
+
+    def close(self, wait: bool = True) -> None:
+        with self._lock:
+            pool, self._pool = self._pool, None
+        if pool is not None:
+            pool.shutdown(wait=wait, cancel_futures=True)
+
+
+_workers = _Workers(RELIGHT_WORKERS)
+router.on_shutdown.append(_workers.close)
+
+
+@router.get("/api/relight/options")
+def relight_options():
+    """The choices of the photo panel, defaults first, and its limits."""
+    return {"sources": list(SOURCES),
+            "adaptations": [[k, label, why] for k, (label, why) in ADAPTATIONS.items()],
+            "defaults": {"source": SOURCES[0], "adaptation": DEFAULT_ADAPTATION},
+            "max_photo_bytes": MAX_PHOTO_BYTES, "max_side_px": MAX_SHOWN_SIDE_PX}
+
+
+@router.post("/api/relight")
+def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread pool
+    answer = _workers.run(req.image, req.illuminant, float(req.step_nm), req.observer,
+                          req.source, req.adaptation, req.gamut)
+    if answer is None:
+        return JSONResponse({"error": "the server is busy relighting other photos; try again"},
+                            status_code=429)
+    return answer
