@@ -17,13 +17,16 @@ percent or fraction; :func:`spectrocolor.io.text.apply_scale` applies the caller
 from __future__ import annotations
 
 import csv
+import math
 import re
+from array import array
+from operator import itemgetter
 
 import numpy as np
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
-from .text import apply_scale, number_table, wavelength_of
+from .text import apply_scale, number, wavelength_of
 
 _MICROMETRE = re.compile(r"((^|[^a-z])um($|[^a-z])|µm|μm|micro)", re.IGNORECASE)
 _NANOMETRE = re.compile(r"(nm|nanomet|wavelength|lambda|λ|wl)", re.IGNORECASE)
@@ -35,21 +38,85 @@ EXPECTED = (
 )
 
 
-def _rows(text: str, source: str) -> tuple[list[tuple[int, list[str]]], str]:
-    content = [(n, line) for n, line in enumerate(text.splitlines(), start=1)]
-    content = [(n, line) for n, line in content if line.strip() and not line.lstrip().startswith("#")]
-    if not content:
-        raise SpectrumError(f"{source}: no data (only comments or blank lines)")
-    header = content[0][1]
-    delimiter = "\t" if "\t" in header else (";" if ";" in header else ",")
-    rows = []
-    for n, line in content:
+#: One line and its terminator; the terminators are those of :meth:`str.splitlines`.
+_LINE = re.compile(r"([^\n\r\x0b\x0c\x1c-\x1e\x85\u2028\u2029]*)(?:\r\n|[\n\r\x0b\x0c\x1c-\x1e\x85\u2028\u2029])?")
+
+
+def _content_lines(text: str):
+    """``(line number, line)`` for every line that is neither blank nor a ``#`` comment, lazily."""
+    for line_number, match in enumerate(_LINE.finditer(text), start=1):
+        line = match[1]
+        if line.strip() and not line.lstrip().startswith("#"):
+            yield line_number, line
+
+
+def _splitter(delimiter: str, source: str):
+    """A function ``(line number, line) -> cells``: ``str.split`` unless the line has quotes."""
+
+    def cells(line_number: int, line: str) -> list[str]:
+        if '"' not in line:
+            return line.split(delimiter)
         try:
-            (cells,) = csv.reader([line], delimiter=delimiter)
-        except (csv.Error, ValueError) as exc:  # a cell over csv's field limit, NUL bytes, …
-            raise SpectrumError(f"{source}, line {n}: not readable as delimited text ({exc})") from None
-        rows.append((n, [cell.strip() for cell in cells]))
-    return rows, delimiter
+            (quoted,) = csv.reader([line], delimiter=delimiter)
+        except (csv.Error, ValueError) as exc:  # a quoted cell over csv's field limit, NUL bytes, …
+            raise SpectrumError(f"{source}, line {line_number}: not readable as delimited text ({exc})") from None
+        return quoted
+
+    return cells
+
+
+class _Floats:
+    """Rows of numbers converted as they are read into one growing ``array('d')``.
+
+    Keeping floats instead of cell strings is what bounds memory: a cell string costs about
+    50 bytes, its float 8.
+    """
+
+    def __init__(self, source: str, header: list[str], columns: list[int], decimal_comma: bool):
+        self.data = array("d")
+        self.rows = 0
+        self._source, self._header, self._columns = source, header, columns
+        self._decimal_comma = decimal_comma
+        contiguous = columns == list(range(columns[0], columns[-1] + 1))
+        self._pick = (lambda cells: cells[columns[0] : columns[-1] + 1]) if contiguous else itemgetter(*columns)
+
+    def add(self, line_number: int, cells: list[str]) -> None:
+        """Append the numeric cells of one row; SpectrumError naming the first bad cell."""
+        picked = self._pick(cells)
+        if not isinstance(picked, (list, tuple)):  # itemgetter of one column gives the cell itself
+            picked = [picked]
+        try:
+            row = list(map(float, [cell.replace(",", ".") for cell in picked] if self._decimal_comma else picked))
+        except ValueError:
+            row = None
+        # One non-finite value makes the sum non-finite; a finite sum means every value is finite.
+        if row is None or not math.isfinite(sum(row)):
+            row = [self._number(line_number, i, cell) for i, cell in enumerate(picked)]
+        self.data.extend(row)
+        self.rows += 1
+
+    def _number(self, line_number: int, i: int, cell: str) -> float:
+        where = f"{self._source}, line {line_number}, column {self._header[self._columns[i]]!r}"
+        return number(cell, where, self._decimal_comma)
+
+    def table(self) -> np.ndarray:
+        """The numbers read, shape (rows, columns), sharing the array's memory."""
+        return np.frombuffer(self.data, dtype=float).reshape(self.rows, len(self._columns))
+
+
+def _header(lines, source: str) -> tuple[int, list[str], str]:
+    try:
+        header_line, header_text = next(lines)
+    except StopIteration:
+        raise SpectrumError(f"{source}: no data (only comments or blank lines)") from None
+    delimiter = "\t" if "\t" in header_text else (";" if ";" in header_text else ",")
+    header = [cell.strip() for cell in _splitter(delimiter, source)(header_line, header_text)]
+    return header_line, header, delimiter
+
+
+def _check_width(source: str, line_number: int, cells: list[str], header: list[str]) -> None:
+    if len(cells) != len(header):
+        raise SpectrumError(f"{source}, line {line_number}: {len(cells)} cells, but the header has {len(header)}")
 
 
 def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spectrum:
@@ -80,13 +147,14 @@ def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spec
     >>> s.names, s.values.tolist(), s.metadata["sample_fields"]["Date"]
     (('tile',), [0.1, 0.2, 0.3], ('2024-05-01',))
     """
-    rows, delimiter = _rows(text, source)
-    header_line, header = rows[0]
+    lines = _content_lines(text)
+    header_line, header, delimiter = _header(lines, source)
     decimal_comma = delimiter != ","
     wavelength_columns = [(c, wavelength_of(cell)) for c, cell in enumerate(header)]
     wavelength_columns = [(c, nm) for c, nm in wavelength_columns if nm is not None]
     if wavelength_of(header[0]) is not None and len(header) >= 2 and wavelength_of(header[1]) is None:
         wavelength_columns = []  # a long table whose first header cell happens to be e.g. "nm"
+    rows = (header_line, header, _splitter(delimiter, source), lines)
     if len(wavelength_columns) >= 3:
         spectrum = _wide(rows, wavelength_columns, source, decimal_comma)
         layout = "wide"
@@ -100,7 +168,7 @@ def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spec
 
 
 def _long(rows, source: str, decimal_comma: bool) -> Spectrum:
-    header_line, header = rows[0]
+    header_line, header, cells_of, lines = rows
     if wavelength_of(header[0]) is not None and re.fullmatch(r"[\d.,\s]+", header[0]):
         raise SpectrumError(
             f"{source}, line {header_line}: missing header; the first line must name the columns, "
@@ -122,16 +190,14 @@ def _long(rows, source: str, decimal_comma: bool) -> Spectrum:
     names = header[1:]
     if len(set(names)) != len(names):
         raise SpectrumError(f"{source}, line {header_line}: duplicate column names in {names[:8]}")
-    if len(rows) < 2:
+    floats = _Floats(source, header, list(range(len(header))), decimal_comma)
+    for line_number, line in lines:
+        cells = cells_of(line_number, line)
+        _check_width(source, line_number, cells, header)
+        floats.add(line_number, cells)
+    if floats.rows == 0:
         raise SpectrumError(f"{source}: header but no data rows")
-    for line_number, row in rows[1:]:
-        if len(row) != len(header):
-            raise SpectrumError(f"{source}, line {line_number}: {len(row)} cells, but the header has {len(header)}")
-    data = number_table(
-        [row for _, row in rows[1:]],
-        lambda r, c: f"{source}, line {rows[r + 1][0]}, column {header[c]!r}",
-        decimal_comma,
-    )
+    data = floats.table()
     values = data[:, 1:].T
     try:
         return Spectrum(data[:, 0] * unit_scale, values if values.shape[0] > 1 else values[0], names)
@@ -140,27 +206,25 @@ def _long(rows, source: str, decimal_comma: bool) -> Spectrum:
 
 
 def _wide(rows, wavelength_columns, source: str, decimal_comma: bool) -> Spectrum:
-    header_line, header = rows[0]
+    header_line, header, cells_of, lines = rows
     columns = [c for c, _ in wavelength_columns]
     wavelengths = np.array([nm for _, nm in wavelength_columns])
     other = [c for c in range(len(header)) if c not in set(columns)]
     named = [c for c in other if "name" in header[c].lower()]
     name_column = named[0] if named else (other[0] if other else None)
-    if len(rows) < 2:
+    field_columns = [c for c in other if c != name_column]
+    names, fields = [], {header[c] or f"column_{c + 1}": [] for c in field_columns}
+    floats = _Floats(source, header, columns, decimal_comma)
+    for line_number, line in lines:
+        cells = cells_of(line_number, line)
+        _check_width(source, line_number, cells, header)
+        names.append(cells[name_column].strip() if name_column is not None else f"sample_{floats.rows + 1}")
+        for c in field_columns:
+            fields[header[c] or f"column_{c + 1}"].append(cells[c].strip())
+        floats.add(line_number, cells)
+    if floats.rows == 0:
         raise SpectrumError(f"{source}: header but no data rows")
-    names, fields = [], {header[c] or f"column_{c + 1}": [] for c in other if c != name_column}
-    for r, (line_number, row) in enumerate(rows[1:]):
-        if len(row) != len(header):
-            raise SpectrumError(f"{source}, line {line_number}: {len(row)} cells, but the header has {len(header)}")
-        names.append(row[name_column] if name_column is not None else f"sample_{r + 1}")
-        for c in other:
-            if c != name_column:
-                fields[header[c] or f"column_{c + 1}"].append(row[c])
-    values = number_table(
-        [[row[c] for c in columns] for _, row in rows[1:]],
-        lambda r, i: f"{source}, line {rows[r + 1][0]}, column {header[columns[i]]!r}",
-        decimal_comma,
-    )
+    values = floats.table()
     metadata = {"sample_fields": {key: tuple(column) for key, column in fields.items()}} if fields else {}
     try:
         return Spectrum(wavelengths, values if values.shape[0] > 1 else values[0], names, metadata)
