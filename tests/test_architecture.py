@@ -20,7 +20,7 @@ FOUNDATION = {"errors", "registry", "arguments", "safe_write", "spreadsheet", "_
 DATA = {"data_tables"}
 SPECTRA = {"spectrum", "interpolation", "sampling", "observers", "illuminants", "spectrum_io", "io"}
 COLOUR = {"coordinates", "differences", "display"}
-COLORIMETRY = {"colorimetry", "astm_e308", "chromaticity", "temperature"}
+COLORIMETRY = {"colorimetry", "astm_e308", "bandpass", "chromaticity", "temperature"}
 APPLICATIONS = {"recovery", "thinfilm", "images", "lighting", "mixing", "upsampling",
                 "display_emission"}
 PRESENTATION = {"plot", "pictures", "report", "labels"}

@@ -22,12 +22,15 @@ Lagrange scheme (cubic inside, quadratic at the ends) — the same interpolator 
 measured data. Linear interpolation of those 5 nm tables misses the printed white points by up to
 0.06 (C, Z). See :func:`illuminant_at_1nm`.
 
-**Which table.** The weights reproduce E308 **Table 6**: weights for spectral data that have
-already been corrected for the instrument's spectral bandpass (or were measured with a bandpass
-narrow enough to need none). No bandpass correction is folded into the weights (E308 Table 5
-weights additionally assume a triangular bandpass equal to the interval; not provided here) and
-none is applied to the data. This is the same table colour-science's
-``tristimulus_weighting_factors_ASTME2022`` computes.
+**Which table.** :func:`astm_e308_weights` reproduces E308 **Table 6**: weights for spectral
+data that have already been corrected for the instrument's spectral bandpass (or were measured
+with a bandpass narrow enough to need none); it is the table colour-science's
+``tristimulus_weighting_factors_ASTME2022`` computes. :func:`astm_e308_table5_weights` gives
+**Table 5**, for 10 and 20 nm data *not* corrected for bandpass, measured with a triangular
+bandpass equal to the interval: E308's Stearns & Stearns correction (:mod:`spectrocolor.bandpass`)
+is folded into the Table 6 weights of the same grid, ``W₅ = Bᵀ W₆``, so that uncorrected data
+with Table 5 give exactly what Stearns–Stearns-corrected data give with Table 6. ``B`` keeps
+column sums, so both tables have the same white point, as in E308.
 
 **Range.** Weights are computed over E308's reference range, 360–780 nm (widened to the data's
 range when the data extend beyond it, and narrowed to where the observer and illuminant are
@@ -52,6 +55,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .bandpass import stearns_stearns_matrix
 from .errors import ColorimetryError
 from .illuminants import ILLUMINANTS, canonical_illuminant
 from .illuminants import illuminant as named_illuminant
@@ -60,6 +64,8 @@ from .spectrum import validate_wavelengths
 
 #: Measurement intervals for which ASTM E308 gives (and E2022 computes) weights, nm.
 INTERVALS_NM = (1, 5, 10, 20)
+#: Measurement intervals for which ASTM E308 tabulates Table 5 (bandpass included) weights, nm.
+TABLE5_INTERVALS_NM = (10, 20)
 #: Wavelength range of the ASTM E308 weighting tables, nm.
 REFERENCE_RANGE_NM = (360.0, 780.0)
 
@@ -290,3 +296,55 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
     result[0] += reference_weights[:below].sum(axis=0)
     result[-1] += reference_weights[below + grid.size :].sum(axis=0)
     return result
+
+
+def astm_e308_table5_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
+    """ASTM E308 Table 5 weights (K, 3): 10 or 20 nm data NOT corrected for the instrument's bandpass.
+
+    For an instrument whose triangular bandpass equals its measurement interval (e.g. 10 nm data
+    from a 10 nm bandpass) whose data have not been bandpass-corrected. E308's Stearns & Stearns
+    correction ``B`` (:func:`spectrocolor.bandpass.stearns_stearns_matrix`, end rules at the first
+    and last *measured* wavelength) is folded into the Table 6 weights of the same grid:
+    ``W₅ = Bᵀ W₆``, hence ``R @ W₅ == (B @ R) @ W₆`` for every reflectance ``R``. Columns of ``B``
+    sum to one, so the white point is Table 6's.
+
+    Parameters
+    ----------
+    wavelengths_nm : array_like, shape (K,)
+        The measured wavelengths, nm: uniform 10 or 20 nm (the intervals E308 gives Table 5 for),
+        otherwise as for :func:`astm_e308_weights`.
+    observer : str or Spectrum
+        As for :func:`astm_e308_weights`.
+    illuminant : str or Spectrum
+        As for :func:`astm_e308_weights`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (K, 3) float64 weights for X, Y, Z; ``W[:, 1].sum() == 100`` to rounding.
+
+    Raises
+    ------
+    ColorimetryError
+        For an interval other than 10 or 20 nm, and everything :func:`astm_e308_weights` refuses.
+
+    References
+    ----------
+    ASTM E308-17, Tables 5 and 6 and the bandpass correction (Stearns & Stearns, α = 0.083);
+    ASTM E2022-11 (weights for data not corrected for bandpass).
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid
+    >>> W5 = astm_e308_table5_weights(wavelength_grid(400, 700, 10), "1931", "D65")
+    >>> W6 = astm_e308_weights(wavelength_grid(400, 700, 10), "1931", "D65")
+    >>> bool(np.allclose(W5.sum(axis=0), W6.sum(axis=0), rtol=1e-13)), round(float(W5[13, 1] - W6[13, 1]), 3)
+    (True, 0.072)
+    """
+    grid, step = _validated_grid(wavelengths_nm)
+    if step not in TABLE5_INTERVALS_NM:
+        raise ColorimetryError(
+            f"wavelengths_nm: ASTM E308 Table 5 (bandpass included) is for 10 or 20 nm data, got {step} nm; "
+            "for other intervals correct the data with bandpass_correction(...) if needed and use 'astm-e308'"
+        )
+    return stearns_stearns_matrix(grid.size).T @ astm_e308_weights(grid, observer, illuminant)
