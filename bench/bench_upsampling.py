@@ -20,6 +20,7 @@ with other upsampling methods. Run by hand:
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -27,12 +28,19 @@ from pathlib import Path
 import numpy as np
 
 import spectrocolor as sc
-from spectrocolor.upsampling import colours_under, lookup, upsample, upsample_spectra, upsampling_table
+from spectrocolor.upsampling import (
+    colours_under,
+    lookup,
+    texel_coefficients,
+    upsample,
+    upsample_spectra,
+    upsampling_table,
+)
 from spectrocolor.upsampling.apply import _blend, node_colours
 from timing import best_of
 
 DOCS_IMAGES = Path(__file__).resolve().parents[1] / "docs" / "images"
-BLOCK = 65536
+BLOCK = 2**18
 
 
 def build() -> dict:
@@ -56,38 +64,118 @@ def build() -> dict:
     return tables
 
 
+def _compiled_limit():
+    """A compiled bare gather-and-blend (indices and weights precomputed), or None without numba."""
+    try:
+        import numba
+    except ImportError:
+        return None
+
+    @numba.njit(parallel=True)
+    def gather_blend(values, nodes, weights, out):
+        for q in numba.prange(nodes.shape[0]):
+            i0, i1, i2, i3 = nodes[q, 0], nodes[q, 1], nodes[q, 2], nodes[q, 3]
+            w0, w1, w2, w3 = weights[q, 0], weights[q, 1], weights[q, 2], weights[q, 3]
+            for k in range(values.shape[1]):
+                out[q, k] = values[i0, k] * w0 + values[i1, k] * w1 + values[i2, k] * w2 \
+                    + values[i3, k] * w3
+
+    return gather_blend
+
+
+def _engine(name: str) -> None:
+    """Select the apply path: "numpy" (SPECTROCOLOR_NUMBA=0) or "numba" (the compiled kernel)."""
+    os.environ["SPECTROCOLOR_NUMBA"] = "1" if name == "numba" else "0"
+
+
 def apply_speed(table, size: int) -> None:
+    from spectrocolor.upsampling.compiled import kernels
+
     pixels = size * size
-    print(f"\n2. Apply to a {size}x{size} image ({pixels / 1e6:.1f} Mpixel), blocks of {BLOCK}")
+    compiled = kernels() is not None
+    threads = "no numba"
+    if compiled:
+        import numba
+
+        threads = f"numba {numba.__version__}, {numba.get_num_threads()} threads"
+    print(f"\n2. Apply to a {size}x{size} image ({pixels / 1e6:.1f} Mpixel), blocks of {BLOCK}; "
+          f"{threads}; OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}")
     rng = np.random.default_rng(2)
     W_A = np.asarray(sc.weights(table.wavelengths_nm, illuminant="A"))
     nodes_A = node_colours(table, W_A)
     K = table.wavelengths_nm.size
     spectra = np.empty((BLOCK, K))
-    timings = {"spectra": 0.0, "spectra limit": 0.0, "relight": 0.0, "relight limit": 0.0,
-               "lookup": 0.0}
+    relit = np.empty((BLOCK, 3))
+    limit = _compiled_limit()
+    engines = ("numpy", "numba") if compiled else ("numpy",)
+    if limit is not None:  # compile outside the timing
+        found = lookup(table, rng.random((8, 3)))
+        limit(nodes_A, found.nodes, found.weights, relit[:8])
+        for engine in engines:
+            _engine(engine)
+            upsample_spectra(table, rng.random((8, 3)))
+            colours_under(table, rng.random((8, 3)), W_A)
+            texel_coefficients(table, rng.random((8, 3)))
+    timings: dict[str, float] = {}
+
+    def timed(name, function, *arguments):
+        start = time.perf_counter()
+        function(*arguments)
+        timings[name] = timings.get(name, 0.0) + time.perf_counter() - start
+
     done = 0
     while done < pixels:
         n = min(BLOCK, pixels - done)
         block = rng.random((n, 3))
+        _engine("numpy")
         found = lookup(table, block)
-        out = spectra[:n]
-        for name, function, arguments in (
-            ("spectra", upsample_spectra, (table, block, "toward-grey", out)),
-            ("spectra limit", _blend, (table.flat_reflectance, found, out)),
-            ("relight", colours_under, (table, block, W_A)),
-            ("relight limit", _blend, (nodes_A, found)),
-            ("lookup", lookup, (table, block)),
-        ):
-            start = time.perf_counter()
-            function(*arguments)
-            timings[name] += time.perf_counter() - start
+        out, out3 = spectra[:n], relit[:n]
+        for engine in engines:
+            _engine(engine)
+            timed(f"spectra {engine}", upsample_spectra, table, block, "toward-grey", out)
+            timed(f"relight {engine}", colours_under, table, block, W_A)
+            timed(f"coefficients {engine}", texel_coefficients, table, block)
+        timed("spectra numpy limit", _blend, table.flat_reflectance, found, out)
+        timed("relight numpy limit", _blend, nodes_A, found)
+        if limit is not None:
+            timed("spectra compiled limit", limit, table.flat_reflectance, found.nodes,
+                  found.weights, out)
+            timed("relight compiled limit", limit, nodes_A, found.nodes, found.weights, out3)
         done += n
-    for what in ("spectra", "relight"):
-        ours, limit = timings[what], timings[what + " limit"]
-        print(f"   {what:8s}: ours {pixels / ours:10.3g} colours/s, bare gather-and-blend "
-              f"{pixels / limit:10.3g} colours/s, ratio {ours / limit:5.2f}x")
-    print(f"   lookup alone (tetrahedron + weights): {pixels / timings['lookup']:10.3g} colours/s")
+    _engine("numba")
+
+    def rate(name):
+        return f"{pixels / timings[name]:10.3g}" if name in timings else "         -"
+
+    print("   colours/s      |      numpy |      numba | NumPy limit | compiled limit | "
+          "numba/NumPy limit | numba/compiled limit")
+    for what in ("spectra", "relight", "coefficients"):
+        ratios = ""
+        if f"{what} numba" in timings and f"{what} numpy limit" in timings:
+            ratios = (f" | {timings[f'{what} numpy limit'] / timings[f'{what} numba']:8.2f}x faster"
+                      f" | {timings[f'{what} numba'] / timings[f'{what} compiled limit']:8.2f}x "
+                      "slower")
+        print(f"   {what:14s} | {rate(what + ' numpy')} | {rate(what + ' numba')} | "
+              f"{rate(what + ' numpy limit')}  | {rate(what + ' compiled limit')}     {ratios}")
+    print("   (spectra: 81 float64 samples per colour; relight: colours under A, 3 channels; "
+          "coefficients: 4 node indices + 4 weights)")
+    colour_science_rates()
+
+
+def colour_science_rates(count: int = 400) -> None:
+    """colour-science's RGB -> reflectance functions (one colour per call) on random sRGB."""
+    import colour
+    from colour.recovery import RGB_to_sd_Mallett2019, RGB_to_sd_Smits1999
+
+    rgb = np.random.default_rng(4).random((count, 3))
+    for name, function in (("Mallett 2019", RGB_to_sd_Mallett2019),
+                           ("Smits 1999", RGB_to_sd_Smits1999)):
+        function(rgb[0])  # warm-up
+        start = time.perf_counter()
+        for colour_rgb in rgb:
+            function(colour_rgb)
+        print(f"   colour-science {colour.__version__} {name} (per colour, {count} colours): "
+              f"{count / (time.perf_counter() - start):10.3g} colours/s")
 
 
 def _metrics(name, rho, target_lab, W, white, optimum, seconds, count):
@@ -261,11 +349,17 @@ def main() -> None:
     parser.add_argument("--size", type=int, default=4096)
     parser.add_argument("--compare", action="store_true")
     parser.add_argument("--meng", type=int, default=0)
+    parser.add_argument("--apply-only", action="store_true",
+                        help="skip the Rec. 2020 build and the measured excess (section 2 only)")
     parser.add_argument("--pictures", action="store_true",
                         help="only write the pictures of docs/upsampling.md")
     args = parser.parse_args()
     if args.pictures:
         pictures()
+        return
+    if args.apply_only:
+        apply_speed(upsampling_table("sRGB", "D65", resolution=17, measure_excess=False),
+                    args.size)
         return
     tables = build()
     apply_speed(tables["sRGB"], args.size)

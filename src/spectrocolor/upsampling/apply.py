@@ -31,6 +31,8 @@ import numpy as np
 
 from ..errors import ColorimetryError
 from ..registry import Registry
+from .compiled import MOVE_CODES, run_blend, run_locate
+from .compiled import kernels as compiled_kernels
 from .table import GREY, UpsamplingTable
 
 __all__ = ["OUT_OF_RANGE_STRATEGIES", "Lookup", "Upsampled", "lookup", "upsample",
@@ -148,10 +150,16 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     >>> lookup(table, [[0.5, 0.5, 0.5], [1.2, 0.5, 0.1]]).exact.tolist()
     [True, False]
     """
-    if not isinstance(table, UpsamplingTable):
-        raise ColorimetryError(f"table: expected an UpsamplingTable, got {type(table).__name__}")
-    move = OUT_OF_RANGE_STRATEGIES.get(out_of_range)
+    _check_table(table)
+    name = _strategy(out_of_range)
     t = _coordinates(rgb_linear)
+    compiled = _compiled_kernels(name)
+    if compiled is not None:
+        lead = t.shape[:-1]
+        nodes, weights, exact, moved = run_locate(compiled, _flat(t), *_kernel_table(table, name))
+        return Lookup(nodes.reshape(*lead, 4), weights.reshape(*lead, 4), exact.reshape(lead),
+                      moved.reshape(lead))
+    move = OUT_OF_RANGE_STRATEGIES.get(name)
     outside = np.any((t < 0.0) | (t > 1.0), axis=-1)
     if outside.any():
         t = t.copy()
@@ -180,6 +188,59 @@ def lookup(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"
     else:
         exact = ~outside & np.all(table.node_status.ravel()[nodes] == 0, axis=-1)
     return Lookup(nodes, weights, exact, outside)
+
+
+def _check_table(table) -> None:
+    if not isinstance(table, UpsamplingTable):
+        raise ColorimetryError(f"table: expected an UpsamplingTable, got {type(table).__name__}")
+
+
+def _compiled_kernels(name: str):
+    """The compiled kernels for strategy ``name`` (canonical), or None: use the NumPy path."""
+    return compiled_kernels() if name in MOVE_CODES else None
+
+
+def _flat(t: np.ndarray) -> np.ndarray:
+    """Coordinates (..., 3) as the C-contiguous (N, 3) float64 array the kernels take."""
+    return np.ascontiguousarray(t.reshape(-1, 3), dtype=np.float64)
+
+
+def _kernel_table(table: UpsamplingTable, name: str) -> tuple:
+    """(n, move code, path offsets, flat node status): the table as the kernels take it."""
+    n = table.resolution
+    status = np.ascontiguousarray(table.node_status, dtype=np.uint8).reshape(-1)
+    return n, MOVE_CODES[name], _path_offsets(n), status
+
+
+def _apply(table: UpsamplingTable, rgb_linear, name: str, values: np.ndarray, clamp: bool,
+           out: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Blend the node rows ``values`` (n³, C) at the queries: (result (..., C), exact, moved).
+
+    ``clamp`` applies ``min(·, 1)`` (reflectances); strategy ``"nan"`` gives NaN rows for
+    inexact queries. The compiled kernel when available, else :func:`lookup` and :func:`_blend`.
+    """
+    compiled = _compiled_kernels(name)
+    if compiled is None:
+        found = lookup(table, rgb_linear, name)
+        flat_out = None if out is None else out.reshape(-1, values.shape[1])
+        result = _blend(values, found, flat_out)
+        if clamp:
+            np.minimum(result, 1.0, out=result)
+        if name == "nan":
+            result[~found.exact] = np.nan
+        return result, found.exact, found.moved
+    t = _coordinates(rgb_linear)
+    lead, channels = t.shape[:-1], values.shape[1]
+    direct = (out is not None and out.dtype == np.float64 and out.flags.c_contiguous
+              and out.size == int(np.prod(lead, dtype=np.int64)) * channels)
+    flat_out = out.reshape(-1, channels) if direct else np.empty((t.size // 3, channels))
+    exact, moved = run_blend(compiled, _flat(t), *_kernel_table(table, name),
+                             np.ascontiguousarray(values, dtype=np.float64), clamp,
+                             name == "nan", flat_out)
+    if out is not None and not direct:
+        out[...] = flat_out.reshape(out.shape)
+        flat_out = out
+    return flat_out.reshape(*lead, channels), exact.reshape(lead), moved.reshape(lead)
 
 
 def _blend(values: np.ndarray, found: Lookup, out: np.ndarray | None = None) -> np.ndarray:
@@ -249,13 +310,10 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
     >>> bool(abs(XYZ - table.matrix @ [0.2, 0.5, 0.7]).max() < 1e-9 * XYZ.max())
     True
     """
+    _check_table(table)
     out_of_range = _strategy(out_of_range)
-    found = lookup(table, rgb_linear, out_of_range)
-    rho = _blend(table.flat_reflectance, found)
-    np.minimum(rho, 1.0, out=rho)
-    if out_of_range == "nan":
-        rho[~found.exact] = np.nan
-    return Upsampled(rho, table.wavelengths_nm, found.exact, found.moved, out_of_range)
+    rho, exact, moved = _apply(table, rgb_linear, out_of_range, table.flat_reflectance, True)
+    return Upsampled(rho, table.wavelengths_nm, exact, moved, out_of_range)
 
 
 def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey",
@@ -291,14 +349,9 @@ def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "to
     >>> spectra.shape, bool(abs(spectra - 0.5).max() < 1e-9)  # mid grey: a flat 50 %
     ((1, 81), True)
     """
+    _check_table(table)
     out_of_range = _strategy(out_of_range)
-    found = lookup(table, rgb_linear, out_of_range)
-    flat_out = None if out is None else out.reshape(-1, table.wavelengths_nm.size)
-    rho = _blend(table.flat_reflectance, found, flat_out)
-    np.minimum(rho, 1.0, out=rho)
-    if out_of_range == "nan":
-        rho[~found.exact] = np.nan
-    return rho
+    return _apply(table, rgb_linear, out_of_range, table.flat_reflectance, True, out)[0]
 
 
 def node_colours(table: UpsamplingTable, weights) -> np.ndarray:
@@ -370,12 +423,10 @@ def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str
     >>> XYZ.round(3).tolist(), exact.tolist()  # the white reflects 1 everywhere: A's white
     ([[109.849, 100.0, 35.582]], [True])
     """
+    _check_table(table)
     out_of_range = _strategy(out_of_range)
-    found = lookup(table, rgb_linear, out_of_range)
-    XYZ = _blend(node_colours(table, weights), found)
-    if out_of_range == "nan":
-        XYZ[~found.exact] = np.nan
-    return XYZ, found.exact
+    XYZ, exact, _ = _apply(table, rgb_linear, out_of_range, node_colours(table, weights), False)
+    return XYZ, exact
 
 
 def texel_coefficients(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey"):
@@ -411,8 +462,17 @@ def texel_coefficients(table: UpsamplingTable, rgb_linear, out_of_range: str = "
     >>> nodes.dtype.name, weights.dtype.name, round(float(weights.sum()), 6), exact.tolist()
     ('uint32', 'float32', 1.0, [True])
     """
-    found = lookup(table, rgb_linear, out_of_range)
-    return found.nodes.astype(np.uint32), found.weights.astype(np.float32), found.exact
+    _check_table(table)
+    name = _strategy(out_of_range)
+    compiled = _compiled_kernels(name)
+    if compiled is None:
+        found = lookup(table, rgb_linear, name)
+        return found.nodes.astype(np.uint32), found.weights.astype(np.float32), found.exact
+    t = _coordinates(rgb_linear)
+    lead = t.shape[:-1]
+    nodes, weights, exact, _ = run_locate(compiled, _flat(t), *_kernel_table(table, name),
+                                          np.uint32, np.float32)
+    return nodes.reshape(*lead, 4), weights.reshape(*lead, 4), exact.reshape(lead)
 
 
 def upsample_blocks(table: UpsamplingTable, image, out_of_range: str = "toward-grey",
