@@ -6,7 +6,8 @@ light (default D65). Each pixel's colour gets the reflectance of a spectral upsa
 source light, observer and bin grid and kept (:func:`photo_table`), and is then seen under the
 illuminant the setting shows -- its own bin levels, edited or not -- by
 :func:`spectrocolor.upsampling.relight`, with the chosen chromatic adaptation. The relit colours
-are shown on sRGB with the page's gamut strategy.
+are shown on sRGB with the page's gamut strategy, by default after one exposure factor (1, or
+less where the perfect white under the new light would leave sRGB, so that it just fits).
 
 Photos are read and shown as sRGB, the space a browser shows an untagged PNG in; embedded ICC
 profiles are not applied. A photo larger than :data:`MAX_SHOWN_SIDE_PX` on its long side is
@@ -37,7 +38,7 @@ import numpy as np
 
 from ..errors import SpectrumError
 
-__all__ = ["SOURCES", "ADAPTATIONS", "DEFAULT_ADAPTATION", "MAX_SHOWN_SIDE_PX",
+__all__ = ["SOURCES", "ADAPTATIONS", "DEFAULT_ADAPTATION", "EXPOSURES", "DEFAULT_EXPOSURE", "MAX_SHOWN_SIDE_PX",
            "MAX_PHOTO_PIXELS", "TABLE_RESOLUTION", "OUT_OF_RANGE", "photo_table", "decode_photo",
            "relight_codes", "relight_photo"]
 
@@ -56,6 +57,16 @@ ADAPTATIONS = {
                  "looks white again, only colour inconstancy remains"),
 }
 DEFAULT_ADAPTATION = "none"
+#: How bright the relit photo is shown, the default first: [label, one-line explanation].
+EXPOSURES = {
+    "fit white": ("fit the white",
+                  "everything is scaled by one factor so that the perfect white under the new "
+                  "light just fits the display (needed where it is seen unadapted, e.g. under A)"),
+    "keep": ("keep the photo's",
+             "the perfect white keeps Y = 100: under a light seen unadapted it leaves the display's "
+             "gamut and the gamut strategy decides"),
+}
+DEFAULT_EXPOSURE = "fit white"
 #: Longest side of the pictures shown, px; larger photos are downscaled before relighting.
 MAX_SHOWN_SIDE_PX = 1024
 #: Largest photo decoded, pixels (from the header, before any pixel is decoded).
@@ -164,7 +175,8 @@ def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
     return codes, (width, height)
 
 
-def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: str) -> dict:
+def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: str,
+                  exposure: str = DEFAULT_EXPOSURE) -> dict:
     """Relit ``rgb8`` codes of a photo and what was done to its pixels.
 
     Parameters
@@ -179,6 +191,8 @@ def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: 
         A key of :data:`ADAPTATIONS`.
     gamut : str
         The display's gamut strategy for relit colours sRGB cannot show.
+    exposure : str
+        A key of :data:`EXPOSURES`.
 
     Returns
     -------
@@ -186,7 +200,10 @@ def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: 
         ``codes`` (uint8, like the input), ``outside_solid`` (pixels the table could not
         reproduce exactly: colours outside the object-colour solid, moved by
         :data:`OUT_OF_RANGE`), ``out_of_gamut`` (relit pixels sRGB cannot show, handled by
-        ``gamut``), ``colours`` (distinct colours relit).
+        ``gamut``), ``colours`` (distinct colours relit), ``exposure_factor`` (applied to
+        every relit colour: 1, or with ``exposure="fit white"`` less where the perfect white
+        under the new light would leave sRGB -- a lamp's white seen unadapted -- so that it just
+        fits, as a camera's exposure would).
 
     Examples
     --------
@@ -203,15 +220,18 @@ def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: 
     distinct, where = np.unique(packed.ravel(), return_inverse=True)
     colour_codes = np.stack([(distinct >> 16) & 255, (distinct >> 8) & 255, distinct & 255],
                             axis=-1).astype(np.uint8)
-    relit = relight(table, rgb_linear_from_image(colour_codes, SPACE), illuminant,
+    rgb_linear = np.concatenate([rgb_linear_from_image(colour_codes, SPACE), np.ones((1, 3))])
+    relit = relight(table, rgb_linear, illuminant,
                     adaptation=None if adaptation == "none" else adaptation,
                     out_of_range=OUT_OF_RANGE)
-    shown = render(relit.XYZ100, space=SPACE, gamut=gamut, bit_depth=8)
+    white_max = float(relit.rgb_linear[-1].max())  # the perfect white (ρ = 1) under the light
+    factor = 1.0 / white_max if exposure == "fit white" and white_max > 1.0 else 1.0
+    shown = render(factor * relit.XYZ100[:-1], space=SPACE, gamut=gamut, bit_depth=8)
     counts = np.bincount(where, minlength=len(distinct))
     return {"codes": shown.codes.astype(np.uint8)[where].reshape(codes.shape),
-            "outside_solid": int(counts[~relit.exact].sum()),
+            "outside_solid": int(counts[~relit.exact[:-1]].sum()),
             "out_of_gamut": int(counts[~shown.in_gamut].sum()),
-            "colours": int(len(distinct))}
+            "colours": int(len(distinct)), "exposure_factor": factor}
 
 
 def _png_base64(codes: np.ndarray) -> str:
@@ -224,7 +244,7 @@ def _png_base64(codes: np.ndarray) -> str:
 
 def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer: str,
                   source: str = SOURCES[0], adaptation: str = DEFAULT_ADAPTATION,
-                  gamut: str = "clip") -> dict:
+                  gamut: str = "clip", exposure: str = DEFAULT_EXPOSURE) -> dict:
     """The API answer: a photo as taken and relit under setting 4's illuminant (PNG, base64).
 
     Parameters
@@ -243,6 +263,8 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
         A key of :data:`ADAPTATIONS` (default :data:`DEFAULT_ADAPTATION`).
     gamut : str
         Gamut strategy for relit colours outside sRGB.
+    exposure : str
+        A key of :data:`EXPOSURES`.
 
     Returns
     -------
@@ -250,7 +272,8 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
         ``taken_png`` and ``relit_png`` (base64 PNG of the shown size), ``width``/``height``
         (shown), ``photo_width``/``photo_height`` (the file's), ``downscaled``, ``pixels``,
         ``outside_solid``, ``out_of_range`` (the strategy), ``out_of_gamut``, ``gamut``,
-        ``colours``, ``source``, ``adaptation``, ``space``, ``table`` (resolution, nodes) and
+        ``exposure`` and ``exposure_factor`` (see :func:`relight_codes`), ``colours``,
+        ``source``, ``adaptation``, ``space``, ``table`` (resolution, nodes, moved nodes) and
         ``relight_ms`` (the work after decoding, ms).
 
     Raises
@@ -276,6 +299,8 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
         raise SpectrumError(f"source: {source!r} is not one of {', '.join(SOURCES)}")
     if adaptation not in ADAPTATIONS:
         raise SpectrumError(f"adaptation: {adaptation!r} is not one of {', '.join(ADAPTATIONS)}")
+    if exposure not in EXPOSURES:
+        raise SpectrumError(f"exposure: {exposure!r} is not one of {', '.join(EXPOSURES)}")
     try:
         data = base64.b64decode(image_base64, validate=True)
     except (binascii.Error, ValueError):
@@ -284,7 +309,7 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
     start = time.perf_counter()
     table = photo_table(source, observer, float(step_nm))
     light = Spectrum(compute.grid(float(step_nm)), np.asarray(illuminant_levels, dtype=float))
-    relit = relight_codes(codes, table, light, adaptation, gamut)
+    relit = relight_codes(codes, table, light, adaptation, gamut, exposure)
     answer = {
         "relit_png": _png_base64(relit["codes"]),
         "taken_png": _png_base64(codes),
@@ -295,7 +320,8 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
         "pixels": int(codes.shape[0] * codes.shape[1]),
         "colours": relit["colours"],
         "outside_solid": relit["outside_solid"], "out_of_range": OUT_OF_RANGE,
-        "out_of_gamut": relit["out_of_gamut"], "gamut": gamut,
+        "out_of_gamut": relit["out_of_gamut"], "gamut": gamut, "exposure": exposure,
+        "exposure_factor": relit["exposure_factor"],
         "source": source, "adaptation": adaptation, "space": SPACE,
         "table": {"resolution": table.resolution, "nodes": int(table.resolution ** 3),
                   "moved_nodes": int(np.count_nonzero(table.node_status))},

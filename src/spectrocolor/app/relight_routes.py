@@ -25,7 +25,16 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from ..errors import SpectrumError
 from . import compute
-from .relight_photo import ADAPTATIONS, DEFAULT_ADAPTATION, MAX_SHOWN_SIDE_PX, SOURCES, relight_photo
+from .relight_photo import (
+    ADAPTATIONS,
+    DEFAULT_ADAPTATION,
+    DEFAULT_EXPOSURE,
+    EXPOSURES,
+    MAX_SHOWN_SIDE_PX,
+    SOURCES,
+    photo_table,
+    relight_photo,
+)
 
 #: Photos relit at the same time (each worker keeps its own tables).
 RELIGHT_WORKERS = 1
@@ -51,6 +60,7 @@ class RelightRequest(BaseModel):
     source: Literal[SOURCES] = SOURCES[0]  # type: ignore[valid-type]
     adaptation: Literal[tuple(ADAPTATIONS)] = DEFAULT_ADAPTATION  # type: ignore[valid-type]
     gamut: Literal["flag", "clip", "preserve-luminance", "desaturate"] = "clip"
+    exposure: Literal[tuple(EXPOSURES)] = DEFAULT_EXPOSURE  # type: ignore[valid-type]
 
     @model_validator(mode="before")
     @classmethod
@@ -83,12 +93,7 @@ class _Workers:
         if not self._slots.acquire(timeout=RELIGHT_WAIT_S):
             return None
         try:
-            with self._lock:
-                if self._pool is None:
-                    self._pool = concurrent.futures.ProcessPoolExecutor(
-                        self._count, mp_context=multiprocessing.get_context("spawn"))
-                pool = self._pool
-            return pool.submit(relight_photo, *args).result(timeout=RELIGHT_TIMEOUT_S)
+            return self._executor().submit(relight_photo, *args).result(timeout=RELIGHT_TIMEOUT_S)
         except concurrent.futures.TimeoutError:
             raise SpectrumError(f"image: relighting took more than {RELIGHT_TIMEOUT_S:g} s; "
                                 "send a smaller photo") from None
@@ -98,6 +103,20 @@ class _Workers:
                                 "send a smaller photo") from None
         finally:
             self._slots.release()
+
+    def _executor(self) -> concurrent.futures.ProcessPoolExecutor:
+        with self._lock:
+            if self._pool is None:
+                self._pool = concurrent.futures.ProcessPoolExecutor(
+                    self._count, mp_context=multiprocessing.get_context("spawn"))
+            return self._pool
+
+    def warm(self, *args) -> None:
+        """Start building a table in the worker now, without waiting (the first photo is quicker)."""
+        try:
+            self._executor().submit(photo_table, *args)
+        except BrokenProcessPool:
+            self.close(wait=False)
 
     def close(self, wait: bool = True) -> None:
         with self._lock:
@@ -112,17 +131,20 @@ router.on_shutdown.append(_workers.close)
 
 @router.get("/api/relight/options")
 def relight_options():
-    """The choices of the photo panel, defaults first, and its limits."""
+    """The choices of the photo panel, defaults first, and its limits; starts the default table."""
+    _workers.warm(SOURCES[0], "1931", 10.0)
     return {"sources": list(SOURCES),
             "adaptations": [[k, label, why] for k, (label, why) in ADAPTATIONS.items()],
-            "defaults": {"source": SOURCES[0], "adaptation": DEFAULT_ADAPTATION},
+            "exposures": [[k, label, why] for k, (label, why) in EXPOSURES.items()],
+            "defaults": {"source": SOURCES[0], "adaptation": DEFAULT_ADAPTATION,
+                         "exposure": DEFAULT_EXPOSURE},
             "max_photo_bytes": MAX_PHOTO_BYTES, "max_side_px": MAX_SHOWN_SIDE_PX}
 
 
 @router.post("/api/relight")
 def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread pool
     answer = _workers.run(req.image, req.illuminant, float(req.step_nm), req.observer,
-                          req.source, req.adaptation, req.gamut)
+                          req.source, req.adaptation, req.gamut, req.exposure)
     if answer is None:
         return JSONResponse({"error": "the server is busy relighting other photos; try again"},
                             status_code=429)

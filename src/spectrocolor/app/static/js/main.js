@@ -11,6 +11,7 @@ import {buildPatches, buildCards, paint, evalSpec, markStale, gamutLabel, NORMAL
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
 import {applyPreset, presetButtons, moveButtons} from "./presets.js";
+import {setupPhoto, refreshPhoto} from "./relight.js";
 
 window.__spectra = S;  // for the browser tests and the latency bench
 
@@ -66,6 +67,7 @@ async function pump() {
       S.server = r; S.localWhite = r.white_XYZ;
       paint(r.colours, r); drawPoints(r.colours, evalSpec().labels, r); drawEmittedLight(r.colours[0].emitted_levels);
       showLightMetrics(r.light_metrics);
+      refreshPhoto();
       markStale(null);
       S.settled = true;
     }
@@ -138,6 +140,7 @@ function selectSetting(n, push = true) {
   buildEditors(update); buildPatches(); buildCards(count); buildPoints(count);
   presetButtons(update, say); actionButtons(); say("");
   $("emitted-box").hidden = true;
+  refreshPhoto();
   if (push) history.pushState({setting: n}, "", stateURL());
   update();
 }
@@ -443,6 +446,7 @@ async function init() {
   window.addEventListener("resize", () => drawEditors());
   window.addEventListener("popstate", onPopState);
 
+  setupPhoto(fail).then(refreshPhoto).catch((err) => fail("The photo panel could not start", err));
   S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
   await loadModel();
   defaults();
