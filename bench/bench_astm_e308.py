@@ -83,13 +83,37 @@ def accuracy() -> None:
             for step in (10, 20):
                 sampled = samples.resample(np.arange(start, stop + 1.0, step), "linear")  # exact: a subset
                 cells = []
-                for method in sc.colorimetry.METHODS:
+                for method in sc.colorimetry.SUMMATION_METHODS.names():
                     XYZ = sc.tristimulus(sampled, observer=observer, illuminant=illuminant, method=method)
                     dE = sc.delta_e_2000(sc.lab(XYZ, white), truth)
                     cells.append(f"{method} {dE.mean():.3f}/{dE.max():.3f}")
                 print(f"  {observer} {illuminant:3s} {start}-{stop} nm at {step:2d} nm (mean/max): " + "  ".join(cells))
 
 
+def bandpass() -> None:
+    """Largest |ΔXYZ100| per sample against 1 nm summation, TCS01–14 measured through a triangular
+    bandpass equal to the interval (the instrument E308 Table 5 is for), per summation method."""
+    from spectrocolor.astm_e308 import lagrange_matrix
+    from spectrocolor.data_tables import load_table
+
+    header, table = load_table("reflectances_cie_tcs.csv")
+    fine = np.arange(360.0, 781.0)
+    true = table[:, 1:].T @ lagrange_matrix(table[:, 0], fine).T  # E2022 Lagrange from the 5 nm table
+    reference = sc.tristimulus(sc.Spectrum(fine, true), observer="1931", illuminant="D65", method="sum")
+    print("bandpass: TCS01-14 read through a triangular bandpass = interval; max |dXYZ100| per sample, mean/max")
+    for step in (10, 20):
+        grid = sc.wavelength_grid(360 + step, 780 - step, step)
+        triangle = np.clip(1 - np.abs(fine[None, :] - grid[:, None]) / step, 0, None)
+        measured = sc.Spectrum(grid, true @ (triangle / triangle.sum(axis=1, keepdims=True)).T)
+        cells = []
+        for method in ("sum", "astm-e308", "astm-e308-table5"):
+            XYZ = sc.tristimulus(measured, observer="1931", illuminant="D65", method=method)
+            error = np.abs(XYZ - reference).max(axis=1)
+            cells.append(f"{method} {error.mean():.4f}/{error.max():.4f}")
+        print(f"  1931 D65 {grid[0]:.0f}-{grid[-1]:.0f} nm at {step} nm: " + "  ".join(cells))
+
+
 if __name__ == "__main__":
     main()
     accuracy()
+    bandpass()

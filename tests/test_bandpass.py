@@ -135,6 +135,27 @@ def test_data_the_rule_cannot_apply_to_are_refused(spectrum, message):
         bandpass_correction(spectrum)
 
 
+def _tm27(fwhm: str, corrected: str) -> str:
+    samples = "".join(f'<SpectralData wavelength="{w}">{0.2 + w / 2000}</SpectralData>' for w in range(400, 701, 10))
+    return (
+        f'<IESTM2714 version="1.0"><SpectralDistribution><SpectralQuantity>reflectance</SpectralQuantity>'
+        f"<BandwidthFWHM>{fwhm}</BandwidthFWHM><BandwidthCorrected>{corrected}</BandwidthCorrected>"
+        f"{samples}</SpectralDistribution></IESTM2714>"
+    )
+
+
+def test_tm27_files_declare_what_the_correction_checks():
+    """BandwidthFWHM and BandwidthCorrected, as the TM-27 reader keeps them, decide."""
+    from spectrocolor.io import parse_spectra
+
+    accepted = bandpass_correction(parse_spectra(_tm27("10", "false"), "a.spdx", percent=False))
+    assert "10 nm interval" in accepted.metadata["bandpass_correction"]
+    with pytest.raises(SpectrumError, match="bandwidth_fwhm_nm.*5 nm is not the data's 10 nm interval"):
+        bandpass_correction(parse_spectra(_tm27("5", "false"), "b.spdx", percent=False))
+    with pytest.raises(SpectrumError, match="already bandwidth-corrected"):
+        bandpass_correction(parse_spectra(_tm27("10", "TRUE"), "c.spdx", percent=False))
+
+
 def test_a_file_declaring_a_bandwidth_equal_to_the_interval_is_corrected():
     grid = sc.wavelength_grid(400, 700, 10)
     spectrum = Spectrum(grid, np.linspace(0.2, 0.6, grid.size), metadata={"bandwidth_fwhm_nm": "10"})
