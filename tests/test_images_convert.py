@@ -3,7 +3,9 @@ size (no seams), bounded in memory, and cross-checked against colour-science."""
 
 from __future__ import annotations
 
+import struct
 import tracemalloc
+import zlib
 
 import numpy as np
 import pytest
@@ -244,9 +246,53 @@ def test_cli_image_png_and_tiff(tmp_path, capsys):
 
 
 def _png16(path):
-    from test_images_io import _decode_png_rgb16
+    return _decode_png(path.read_bytes())
 
-    return _decode_png_rgb16(path.read_bytes())
+
+def _decode_png(data: bytes) -> np.ndarray:
+    """Independent PNG reader (PNG specification, 3rd ed., W3C 2025): non-interlaced truecolour,
+    with or without alpha, 8 or 16 bits, any of the five filter types (§9.2), in plain Python."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    position, chunks = 8, {}
+    while position < len(data):
+        (length,) = struct.unpack(">I", data[position:position + 4])
+        kind = data[position + 4:position + 8]
+        body = data[position + 8:position + 8 + length]
+        (crc,) = struct.unpack(">I", data[position + 8 + length:position + 12 + length])
+        assert crc == zlib.crc32(kind + body)
+        chunks.setdefault(kind, []).append(body)
+        position += 12 + length
+    assert list(chunks)[-1] == b"IEND"
+    width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", chunks[b"IHDR"][0])
+    assert depth in (8, 16) and colour in (2, 6) and interlace == 0
+    channels = 3 if colour == 2 else 4
+    bpp = channels * depth // 8
+    stride = width * bpp
+    raw = zlib.decompress(b"".join(chunks[b"IDAT"]))
+    assert len(raw) == height * (stride + 1)
+    previous, lines = bytearray(stride), []
+    for row in range(height):
+        kind, line = raw[row * (stride + 1)], bytearray(raw[row * (stride + 1) + 1:(row + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b = previous[i]
+            c = previous[i - bpp] if i >= bpp else 0
+            if kind == 1:
+                line[i] = (line[i] + a) % 256
+            elif kind == 2:
+                line[i] = (line[i] + b) % 256
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) % 256
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) % 256
+            else:
+                assert kind == 0
+        lines.append(bytes(line))
+        previous = line
+    samples = np.frombuffer(b"".join(lines), ">u2" if depth == 16 else np.uint8)
+    return samples.reshape(height, width, channels).astype(np.uint16 if depth == 16 else np.uint8)
 
 
 def test_cli_image_errors(tmp_path, capsys):

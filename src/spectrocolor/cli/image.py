@@ -55,6 +55,11 @@ def register(subparsers) -> None:
                    help="adapt the illuminant's white to the display white (default bradford)")
     p.add_argument("--bit-depth", type=int, choices=(8, 16), default=8,
                    help="PNG bits per channel (default 8)")
+    p.add_argument("--masked", default=None, metavar="WHAT",
+                   help="what masked pixels (NaN values, the ENVI data ignore value) become with "
+                   "--quantity rgb: 'black' (default: black codes in PNG, NaN in TIFF), "
+                   "'transparent' (RGBA with alpha 0 there), or a colour '#RRGGBB' or 'R,G,B' "
+                   "(codes for PNG, floats for TIFF)")
     p.add_argument("--chunks", default=None,
                    help="rows per block (NumPy path), or 'ROWS,COLS' dask chunks with "
                    "--scheduler (default: 64 MiB blocks; 512,512 on dask)")
@@ -107,16 +112,40 @@ def _chunks(text: str | None, dask: bool):
     return parts[0]
 
 
+def parse_masked(text: str | None):
+    """``--masked``: None (default), "transparent", "#RRGGBB" or three numbers "R,G,B"."""
+    if text is None or text.strip().lower() == "black":
+        return None
+    if text.strip().lower() == "transparent":
+        return "transparent"
+    if text.strip().startswith("#"):
+        return text.strip()
+    try:
+        parts = tuple(float(part) for part in text.split(","))
+    except ValueError:
+        parts = ()
+    if len(parts) != 3:
+        raise UserError(f"--masked: expected black, transparent, '#RRGGBB' or 'R,G,B'; got {text[:40]!r}")
+    return parts
+
+
 def _image(args: argparse.Namespace) -> int:
+    from ..errors import ColorimetryError
     from ..images import plan_conversion, read_cube
-    from ..images.convert import run_blocks
-    from ..pictures import write_image
+    from ..images.convert import masked_fill, write_converted
 
     suffix = args.out.lower().rsplit(".", 1)[-1]
     if suffix not in ("png", "tif", "tiff"):
         raise UserError(f"--out must end in .png or .tif/.tiff; got {args.out!r}")
     if suffix == "png" and args.quantity != "rgb":
         raise UserError(f"--quantity {args.quantity} gives floats: write it to a .tif file")
+    masked = parse_masked(args.masked)
+    if masked is not None and args.quantity != "rgb":
+        raise UserError(f"--masked applies to --quantity rgb; {args.quantity} keeps NaN for masked pixels")
+    try:
+        masked_fill(masked, "codes" if suffix == "png" else "rgb_linear", args.bit_depth)
+    except ColorimetryError as exc:
+        raise UserError(f"--{exc}") from None
     check_files(args, ("out",), ("cube",))
     if args.wavelength_units is not None:
         from ..images.cube import wavelengths_to_nm
@@ -134,22 +163,28 @@ def _image(args: argparse.Namespace) -> int:
         args.quantity, cube.wavelengths_nm, illuminant=illuminant, observer=args.observer,
         method=args.method, scale=scale, space=args.space, gamut=args.gamut,
         exposure=args.exposure, adaptation=None if args.adapt == "none" else args.adapt,
-        bit_depth=args.bit_depth, output=output,
+        bit_depth=args.bit_depth, output=output, masked=masked,
     )
-    if args.scheduler:
-        result = _on_cluster(cube, plan, args)
-    else:
-        result = run_blocks(cube.values, plan, rows_per_block=_chunks(args.chunks, False),
-                            progress=args.progress)
-    if suffix == "png":
-        write_image(args.out, result)
-    else:
+    metadata = None
+    if suffix != "png":
         metadata = {"quantity": plan.quantity, "illuminant": illuminant_label(args.illuminant),
                     "observer": args.observer, "source": cube.source}
         if plan.white_XYZ is not None:
             metadata["white_XYZ"] = [float(v) for v in plan.white_XYZ]
-        write_image(args.out, result.astype(np.float32), metadata=metadata)
-    height, width = result.shape[:2]
+        if plan.channels == 4:
+            metadata["alpha"] = "0 where masked, 1 elsewhere"
+    if args.scheduler:  # the cluster returns the whole result; write it as one block
+        from ..images.stream import write_png_blocks, write_tiff_blocks
+
+        result = _on_cluster(cube, plan, args)
+        if suffix == "png":
+            write_png_blocks(args.out, [result], *result.shape, plan.dtype.itemsize * 8)
+        else:
+            write_tiff_blocks(args.out, [result], result.shape, result.shape[0], metadata)
+    else:  # streamed: one block of rows in memory, written as it is made
+        write_converted(args.out, cube.values, plan, rows_per_block=_chunks(args.chunks, False),
+                        metadata=metadata, progress=args.progress)
+    height, width = cube.values.shape[:2]
     print(f"wrote {args.out}: {width} x {height} pixels, {plan.quantity}, "
           f"{cube.wavelengths_nm.size} bands {cube.wavelengths_nm[0]:g}-"
           f"{cube.wavelengths_nm[-1]:g} nm, illuminant {illuminant_label(args.illuminant)}, observer "
@@ -165,7 +200,7 @@ def _on_cluster(cube, plan, args) -> np.ndarray:
     chunks = _chunks(args.chunks, True)
     source = da.from_array(cube.values, chunks=(*chunks, -1))
     lazy = source.map_blocks(plan.function, **plan.keywords, dtype=plan.dtype,
-                             chunks=(*source.chunks[:2], (3,)))
+                             chunks=(*source.chunks[:2], (plan.channels,)))
     try:
         client = Client(args.scheduler, timeout="10s")
     except (OSError, ValueError, TypeError) as exc:  # unreachable, or not an address at all

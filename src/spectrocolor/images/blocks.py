@@ -93,13 +93,16 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
     options : dict
         ``adapt_from`` (XYZ of the source white or None), ``adapt_method``, ``exposure``
         (XYZ multiplier), ``space``, ``gamut``, ``bit_depth``, ``output`` ("codes",
-        "rgb_linear" or "rgb_encoded").
+        "rgb_linear" or "rgb_encoded"), and optionally ``masked`` (as checked by
+        :func:`spectrocolor.images.convert.masked_fill`).
 
     Returns
     -------
-    ndarray, shape (..., 3)
+    ndarray, shape (..., 3), or (..., 4) with ``masked="transparent"``
         Integer codes (uint8 or uint16) or float64 linear / encoded RGB. Masked pixels (NaN in
-        the values, e.g. an ENVI data ignore value) are black codes (0, 0, 0), or NaN floats.
+        the values, e.g. an ENVI data ignore value) are black codes (0, 0, 0), or NaN floats,
+        unless ``masked`` gives their colour or makes them transparent (alpha 0, colour 0;
+        the other pixels get full alpha).
 
     Examples
     --------
@@ -112,17 +115,32 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
     >>> rgb_block(grey, W, options)[0].tolist()
     [187, 188, 187]
     """
-    import spectrocolor as sc
-
     XYZ = xyz_block(values, weights)
     masked = ~np.isfinite(XYZ).all(axis=-1)
-    if masked.any():  # render the others; masked pixels stay black codes or NaN
-        codes = options["output"] == "codes"
-        dtype = (np.uint8 if options["bit_depth"] <= 8 else np.uint16) if codes else np.float64
-        result = np.full(XYZ.shape, 0 if codes else np.nan, dtype=dtype)
+    codes = options["output"] == "codes"
+    dtype = (np.uint8 if options["bit_depth"] <= 8 else np.uint16) if codes else np.float64
+    if not masked.any():
+        rgb = _render(XYZ, options, dtype)
+    else:  # render the others; masked pixels are black codes or NaN unless ``masked`` says
+        rgb = np.full(XYZ.shape, 0 if codes else np.nan, dtype=dtype)
         if not masked.all():
-            result[~masked] = rgb_block(values[~masked], weights, options)
-        return result
+            rgb[~masked] = _render(XYZ[~masked], options, dtype)
+    fill = options.get("masked")
+    if fill is None:
+        return rgb
+    if isinstance(fill, str):  # "transparent": RGBA, alpha 0 and colour 0 where masked
+        rgba = np.zeros((*rgb.shape[:-1], 4), dtype)
+        rgba[~masked, :3] = rgb[~masked]
+        rgba[~masked, 3] = np.iinfo(dtype).max if codes else 1.0
+        return rgba
+    rgb[masked] = fill
+    return rgb
+
+
+def _render(XYZ: np.ndarray, options: dict, dtype) -> np.ndarray:
+    """Adapted, exposed and rendered finite XYZ, as ``options`` say (see :func:`rgb_block`)."""
+    import spectrocolor as sc
+
     if options["adapt_from"] is not None:
         space = sc.rgb_space(options["space"]) if isinstance(options["space"], str) else (
             options["space"]
@@ -136,6 +154,5 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
         bit_depth=options["bit_depth"],
     )
     if options["output"] == "codes":
-        dtype = np.uint8 if options["bit_depth"] <= 8 else np.uint16
         return np.asarray(rendering.codes).astype(dtype)
     return np.asarray(getattr(rendering, options["output"]), dtype=np.float64)

@@ -10,7 +10,9 @@ maps over chunks, so all paths give the same numbers.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -20,7 +22,7 @@ from ..observers import DEFAULT_OBSERVER
 from . import blocks
 from .cube import SpectralCube
 
-__all__ = ["cube_to_xyz", "cube_to_lab", "cube_to_rgb", "ConversionPlan", "plan_conversion"]
+__all__ = ["cube_to_xyz", "cube_to_lab", "cube_to_rgb", "ConversionPlan", "plan_conversion", "write_converted"]
 
 _OUTPUTS = ("codes", "rgb_linear", "rgb_encoded")
 
@@ -41,6 +43,9 @@ class ConversionPlan:
         Output dtype.
     white_XYZ : ndarray or None
         The white used (CIELAB reference, source white of the adaptation).
+    channels : int
+        Values per pixel of the result: 3, or 4 for RGB with an alpha channel
+        (``masked="transparent"``).
     """
 
     quantity: str
@@ -48,6 +53,7 @@ class ConversionPlan:
     keywords: dict
     dtype: np.dtype
     white_XYZ: np.ndarray | None
+    channels: int = 3
 
 
 def plan_conversion(
@@ -65,6 +71,7 @@ def plan_conversion(
     adaptation: str | None = "bradford",
     bit_depth: int = 8,
     output: str = "codes",
+    masked=None,
 ) -> ConversionPlan:
     """Precompute the per-block work of a conversion (weights, white, render options).
 
@@ -99,6 +106,8 @@ def plan_conversion(
         As for :func:`cube_to_rgb`.
     output : str, keyword-only, default "codes"
         As for :func:`cube_to_rgb`.
+    masked : None, "transparent" or 3 numbers, keyword-only, default None
+        As for :func:`cube_to_rgb` ("rgb" only: XYZ and CIELAB keep NaN for masked pixels).
 
     Returns
     -------
@@ -109,7 +118,8 @@ def plan_conversion(
     ------
     ColorimetryError
         For an unknown quantity or output, a scale or exposure that is not positive, a bit
-        depth other than 8 or 16 for codes, CIELAB of lights without ``white_XYZ``, and as
+        depth other than 8 or 16 for codes, CIELAB of lights without ``white_XYZ``, a
+        ``masked`` that is not None, "transparent" or a colour of the output's kind, and as
         :func:`spectrocolor.weights`.
 
     Examples
@@ -123,6 +133,10 @@ def plan_conversion(
 
     if quantity not in ("xyz", "lab", "rgb"):
         raise ColorimetryError(f"quantity must be 'xyz', 'lab' or 'rgb'; got {quantity!r}")
+    if masked is not None and quantity != "rgb":
+        raise ColorimetryError(
+            f"masked applies to quantity 'rgb'; {quantity} keeps NaN for masked pixels (got masked={masked!r:.40})"
+        )
     scale = float(scale)
     if not np.isfinite(scale) or scale <= 0:
         raise ColorimetryError(f"scale must be a positive number; got {scale!r}")
@@ -156,6 +170,7 @@ def plan_conversion(
     exposure = float(exposure)
     if not np.isfinite(exposure) or exposure <= 0:
         raise ColorimetryError(f"exposure must be a positive number; got {exposure!r}")
+    masked = masked_fill(masked, output, bit_depth)
     adapt_from = perfect_white if adaptation is not None else None
     options = {
         "adapt_from": adapt_from,
@@ -165,14 +180,75 @@ def plan_conversion(
         "gamut": gamut,
         "bit_depth": bit_depth,
         "output": output,
+        "masked": masked,
     }
     if output == "codes":
         dtype = np.dtype(np.uint8 if bit_depth == 8 else np.uint16)
         label = f"rgb codes ({bit_depth}-bit)"
     else:
         dtype, label = np.dtype(np.float64), output
+    channels = 4 if isinstance(masked, str) else 3
     return ConversionPlan(label, blocks.rgb_block,
-                          {"weights": scaled, "options": options}, dtype, adapt_from)
+                          {"weights": scaled, "options": options}, dtype, adapt_from, channels)
+
+
+def masked_fill(masked, output: str = "codes", bit_depth: int = 8):
+    """Check the ``masked`` option of an RGB conversion: what masked pixels become.
+
+    Parameters
+    ----------
+    masked : None, "transparent", "#RRGGBB" or 3 numbers
+        ``None``: black codes, or NaN floats. ``"transparent"``: an alpha channel is added, 0
+        on masked pixels (whose colour is 0) and full (255, 65535 or 1.0) elsewhere. A colour:
+        ``"#RRGGBB"`` (scaled to 16-bit codes by 257, to floats by 1/255) or three values in the
+        output's own units (codes from 0 to 255 or 65535, or floats).
+    output : str, default "codes"
+        "codes", "rgb_linear" or "rgb_encoded".
+    bit_depth : int, default 8
+        8 or 16 (codes).
+
+    Returns
+    -------
+    None, "transparent" or numpy.ndarray, shape (3,)
+        The checked option; a colour in the output's dtype.
+
+    Raises
+    ------
+    ColorimetryError
+        Anything else, e.g. codes outside 0 to 255, a fractional code, NaN.
+
+    Examples
+    --------
+    >>> masked_fill("#ff8000").tolist(), masked_fill((0, 0, 65535), bit_depth=16).tolist()
+    ([255, 128, 0], [0, 0, 65535])
+    >>> masked_fill("#ff8000", output="rgb_encoded").round(4).tolist()
+    [1.0, 0.502, 0.0]
+    """
+    if masked is None or (isinstance(masked, str) and masked == "transparent"):
+        return masked
+    codes = output == "codes"
+    top = 65535 if codes and bit_depth == 16 else 255
+    kind = f"whole codes from 0 to {top}" if codes else "finite floats"
+    accepted = f"None, 'transparent', '#RRGGBB' or three {kind}"
+    if isinstance(masked, str):
+        text = masked.strip()
+        if len(text) != 7 or text[0] != "#" or not all(c in "0123456789abcdefABCDEF" for c in text[1:]):
+            raise ColorimetryError(f"masked: expected {accepted}; got {masked!r:.40}")
+        rgb8 = np.array([int(text[i:i + 2], 16) for i in (1, 3, 5)])
+        if not codes:
+            return rgb8 / 255.0
+        return (rgb8 * (257 if bit_depth == 16 else 1)).astype(np.uint16 if bit_depth == 16 else np.uint8)
+    try:
+        colour = np.asarray(masked, dtype=np.float64)
+    except (TypeError, ValueError):
+        colour = None
+    if colour is None or colour.shape != (3,) or not np.isfinite(colour).all():
+        raise ColorimetryError(f"masked: expected {accepted}; got {masked!r:.40}")
+    if not codes:
+        return colour
+    if np.any(colour != np.round(colour)) or colour.min() < 0 or colour.max() > top:
+        raise ColorimetryError(f"masked: expected {accepted}; got {masked!r:.40}")
+    return colour.astype(np.uint16 if bit_depth == 16 else np.uint8)
 
 
 def _values_and_wavelengths(cube, wavelengths_nm):
@@ -208,7 +284,7 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
         Rows per block; default: as many as fit in ``max_block_mib`` MiB of float64 spectra.
     max_block_mib : float
         Memory budget of one block (float64 spectra), in MiB.
-    out : ndarray or np.memmap, shape (N, ..., 3), optional
+    out : ndarray or np.memmap, shape (N, ..., plan.channels), optional
         Where to write (e.g. a ``tifffile.memmap`` or ``np.memmap`` for outputs larger than
         memory); a new array by default.
     progress : bool
@@ -216,7 +292,7 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
 
     Returns
     -------
-    ndarray, shape (N, ..., 3)
+    ndarray, shape (N, ..., plan.channels)
         The converted values, of ``plan.dtype`` (``out`` itself when given).
 
     Raises
@@ -232,19 +308,65 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     >>> lab.shape, lab[0, 0].round(3).tolist()
     ((4, 2, 3), [76.069, 0.0, 0.0])
     """
-    shape = tuple(values.shape)
-    n_rows = shape[0]
+    out_shape = (*tuple(values.shape)[:-1], plan.channels)
+    if out is None:
+        out = np.empty(out_shape, dtype=plan.dtype)
+    elif tuple(out.shape) != out_shape:
+        raise SpectrumError(f"out must have shape {out_shape}; got {tuple(out.shape)}")
+    for start, block in iter_blocks(values, plan, rows_per_block=rows_per_block,
+                                    max_block_mib=max_block_mib, progress=progress):
+        out[start:start + len(block)] = block
+    return out
+
+
+def _rows_per_block(shape: tuple[int, ...], rows_per_block, max_block_mib: float) -> int:
     per_row = int(np.prod(shape[1:], dtype=np.int64)) * 8
     if rows_per_block is None:
         rows_per_block = max(1, int(max_block_mib * 2**20) // max(per_row, 1))
     rows_per_block = int(rows_per_block)
     if rows_per_block < 1:
         raise SpectrumError(f"rows_per_block must be at least 1; got {rows_per_block}")
-    out_shape = (*shape[:-1], 3)
-    if out is None:
-        out = np.empty(out_shape, dtype=plan.dtype)
-    elif tuple(out.shape) != out_shape:
-        raise SpectrumError(f"out must have shape {out_shape}; got {tuple(out.shape)}")
+    return rows_per_block
+
+
+def iter_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_mib=64.0,
+                progress=False) -> Iterator[tuple[int, np.ndarray]]:
+    """Apply ``plan`` to ``values`` (N, ..., K) block by block, yielding each result as made.
+
+    Parameters
+    ----------
+    values : ndarray, MappedArray, np.memmap or array-like with ``shape`` and slicing
+        The spectra; only one block is read at a time.
+    plan : ConversionPlan
+        From :func:`plan_conversion`.
+    rows_per_block : int, optional
+        Rows per block; default: as many as fit in ``max_block_mib`` MiB of float64 spectra.
+    max_block_mib : float
+        Memory budget of one block (float64 spectra), in MiB.
+    progress : bool
+        Show a progress bar over rows (tqdm) on standard error.
+
+    Yields
+    ------
+    tuple
+        ``(start, block)``: the first row of the block and its result, shape
+        ``(rows, ..., plan.channels)`` of ``plan.dtype``; every block has ``rows_per_block``
+        rows but the last.
+
+    Raises
+    ------
+    SpectrumError
+        For ``rows_per_block`` below 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> plan = plan_conversion("xyz", np.arange(400, 701, 10), illuminant="D65")
+    >>> [(start, block.shape) for start, block in iter_blocks(np.ones((3, 2, 31)), plan, rows_per_block=2)]
+    [(0, (2, 2, 3)), (2, (1, 2, 3))]
+    """
+    n_rows = tuple(values.shape)[0]
+    rows_per_block = _rows_per_block(tuple(values.shape), rows_per_block, max_block_mib)
     bar = None
     if progress:
         from tqdm import tqdm
@@ -253,13 +375,92 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     try:
         for start in range(0, n_rows, rows_per_block):
             stop = min(start + rows_per_block, n_rows)
-            out[start:stop] = plan.function(values[start:stop], **plan.keywords)
+            yield start, np.asarray(plan.function(values[start:stop], **plan.keywords), dtype=plan.dtype)
             if bar is not None:
                 bar.update(stop - start)
     finally:
         if bar is not None:
             bar.close()
-    return out
+
+
+def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
+                    max_block_mib: float = 64.0, metadata: dict | None = None,
+                    progress: bool = False) -> Path:
+    """Convert a cube block by block straight into a PNG or float TIFF file.
+
+    Each block is computed and written before the next is read, so memory holds one block of
+    spectra and its result, never the whole image (neither floats nor codes): a PNG is
+    compressed row block by row block (:func:`spectrocolor.images.stream.write_png_blocks`), a
+    TIFF gets one strip per block (:func:`spectrocolor.images.stream.write_tiff_blocks`). The
+    file is written beside ``path`` and renamed over it once read back, like every writer.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        ``.png`` (a plan with ``output="codes"``: 8- or 16-bit RGB, RGBA with
+        ``masked="transparent"``) or ``.tif``/``.tiff`` (floats, written as float32).
+    values : ndarray, MappedArray, np.memmap or array-like, shape (H, W, K)
+        The spectra, e.g. ``read_cube(...).values``.
+    plan : ConversionPlan
+        From :func:`plan_conversion`.
+    rows_per_block : int, keyword-only, optional
+        Rows per block; default as many as fit in ``max_block_mib``.
+    max_block_mib : float, keyword-only, default 64.0
+        Memory budget of one block of float64 spectra, MiB.
+    metadata : dict, keyword-only, optional
+        TIFF only: JSON-serialisable facts stored in the image description.
+    progress : bool, keyword-only, default False
+        Show a tqdm progress bar over rows on standard error.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    SpectrumError
+        A suffix other than .png/.tif/.tiff, a PNG from a plan without integer codes (or a TIFF
+        from one with codes), values
+        that are not (H, W, K), metadata for a PNG.
+    spectrocolor.safe_write.OutputError
+        The file cannot be written; any previous file at ``path`` is unchanged.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from PIL import Image
+    >>> plan = plan_conversion("rgb", np.arange(400, 701, 10), illuminant="D65")
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_converted(pathlib.Path(folder) / "grey.png", np.full((4, 5, 31), 0.5), plan,
+    ...                            rows_per_block=3)
+    ...     np.asarray(Image.open(path))[3, 4].tolist()
+    [188, 188, 188]
+    """
+    from .stream import write_png_blocks, write_tiff_blocks
+
+    path = Path(path)
+    shape = tuple(values.shape)
+    if len(shape) != 3 or 0 in shape:
+        raise SpectrumError(f"values must have shape (H, W, K) with H, W, K >= 1; got {shape}")
+    suffix = path.suffix.lower()
+    if suffix not in (".png", ".tif", ".tiff"):
+        raise SpectrumError(f"{path}: unknown image format {suffix!r}; accepted: .png (8/16-bit codes), "
+                            ".tif/.tiff (float)")
+    rows = _rows_per_block(shape, rows_per_block, max_block_mib)
+    results = (block for _, block in iter_blocks(values, plan, rows_per_block=rows, progress=progress))
+    height, width = shape[:2]
+    if suffix == ".png":
+        if plan.dtype.kind != "u":
+            raise SpectrumError(f"PNG needs integer codes; the plan gives {plan.quantity} floats "
+                                "(plan with output='codes', or write a .tif)")
+        if metadata:
+            raise SpectrumError("metadata is stored in TIFF files only; PNG gets none")
+        return write_png_blocks(path, results, height, width, plan.channels, plan.dtype.itemsize * 8)
+    if plan.dtype.kind != "f":
+        raise SpectrumError(f"TIFF output is for floats; the plan gives {plan.quantity} (write codes to .png)")
+    return write_tiff_blocks(path, results, (height, width, plan.channels), rows, metadata)
 
 
 def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
@@ -399,7 +600,7 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
 def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, space="sRGB", gamut: str = DEFAULT_GAMUT,
                 exposure: float = 1.0, adaptation: str | None = "bradford", bit_depth: int = 8,
-                output: str = "codes", rows_per_block=None, max_block_mib: float = 64.0,
+                output: str = "codes", masked=None, rows_per_block=None, max_block_mib: float = 64.0,
                 out=None, progress: bool = False) -> np.ndarray:
     """Display RGB of every pixel, in bounded-memory row blocks.
 
@@ -439,6 +640,11 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         8 or 16 for ``output="codes"``.
     output : str, keyword-only, default "codes"
         "codes" (uint8/uint16, ready for PNG), "rgb_linear" or "rgb_encoded" (float64).
+    masked : None, "transparent", "#RRGGBB" or 3 numbers, keyword-only, default None
+        What masked pixels become (NaN or infinite values, e.g. where an ENVI header's data
+        ignore value was): ``None`` black codes (0, 0, 0) or NaN floats; ``"transparent"`` adds
+        an alpha channel (result (H, W, 4)): 0 on masked pixels, whose colour is 0, and 255,
+        65535 or 1.0 elsewhere; or a colour (see :func:`masked_fill`).
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
     max_block_mib : float, keyword-only, default 64.0
@@ -450,7 +656,7 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
 
     Returns
     -------
-    ndarray, shape (H, W, 3)
+    ndarray, shape (H, W, 3), or (H, W, 4) with ``masked="transparent"``
         uint8/uint16 codes, or float64 linear or encoded RGB (0–1), as ``output`` says.
 
     Raises
@@ -468,11 +674,15 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     >>> rgb8 = cube_to_rgb(grey, np.arange(400, 701, 10), illuminant="D65")
     >>> rgb8.dtype.name, rgb8[0, 0].tolist()
     ('uint8', [188, 188, 188])
+    >>> grey[0, 0] = np.nan  # a masked pixel
+    >>> rgba8 = cube_to_rgb(grey, np.arange(400, 701, 10), illuminant="D65", masked="transparent")
+    >>> rgba8[0, 0].tolist(), rgba8[0, 1].tolist()
+    ([0, 0, 0, 0], [188, 188, 188, 255])
     """
     values, wavelengths = _values_and_wavelengths(cube, wavelengths_nm)
     plan = plan_conversion("rgb", wavelengths, illuminant=illuminant, observer=observer,
                            method=method, scale=scale, space=space, gamut=gamut,
                            exposure=exposure, adaptation=adaptation, bit_depth=bit_depth,
-                           output=output)
+                           output=output, masked=masked)
     return run_blocks(values, plan, rows_per_block=rows_per_block, max_block_mib=max_block_mib,
                       out=out, progress=progress)
