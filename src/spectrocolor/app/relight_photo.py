@@ -31,6 +31,7 @@ from __future__ import annotations
 import base64
 import binascii
 import io
+import re
 import time
 from functools import lru_cache
 
@@ -169,9 +170,12 @@ def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
             codes = np.asarray(rgb, dtype=np.uint8)
     except SpectrumError:
         raise
-    except Exception as exc:  # Pillow raises many types on damaged files: one error
-        raise _bad(f"cannot be read as a PNG or JPEG ({exc.__class__.__name__}: "
-                   f"{str(exc)[:120]})") from None
+    except Image.DecompressionBombError:  # Pillow's own refusal, far beyond ours
+        raise _bad(f"its header claims far more than {MAX_PHOTO_PIXELS} pixels; at most "
+                   f"{MAX_PHOTO_PIXELS} are read") from None
+    except Exception as exc:  # Pillow raises many types on damaged files: one error, one line
+        detail = " ".join(re.sub(r"<[^>]*>", "the upload", str(exc)).split())[:120]
+        raise _bad(f"cannot be read as a PNG or JPEG ({exc.__class__.__name__}: {detail})") from None
     return codes, (width, height)
 
 

@@ -1,0 +1,225 @@
+"""Setting 4's photo: ``POST /api/relight`` and ``GET /api/relight/options`` (issue 17).
+
+Golden behaviour: a photo relit under the light it was taken under comes back with identical
+8-bit codes; a neutral stays neutral when the viewer adapts (the smoothest reflectance of a
+neutral is flat, and the Freudenthal split keeps the grey axis an edge of every tetrahedron, so
+the blend of flat node spectra is flat); the perfect white under A, seen unadapted, has A's
+colour, cross-checked with colour-science from the CIE tables.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import struct
+import zlib
+from pathlib import Path
+
+import colour
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+from PIL import Image
+
+import spectrocolor as sc
+from spectrocolor.app import relight_photo, relight_routes
+from spectrocolor.app.server import MAX_BODY_BYTES, create_app
+
+CHART = Path(__file__).parent / "data" / "relight_chart.png"
+WL = np.arange(400.0, 701.0, 10.0)
+CMFS = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+
+
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app(), base_url="http://127.0.0.1") as c:  # shutdown stops the worker
+        yield c
+
+
+def levels(name: str) -> list[float]:
+    """A CIE illuminant (colour-science's table) at the explorer's 31 bins, peak 30."""
+    s = np.array([colour.SDS_ILLUMINANTS[name][w] for w in WL])
+    return (30 * s / s.max()).tolist()
+
+
+def png(codes: np.ndarray, **save) -> str:
+    buffer = io.BytesIO()
+    Image.fromarray(np.asarray(codes, np.uint8), "RGB").save(buffer, "PNG", **save)
+    return base64.b64encode(buffer.getvalue()).decode()
+
+
+def decoded(b64: str) -> np.ndarray:
+    return np.asarray(Image.open(io.BytesIO(base64.b64decode(b64))).convert("RGB"))
+
+
+def relight(client, image: str, illuminant, **kw) -> dict:
+    r = client.post("/api/relight", json={"image": image, "illuminant": illuminant, **kw})
+    assert r.status_code == 200, r.text
+    return r.json()
+
+
+def chart() -> tuple[np.ndarray, str]:
+    data = CHART.read_bytes()
+    return np.asarray(Image.open(io.BytesIO(data)).convert("RGB")), base64.b64encode(data).decode()
+
+
+@pytest.mark.parametrize("exposure", ["fit white", "keep"])
+@pytest.mark.parametrize("adaptation", ["none", "von kries", "bradford"])
+def test_relit_under_its_own_light_is_the_photo(client, adaptation, exposure):
+    codes, image = chart()
+    answer = relight(client, image, levels("D65"), adaptation=adaptation, exposure=exposure)
+    assert np.array_equal(decoded(answer["taken_png"]), codes)
+    assert np.array_equal(decoded(answer["relit_png"]), codes)
+    assert (answer["width"], answer["height"], answer["downscaled"]) == (244, 164, False)
+    assert answer["pixels"] == 244 * 164 and answer["colours"] == 25  # 24 patches + the frame
+    assert answer["outside_solid"] == 0 and answer["out_of_range"] == "toward-grey"
+    assert answer["out_of_gamut"] == 0
+
+
+@pytest.mark.parametrize("adaptation", ["von kries", "bradford"])
+def test_grey_card_stays_grey_under_a_when_the_viewer_adapts(client, adaptation):
+    greys = np.array([[[v, v, v] for v in (30, 60, 128, 200, 255)]], np.uint8)
+    answer = relight(client, png(greys), levels("A"), adaptation=adaptation)
+    relit = decoded(answer["relit_png"])[0]
+    assert np.all(relit == relit[:, :1]), relit  # R = G = B, exactly
+    # the lightness is kept: the white stays 255 and the greys within one code of the input
+    assert np.abs(relit[:, 0].astype(int) - greys[0, :, 0]).max() <= 1
+
+
+def _srgb_codes_of_a_white(exposure: str) -> np.ndarray:
+    """Independent: illuminant A's white on the explorer's bins, seen by a viewer adapted to D65
+    (Bradford, D65 on the same bins -> sRGB's white), in sRGB (colour-science)."""
+    xbar = np.array([CMFS[w] for w in WL])
+    white = {}
+    for name in ("A", "D65"):
+        s = np.array([colour.SDS_ILLUMINANTS[name][w] for w in WL])
+        white[name] = 100 * (s @ xbar) / (s @ xbar[:, 1])
+    srgb = colour.RGB_COLOURSPACES["sRGB"]
+    target = 100 * colour.xy_to_XYZ(srgb.whitepoint)
+    seen = colour.adaptation.chromatic_adaptation_VonKries(white["A"], white["D65"], target,
+                                                           transform="Bradford")
+    rgb = colour.algebra.vecmul(srgb.matrix_XYZ_to_RGB, seen / 100)
+    if exposure == "fit white":
+        rgb = rgb / rgb.max()
+    return np.round(255 * colour.cctf_encoding(np.clip(rgb, 0, 1), "sRGB")).astype(int)
+
+
+@pytest.mark.parametrize("exposure", ["fit white", "keep"])
+def test_white_under_a_without_adaptation_turns_warm(client, exposure):
+    white = np.full((2, 3, 3), 255, np.uint8)
+    answer = relight(client, png(white), levels("A"), adaptation="none", exposure=exposure,
+                     gamut="clip")
+    relit = decoded(answer["relit_png"])[0, 0].astype(int)
+    # colour-science's sRGB matrix is rounded differently from the library's (4 digits): one code
+    np.testing.assert_allclose(relit, _srgb_codes_of_a_white(exposure), atol=1)
+    if exposure == "fit white":  # A's chromaticity itself, inside sRGB: an orange of hue ~60°
+        L, C, h = colour.Lab_to_LCHab(colour.XYZ_to_Lab(colour.sRGB_to_XYZ(relit / 255)))
+        assert 40 < h < 90 and C > 30, (L, C, h)
+        assert relit[0] == 255 and 0.4 < answer["exposure_factor"] < 0.7
+    else:  # Y = 100 kept: red leaves sRGB and is clipped; still R > G > B
+        assert relit[0] == 255 > relit[1] > relit[2], relit
+        assert answer["exposure_factor"] == 1.0 and answer["out_of_gamut"] == 6
+
+
+def test_an_edited_illuminant_is_the_one_used(client):
+    """The setting's own levels, not a named light: only 600-700 nm lit makes the white red."""
+    red = [30.0 if w >= 600 else 0.0 for w in WL]
+    codes, image = chart()
+    answer = relight(client, image, red, adaptation="none", gamut="clip", exposure="keep")
+    table = relight_photo.photo_table("D65", "1931", 10.0)
+    expected = relight_photo.relight_codes(codes, table, sc.Spectrum(WL, red), "none", "clip",
+                                           "keep")
+    relit = decoded(answer["relit_png"])
+    assert np.array_equal(relit, expected["codes"])
+    assert answer["out_of_gamut"] == expected["out_of_gamut"] > 0
+    white = relit[4 + 3 * 40 + 10, 4 + 10].astype(int)  # patch 19
+    assert white[0] > 3 * max(white[1], white[2]), white
+
+
+def test_a_large_photo_is_shown_downscaled(client):
+    rows = np.linspace(0, 255, 1536).astype(np.uint8)
+    photo = np.stack(np.broadcast_arrays(rows[:, None], 128, 255 - rows[:, None]), -1)
+    photo = np.broadcast_to(photo, (1536, 2048, 3))
+    answer = relight(client, png(photo, compress_level=9), levels("D65"))
+    assert (answer["photo_width"], answer["photo_height"]) == (2048, 1536)
+    assert (answer["width"], answer["height"], answer["downscaled"]) == (1024, 768, True)
+    assert decoded(answer["relit_png"]).shape == (768, 1024, 3)
+    assert answer["max_side_px"] == relight_photo.MAX_SHOWN_SIDE_PX == 1024
+
+
+def test_a_jpeg_is_read_as_pillow_decodes_it(client):
+    codes, _ = chart()
+    buffer = io.BytesIO()
+    Image.fromarray(codes).save(buffer, "JPEG", quality=95)
+    answer = relight(client, base64.b64encode(buffer.getvalue()).decode(), levels("D65"))
+    expected = np.asarray(Image.open(io.BytesIO(buffer.getvalue())).convert("RGB"))
+    assert np.array_equal(decoded(answer["taken_png"]), expected)
+    assert np.array_equal(decoded(answer["relit_png"]), expected)
+
+
+def test_options_name_the_choices_and_defaults(client):
+    o = client.get("/api/relight/options").json()
+    assert o["sources"][0] == o["defaults"]["source"] == "D65"
+    assert [a[0] for a in o["adaptations"]] == ["none", "von kries", "bradford"]
+    assert o["defaults"]["adaptation"] == "none" and o["defaults"]["exposure"] == "fit white"
+    assert all(len(a) == 3 and a[2] for a in o["adaptations"] + o["exposures"])
+    # a photo file of max_photo_bytes, base64-encoded in JSON, passes the server's body limit
+    assert 4 * o["max_photo_bytes"] / 3 + 10_000 < MAX_BODY_BYTES
+
+
+def _png_header_only(width: int, height: int) -> str:
+    """A PNG signature, an IHDR chunk (valid CRC) claiming width x height and IEND: no pixels."""
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    chunk = struct.pack(">I", 13) + b"IHDR" + ihdr + struct.pack(">I", zlib.crc32(b"IHDR" + ihdr))
+    end = struct.pack(">I", 0) + b"IEND" + struct.pack(">I", zlib.crc32(b"IEND"))
+    return base64.b64encode(b"\x89PNG\r\n\x1a\n" + chunk + end).decode()
+
+
+def _png16() -> str:
+    buffer = io.BytesIO()
+    Image.fromarray(np.zeros((2, 2), np.uint16)).save(buffer, "PNG")  # grey, 16 bits
+    raw = bytearray(buffer.getvalue())
+    assert raw[24] == 16
+    return base64.b64encode(bytes(raw)).decode()
+
+
+@pytest.mark.parametrize(("body", "status", "words"), [
+    ({"image": base64.b64encode(b"GIF89a....").decode()}, 422, "not a PNG or JPEG"),
+    ({"image": "@@@@"}, 422, "base64"),
+    ({"image": _png_header_only(100_000, 100_000)}, 422, "at most 40000000"),
+    ({"image": _png_header_only(8000, 6000)}, 422, "at most 40000000"),
+    ({"image": _png_header_only(64, 64)}, 422, "cannot be read"),
+    ({"image": _png16()}, 422, "16-bit PNG"),
+    ({"illuminant": [30.0] * 30}, 422, "31"),
+    ({"illuminant": [0.0] * 31}, 422, "dark everywhere"),
+    ({"illuminant": [31.0] * 31}, 422, "illuminant"),
+    ({"source": "D75"}, 422, "source"),
+    ({"adaptation": "cat16"}, 422, "adaptation"),
+    ({"exposure": "auto"}, 422, "exposure"),
+    ({"step_nm": True}, 422, "boolean"),
+    ({"file": "/etc/passwd"}, 422, "file"),
+    ({"image": 12}, 422, "image"),
+])
+def test_bad_requests_get_one_error_line(client, body, status, words):
+    full = {"image": png(np.zeros((2, 2, 3))), "illuminant": [30.0] * 31, **body}
+    r = client.post("/api/relight", json=full)
+    assert r.status_code == status, r.text
+    error = r.json()["error"]
+    assert list(r.json()) == ["error"] and "\n" not in error and words in error
+
+
+def test_a_file_over_the_body_limit_is_refused_before_reading(client):
+    r = client.post("/api/relight", json={"image": "A" * MAX_BODY_BYTES, "illuminant": [30] * 31})
+    assert r.status_code == 413 and "larger than" in r.json()["error"]
+
+
+def test_busy_worker_answers_429(client, monkeypatch):
+    monkeypatch.setattr(relight_routes, "RELIGHT_WAIT_S", 0.05)
+    taken = [relight_routes._workers._slots.acquire(timeout=30) for _ in range(relight_routes.RELIGHT_WORKERS)]
+    try:
+        r = client.post("/api/relight", json={"image": png(np.zeros((2, 2, 3))), "illuminant": [30.0] * 31})
+    finally:
+        for ok in taken:
+            if ok:
+                relight_routes._workers._slots.release()
+    assert r.status_code == 429 and "busy" in r.json()["error"]
