@@ -232,6 +232,61 @@ def test_symlinks_and_hard_links_to_the_input_are_the_input(spectra_file, tmp_pa
     assert digest(spectra_file) == before
 
 
+def test_a_symlinked_output_is_written_through_and_stays_a_link(tmp_path):
+    real_folder = tmp_path / "real"
+    real_folder.mkdir()
+    target = real_folder / "data.txt"
+    target.write_text("old")
+    os.chmod(target, 0o640)
+    chain = tmp_path / "hop.txt"  # link -> link -> file
+    chain.symlink_to(target)
+    link = tmp_path / "out.txt"
+    link.symlink_to(chain)
+    safe_write.write_text(link, "new")
+    assert link.is_symlink() and chain.is_symlink() and os.readlink(link) == str(chain)
+    assert target.read_text() == "new" and link.read_text() == "new"
+    assert stat_mode(target) == 0o640  # the replaced file keeps its mode
+    assert sorted(p.name for p in real_folder.iterdir()) == ["data.txt"]  # temporary file beside the target
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hop.txt", "out.txt", "real"]
+
+
+def test_a_dangling_symlinked_output_creates_its_target(tmp_path):
+    link = tmp_path / "out.csv"
+    link.symlink_to(tmp_path / "made.csv")
+    safe_write.write_text(link, "x\n")
+    assert link.is_symlink() and (tmp_path / "made.csv").read_text() == "x\n"
+
+
+def test_a_failed_write_through_a_link_leaves_the_target(tmp_path):
+    target = tmp_path / "keep.bin"
+    target.write_bytes(b"previous")
+    link = tmp_path / "link.bin"
+    link.symlink_to(target)
+
+    def refuse(path):
+        raise OutputError(errno.EIO, f"{path}: check failed")
+
+    with pytest.raises(OutputError, match="check failed"):
+        write_bytes(link, b"next", verify=refuse)
+    assert link.is_symlink() and target.read_bytes() == b"previous"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.bin", "link.bin"]
+
+
+def test_cli_writes_through_a_symlinked_output(spectra_file, tmp_path, capsys):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "report.html").write_text("old report")
+    link = tmp_path / "report.html"
+    link.symlink_to(elsewhere / "report.html")
+    code, _ = run_cli(["report", spectra_file, "--illuminant", "D65", "--out", link, "--force"], capsys)
+    assert code == 0 and link.is_symlink()
+    assert (elsewhere / "report.html").read_text() != "old report"
+
+
+def stat_mode(path: Path) -> int:
+    return os.stat(path).st_mode & 0o777
+
+
 def test_recover_never_writes_over_its_input(tmp_path, capsys):
     source = tmp_path / "x.csv"
     source.write_text("X,Y,Z\n40,40,40\n")

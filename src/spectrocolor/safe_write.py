@@ -67,7 +67,10 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
     """Give a temporary path beside ``path``; on success move it over ``path`` atomically.
 
     The temporary file keeps ``path``'s suffix, so writers that choose the format from the
-    suffix (Pillow, tifffile, matplotlib) write the right one.
+    suffix (Pillow, tifffile, matplotlib) write the right one. Where ``path`` is a symbolic link
+    (to a file, or to a name not yet written), the link is followed to its final target
+    (:func:`os.path.realpath`): the temporary file is written beside that target and renamed
+    over it, so the link stays a link and shows the new content.
 
     Parameters
     ----------
@@ -99,7 +102,7 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
     >>> sorted(p.name for p in folder.iterdir())  # no temporary file is left behind
     ['a.txt']
     """
-    target = Path(path)
+    target = Path(os.path.realpath(path))  # a symbolic link is written through: it stays a link
     folder = target.parent
     if not folder.is_dir():
         what = "does not exist" if not folder.exists() else "is not a folder"
