@@ -367,3 +367,19 @@ def test_table5_brings_triangular_bandpass_data_closer_to_the_1nm_truth():
 def test_table5_is_refused_for_intervals_e308_has_no_table5_for(step):
     with pytest.raises(ColorimetryError, match="Table 5 .* is for 10 or 20 nm data"):
         sc.weights(sc.wavelength_grid(400, 700, step), observer="1931", illuminant="D65", method="astm-e308-table5")
+
+
+def test_cli_method_astm_e308_table5_equals_the_library(capsys):
+    """``--method astm-e308-table5`` on the command line gives the library's Table 5 numbers."""
+    import csv
+    import io
+    from importlib.resources import files
+
+    from spectrocolor.cli import main
+
+    path = str(files("spectrocolor") / "data" / "reflectances_colorchecker_babel.csv")  # 380–730 nm, 10 nm
+    assert main(["xyz", path, "--method", "astm-e308-table5", "--format", "csv", "--observer", "1964"]) == 0
+    rows = list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
+    XYZ = sc.tristimulus(sc.read_spectra(path), observer="1964", illuminant="D65", method="astm-e308-table5")
+    got = np.array([[float(row[c]) for c in "XYZ"] for row in rows])
+    np.testing.assert_array_equal(got, XYZ)  # written as repr: exact
