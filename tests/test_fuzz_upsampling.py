@@ -10,6 +10,7 @@ import spectrocolor as sc
 from spectrocolor.cli import main
 from spectrocolor.upsampling import load_table, upsample
 from spectrocolor.upsampling.fileformat import table_bytes
+from spectrocolor.upsampling.png_reader import decode_png
 from upsampling_tables import srgb_table
 
 VALID = None
@@ -91,3 +92,43 @@ def test_cli_options_fuzz(tmp_path, capsys, to, adapt, strategy):
     assert "Traceback" not in err
     if code == 0:
         assert out.exists()
+
+
+def valid_png() -> bytes:
+    """A 16-bit RGB PNG of 3 x 4 pixels from the project's writer."""
+    import io
+
+    from spectrocolor.pictures import _png16_rgb
+
+    codes = (np.arange(36, dtype=np.uint16).reshape(3, 4, 3) * 1801)
+    return io.BytesIO(_png16_rgb(codes)).getvalue()
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.data())
+def test_damaged_png_files_are_refused_with_one_error(data):
+    raw = bytearray(valid_png())
+    for _ in range(data.draw(st.integers(1, 4))):
+        at = data.draw(st.integers(0, len(raw) - 1))
+        raw[at] = data.draw(st.integers(0, 255))
+    if data.draw(st.booleans()):
+        raw = raw[:data.draw(st.integers(0, len(raw)))]
+    try:
+        codes = decode_png(bytes(raw), "fuzz.png")
+    except sc.SpectrumError as exc:
+        assert str(exc).startswith("fuzz.png: ")
+        return
+    # a CRC-32 guards every chunk: only an unchanged file is read back
+    assert bytes(raw) == valid_png()
+    assert codes.shape == (3, 4, 3) and codes.dtype == np.uint16
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.binary(max_size=300))
+def test_random_bytes_after_a_png_signature_are_refused(tail):
+    try:
+        decode_png(b"\x89PNG\r\n\x1a\n" + tail, "noise.png")
+    except sc.SpectrumError as exc:
+        assert "noise.png" in str(exc)
+    else:  # pragma: no cover - random bytes never form chunks with matching CRCs and an IEND
+        raise AssertionError("random bytes were decoded as a PNG")

@@ -129,14 +129,22 @@ def test_cli_bad_options_get_one_line(tmp_path, capsys, argv, message):
     assert len(err.strip().splitlines()) == 1
 
 
-def test_cli_refuses_16_bit_png_and_damaged_files(tmp_path, capsys):
+def test_cli_reads_16_bit_png_whole_and_refuses_damaged_files(tmp_path, capsys):
     from spectrocolor.pictures import write_image
+    from spectrocolor.upsampling import read_png
 
-    write_image(tmp_path / "deep.png", np.zeros((2, 2, 3), np.uint16))
-    assert main(["relight", str(tmp_path / "deep.png"), "--to", "A",
-                 "--out", str(tmp_path / "o.png")]) == 2
-    assert "16-bit TIFF" in capsys.readouterr().err
+    codes = np.random.default_rng(3).integers(0, 65536, (5, 7, 3), dtype=np.uint16)
+    codes[0, 0] = (1, 2, 3)  # codes that differ only in the low byte survive
+    write_image(tmp_path / "deep.png", codes)
+    assert main(["relight", str(tmp_path / "deep.png"), "--to", "D65", "--resolution", "5",
+                 "--bit-depth", "16", "--out", str(tmp_path / "o.png")]) == 0
+    np.testing.assert_array_equal(read_png(tmp_path / "o.png"), codes)
+    (tmp_path / "cut.png").write_bytes((tmp_path / "deep.png").read_bytes()[:60])
+    assert main(["relight", str(tmp_path / "cut.png"), "--to", "A",
+                 "--out", str(tmp_path / "o2.png")]) == 2
+    err = capsys.readouterr().err
+    assert "cannot be read" in err and "cut.png" in err and "Traceback" not in err
     (tmp_path / "junk.png").write_bytes(b"\x89PNG\r\n\x1a\n" + b"\0" * 40)
     assert main(["relight", str(tmp_path / "junk.png"), "--to", "A",
-                 "--out", str(tmp_path / "o.png")]) == 2
+                 "--out", str(tmp_path / "o3.png")]) == 2
     assert "cannot be read" in capsys.readouterr().err

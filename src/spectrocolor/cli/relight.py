@@ -43,7 +43,7 @@ def register(subparsers) -> None:
         ),
     )
     p.add_argument("input", metavar="INPUT",
-                   help="photo (.png 8-bit, .tif 8/16-bit, .jpg) or a folder of them")
+                   help="photo (.png or .tif 8/16-bit, .jpg) or a folder of them")
     p.add_argument("--out", required=True,
                    help="output .png (or an existing folder when INPUT is a folder)")
     p.add_argument("--to", required=True, dest="to_illuminant",
@@ -96,7 +96,11 @@ def _pairs(args: argparse.Namespace) -> list[tuple[Path, Path]]:
 
 
 def read_photo(path: Path) -> np.ndarray:
-    """An (H, W, 3) uint8 or uint16 array of codes; alpha is dropped, grey is repeated."""
+    """An (H, W, 3) uint8 or uint16 array of codes; alpha is dropped, grey is repeated.
+
+    16-bit PNG is decoded by :func:`spectrocolor.upsampling.read_png` (all 16 bits); other PNG
+    and JPEG by Pillow, TIFF by tifffile.
+    """
     suffix = path.suffix.lower()
     try:
         if suffix in (".tif", ".tiff"):
@@ -108,9 +112,8 @@ def read_photo(path: Path) -> np.ndarray:
 
             with open(path, "rb") as handle:
                 signature = handle.read(25)
-            if signature[:8] == b"\x89PNG\r\n\x1a\n" and signature[24] == 16:
-                raise UserError(f"{path}: 16-bit PNG is not read (Pillow would truncate it to "
-                                "8 bits); convert it to a 16-bit TIFF")
+            if signature[:8] == b"\x89PNG\r\n\x1a\n" and signature[24:25] == b"\x10":
+                return _channels_to_rgb(path, _read_png16(path))  # Pillow would cut it to 8 bits
             with Image.open(path) as image:
                 if image.width * image.height > MAX_PIXELS:
                     raise UserError(f"{path}: {image.width} x {image.height} pixels; at most "
@@ -120,6 +123,24 @@ def read_photo(path: Path) -> np.ndarray:
         raise
     except Exception as exc:  # Pillow/tifffile raise many types for damaged files
         raise UserError(f"{path}: cannot be read as an image ({exc})") from None
+    return _channels_to_rgb(path, codes)
+
+
+def _read_png16(path: Path) -> np.ndarray:
+    """A 16-bit PNG's codes (H, W, C) by :func:`spectrocolor.upsampling.read_png`."""
+    from ..errors import SpectrumError
+    from ..upsampling import read_png
+
+    try:
+        return read_png(path)
+    except SpectrumError as exc:
+        raise UserError(f"cannot be read as an image: {exc}") from None
+
+
+def _channels_to_rgb(path: Path, codes: np.ndarray) -> np.ndarray:
+    """(H, W, 3) codes: alpha dropped, grey repeated; other shapes and dtypes refused."""
+    if codes.ndim == 3 and codes.shape[-1] in (1, 2):
+        codes = codes[..., 0]
     if codes.ndim == 2:
         codes = np.repeat(codes[..., None], 3, axis=-1)
     if codes.ndim != 3 or codes.shape[-1] not in (3, 4) or codes.dtype not in (np.uint8,

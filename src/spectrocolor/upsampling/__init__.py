@@ -10,6 +10,7 @@
 * :func:`relight` — an image's colours under another light.
 * :func:`save_table`, :func:`load_table` — the ``.scup`` binary layout (readers in Python and
   C in ``docs/upsampling/``).
+* :func:`read_png` — 8- and 16-bit PNG codes without loss (Pillow cuts 16-bit RGB to 8 bits).
 
 The core needs only NumPy/SciPy; dask is imported only by :func:`upsample_dask`.
 """
@@ -27,6 +28,7 @@ from .apply import (
     upsample_spectra,
 )
 from .fileformat import load_table, save_table
+from .png_reader import read_png
 from .relight import relight, rgb_linear_from_image
 from .table import NODE_STATUS, UpsamplingTable, upsampling_table
 
@@ -39,6 +41,7 @@ __all__ = [
     "colours_under",
     "load_table",
     "lookup",
+    "read_png",
     "relight",
     "rgb_linear_from_image",
     "save_table",

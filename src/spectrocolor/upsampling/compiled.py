@@ -1,10 +1,11 @@
-"""The optional compiled kernel of :mod:`spectrocolor.upsampling.apply` (numba, extra ``fast``).
+"""The optional compiled kernels of :mod:`spectrocolor.upsampling.apply` (numba, extra ``fast``).
 
 One pass per query does what the NumPy path does in several: move a query outside the cube
 ``[0, 1]^3`` by the strategy, find its cell and Freudenthal tetrahedron, form the barycentric
 weights and either blend the four node rows of a value table (spectra: ``K`` channels;
 relighting: the 3-channel table of node colours under the new light, so no spectrum is ever
-formed) or write the four node indices and weights (texture baking, :func:`lookup`).
+formed) or write the four node indices and weights (texture baking, :func:`lookup`). A
+third kernel undoes PNG scanline filters for :mod:`spectrocolor.upsampling.png_reader`.
 
 Every floating-point operation is the NumPy path's, in the same order (no ``fastmath``, so no
 reassociation or fused multiply-add), and the tests hold both paths to a few ulps with
@@ -47,7 +48,8 @@ def _compiled():
     except ImportError:  # numba is not installed (the extra "fast")
         return None
     return SimpleNamespace(blend=(numba_kernels.blend_serial, numba_kernels.blend_parallel),
-                           locate=(numba_kernels.locate_serial, numba_kernels.locate_parallel))
+                           locate=(numba_kernels.locate_serial, numba_kernels.locate_parallel),
+                           unfilter_png=numba_kernels.unfilter_png)
 
 
 def kernels():
@@ -56,7 +58,8 @@ def kernels():
     Returns
     -------
     types.SimpleNamespace or None
-        ``blend`` and ``locate``, each a (serial, parallel) pair of numba dispatchers.
+        ``blend`` and ``locate``, each a (serial, parallel) pair of numba dispatchers, and
+        ``unfilter_png`` (PNG scanline filters, :mod:`spectrocolor.upsampling.png_reader`).
 
     Examples
     --------
