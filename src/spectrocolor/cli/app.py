@@ -99,7 +99,9 @@ def run(args) -> int:
 
         webbrowser.open(url)
     app = create_app(port=port, check_host=not remote)
-    config = uvicorn.Config(app, log_level="warning")
+    from ..app.http_protocol import JSONErrorH11Protocol  # malformed HTTP gets the JSON error shape too
+
+    config = uvicorn.Config(app, log_level="warning", http=JSONErrorH11Protocol)
     server = uvicorn.Server(config)
     try:
         server.run(sockets=[sock])
