@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 import spectrocolor as sc
-from spectrocolor import ColorimetryError, Spectrum
+from spectrocolor import ColorimetryError, Spectrum, SpectrumError
 from spectrocolor.astm_e308 import astm_e308_table5_weights, astm_e308_weights, illuminant_at_1nm, lagrange_matrix
 from spectrocolor.bandpass import bandpass_correction
 
@@ -383,3 +383,20 @@ def test_cli_method_astm_e308_table5_equals_the_library(capsys):
     XYZ = sc.tristimulus(sc.read_spectra(path), observer="1964", illuminant="D65", method="astm-e308-table5")
     got = np.array([[float(row[c]) for c in "XYZ"] for row in rows])
     np.testing.assert_array_equal(got, XYZ)  # written as repr: exact
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    start=st.one_of(st.integers(300, 800), st.floats(allow_nan=True, allow_infinity=True)),
+    step=st.one_of(st.sampled_from([1, 5, 10, 20, 2, 0, -10]), st.floats(-30, 30)),
+    count=st.integers(0, 50),
+    method=st.sampled_from(["astm-e308", "astm-e308-table5"]),
+)
+def test_fuzz_any_grid_gives_weights_with_y_100_or_one_clear_error(start, step, count, method):
+    grid = start + step * np.arange(count, dtype=float)
+    try:
+        W = sc.weights(grid, observer="1931", illuminant="D65", method=method)
+    except (ColorimetryError, SpectrumError):
+        return
+    assert W.shape == (grid.size, 3) and np.all(np.isfinite(W))
+    assert W[:, 1].sum() == pytest.approx(100.0, rel=1e-12)
