@@ -12,9 +12,10 @@ The reader uses the element names that TM-27-14 defines, for TM-27-20 documents 
 TM-27-20 schema is not public and could not be checked (see docs/measurement_data.md); elements
 it does not know are kept as text in ``metadata`` under ``Section/Element``. ``BandwidthFWHM`` and
 ``BandwidthCorrected`` are kept (``bandwidth_fwhm_nm``, ``bandwidth_corrected``) for
-:func:`spectrocolor.bandpass.bandpass_correction` to check; nothing is corrected on reading. Documents with a ``DOCTYPE`` are
-refused (no entity expansion). TM-27 does not declare percent or fraction for reflectance data;
-the caller's ``percent`` option decides (:func:`spectrocolor.io.text.apply_scale`).
+:func:`spectrocolor.bandpass.bandpass_correction` to check; nothing is corrected on reading.
+Documents with a ``DOCTYPE`` are refused (no entity expansion). TM-27 does not declare percent
+or fraction for reflectance data; the caller's ``percent`` option decides
+(:func:`spectrocolor.io.text.apply_scale`).
 
 References
 ----------
