@@ -3,6 +3,7 @@ size (no seams), bounded in memory, and cross-checked against colour-science."""
 
 from __future__ import annotations
 
+import json
 import struct
 import tracemalloc
 import zlib
@@ -312,3 +313,214 @@ def test_cli_image_errors(tmp_path, capsys):
     for extra, message in cases:
         assert main(["image", str(tmp_path / "cube.npy"), *extra]) == 2
         assert message in capsys.readouterr().err
+
+
+# --- streamed writing (write_converted) and masked pixels ----------------------------------------
+
+
+def _masked_cube(shape=(23, 9)) -> np.ndarray:
+    values = _cube(shape).astype(np.float32)
+    values[0, 0] = np.nan  # a NaN in every band (an ENVI data ignore value becomes this)
+    values[5, 3, 7] = np.nan  # one bad band masks the pixel too
+    values[22, 8] = np.inf
+    return values
+
+
+MASK = np.zeros((23, 9), bool)
+MASK[0, 0] = MASK[5, 3] = MASK[22, 8] = True
+
+
+@pytest.mark.parametrize("rows", [1, 4, 23, None])
+@pytest.mark.parametrize("bit_depth", [8, 16])
+def test_streamed_png_equals_the_in_memory_codes(tmp_path, rows, bit_depth):
+    from spectrocolor.images import plan_conversion, write_converted
+
+    values = _cube((23, 9))
+    plan = plan_conversion("rgb", WAVELENGTHS, illuminant="D65", bit_depth=bit_depth)
+    path = write_converted(tmp_path / "a.png", values, plan, rows_per_block=rows)
+    expected = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", bit_depth=bit_depth)
+    np.testing.assert_array_equal(_decode_png(path.read_bytes()), expected)
+    if bit_depth == 8:  # and Pillow reads the same pixels
+        from PIL import Image
+
+        with Image.open(path) as image:
+            np.testing.assert_array_equal(np.asarray(image), expected)
+    assert [p.name for p in tmp_path.iterdir()] == ["a.png"]
+
+
+@pytest.mark.parametrize("quantity", ["xyz", "lab"])
+def test_streamed_tiff_equals_the_in_memory_floats(tmp_path, quantity):
+    import tifffile
+
+    from spectrocolor.images import plan_conversion, write_converted
+
+    values = _masked_cube()
+    plan = plan_conversion(quantity, WAVELENGTHS, illuminant="A")
+    path = write_converted(tmp_path / "a.tif", values, plan, rows_per_block=4, metadata={"q": quantity})
+    expected = (cube_to_xyz if quantity == "xyz" else cube_to_lab)(values, WAVELENGTHS, illuminant="A")
+    with tifffile.TiffFile(path) as tif:
+        assert tif.pages[0].rowsperstrip == 4 and json.loads(tif.pages[0].description)["q"] == quantity
+        written = tif.asarray()
+    np.testing.assert_array_equal(written, expected.astype(np.float32))  # NaN or inf where masked
+    assert not np.isfinite(written[MASK]).any() and np.isfinite(written[~MASK]).all()
+
+
+def test_streaming_never_holds_the_whole_image(tmp_path):
+    from spectrocolor.images import plan_conversion, write_converted
+
+    values = _cube((1600, 50)).astype(np.float32)
+    cube = read_cube(_envi(tmp_path, values))
+    del values
+    plan = plan_conversion("rgb", cube.wavelengths_nm, illuminant="D65", output="rgb_linear")
+    image_float64_bytes = 1600 * 50 * 3 * 8
+    tracemalloc.start()
+    try:
+        write_converted(tmp_path / "a.tif", cube.values, plan, rows_per_block=10)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    # the whole float64 image would be 1.92 MB (and 0.96 MB more as float32 for the TIFF); one
+    # 10-row block of spectra is 62 kB as float32, 124 kB as float64, and rendering it about as much
+    assert peak < image_float64_bytes / 4, f"peak {peak} bytes"
+
+
+def test_write_converted_refuses_what_the_format_cannot_hold(tmp_path):
+    from spectrocolor.images import plan_conversion, write_converted
+
+    values = _cube((3, 2))
+    lab = plan_conversion("lab", WAVELENGTHS, illuminant="D65")
+    codes = plan_conversion("rgb", WAVELENGTHS, illuminant="D65")
+    for path, plan, extra, message in [
+        (tmp_path / "a.png", lab, {}, "PNG needs integer codes"),
+        (tmp_path / "a.tif", codes, {}, "TIFF output is for floats"),
+        (tmp_path / "a.jpg", codes, {}, "unknown image format"),
+        (tmp_path / "a.png", codes, {"metadata": {"a": 1}}, "TIFF files only"),
+    ]:
+        with pytest.raises(SpectrumError, match=message):
+            write_converted(path, values, plan, **extra)
+    with pytest.raises(SpectrumError, match=r"shape \(H, W, K\)"):
+        write_converted(tmp_path / "a.png", values[0], codes)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("bit_depth", [8, 16])
+def test_masked_transparent_gives_rgba_with_alpha_zero_there(bit_depth):
+    values = _masked_cube()
+    plain = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", bit_depth=bit_depth)
+    rgba = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", bit_depth=bit_depth, masked="transparent")
+    full = 255 if bit_depth == 8 else 65535
+    assert rgba.shape == (23, 9, 4) and rgba.dtype == plain.dtype
+    np.testing.assert_array_equal(rgba[..., 3], np.where(MASK, 0, full))
+    np.testing.assert_array_equal(rgba[..., :3][~MASK], plain[~MASK])
+    assert (rgba[MASK] == 0).all()
+
+
+def test_masked_colour_in_codes_floats_and_hex():
+    values = _masked_cube()
+    plain = cube_to_rgb(values, WAVELENGTHS, illuminant="D65")
+    magenta = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", masked=(255, 0, 255))
+    assert (magenta[MASK] == [255, 0, 255]).all()
+    np.testing.assert_array_equal(magenta[~MASK], plain[~MASK])
+    hex16 = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", bit_depth=16, masked="#FF8000")
+    assert (hex16[MASK] == [65535, 32896, 0]).all()  # 0x80 * 257
+    floats = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", output="rgb_linear", masked=(0.5, 0.25, 1.0))
+    assert (floats[MASK] == [0.5, 0.25, 1.0]).all() and np.isfinite(floats).all()
+    default = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", output="rgb_linear")
+    assert np.isnan(default[MASK]).all()  # the default is unchanged: NaN floats, black codes
+    assert (plain[MASK] == 0).all()
+
+
+@pytest.mark.parametrize("masked", ["transparent", (1, 2, 3)])
+def test_masked_rgba_png_and_tiff_files(tmp_path, masked):
+    import tifffile
+
+    from spectrocolor.images import plan_conversion, write_converted
+
+    values = _masked_cube()
+    png_plan = plan_conversion("rgb", WAVELENGTHS, illuminant="D65", masked=masked)
+    png = write_converted(tmp_path / "a.png", values, png_plan, rows_per_block=5)
+    np.testing.assert_array_equal(_decode_png(png.read_bytes()),
+                                  cube_to_rgb(values, WAVELENGTHS, illuminant="D65", masked=masked))
+    tif_plan = plan_conversion("rgb", WAVELENGTHS, illuminant="D65", output="rgb_linear", masked=masked)
+    tif = write_converted(tmp_path / "a.tif", values, tif_plan, rows_per_block=5)
+    with tifffile.TiffFile(tif) as file:
+        written = file.asarray()
+        assert file.pages[0].extrasamples == ((2,) if masked == "transparent" else ())  # unassociated alpha
+    np.testing.assert_array_equal(written, cube_to_rgb(values, WAVELENGTHS, illuminant="D65", output="rgb_linear",
+                                                       masked=masked).astype(np.float32))
+
+
+@pytest.mark.parametrize("masked, kwargs, message", [
+    ("see-through", {}, "masked: expected"),
+    ("#12345", {}, "masked: expected"),
+    ("#GG0000", {}, "masked: expected"),
+    ((256, 0, 0), {}, "whole codes from 0 to 255"),
+    ((1.5, 0, 0), {}, "whole codes"),
+    ((-1, 0, 0), {"bit_depth": 16}, "0 to 65535"),
+    ((np.nan, 0, 0), {"output": "rgb_linear"}, "finite floats"),
+    ((1, 2), {}, "masked: expected"),
+    ([[1, 2, 3]], {}, "masked: expected"),
+    (object(), {}, "masked: expected"),
+])
+def test_masked_refuses_what_it_cannot_be(masked, kwargs, message):
+    with pytest.raises(ColorimetryError, match=message):
+        cube_to_rgb(_cube((2, 2)), WAVELENGTHS, illuminant="D65", masked=masked, **kwargs)
+
+
+def test_masked_is_for_rgb_only():
+    from spectrocolor.images import plan_conversion
+
+    with pytest.raises(ColorimetryError, match="masked applies to quantity 'rgb'"):
+        plan_conversion("lab", WAVELENGTHS, illuminant="D65", masked="transparent")
+
+
+@given(masked=st.one_of(st.none(), st.text(max_size=12), st.lists(st.floats(allow_nan=True), max_size=4),
+                        st.lists(st.integers(-70000, 70000), min_size=3, max_size=3)),
+       bit_depth=st.sampled_from([8, 16]), output=st.sampled_from(["codes", "rgb_linear"]))
+@settings(max_examples=80, deadline=None)
+def test_generated_masked_options_give_an_image_or_one_clear_error(masked, bit_depth, output):
+    values = _cube((3, 2))
+    values[0, 0] = np.nan
+    try:
+        result = cube_to_rgb(values, WAVELENGTHS, illuminant="D65", masked=masked, bit_depth=bit_depth,
+                             output=output)
+    except ColorimetryError as exc:
+        assert str(exc).startswith("masked: expected") and "\n" not in str(exc)
+        return
+    assert result.shape[-1] == (4 if masked == "transparent" else 3)
+    if masked is not None and masked != "transparent":
+        assert np.isfinite(result.astype(float)).all()
+
+
+def test_cli_masked(tmp_path, capsys):
+    import tifffile
+    from PIL import Image
+
+    from spectrocolor.cli import main
+
+    values = _masked_cube()
+    np.save(tmp_path / "cube.npy", values)
+    common = ["image", str(tmp_path / "cube.npy"), "--illuminant", "D65", "--wavelengths", "400:700:10"]
+    assert main([*common, "--masked", "transparent", "--out", str(tmp_path / "a.png")]) == 0
+    with Image.open(tmp_path / "a.png") as image:
+        assert image.mode == "RGBA"
+        np.testing.assert_array_equal(np.asarray(image)[..., 3], np.where(MASK, 0, 255))
+    assert main([*common, "--masked", "#00ff00", "--out", str(tmp_path / "b.png")]) == 0
+    with Image.open(tmp_path / "b.png") as image:
+        assert (np.asarray(image)[MASK] == [0, 255, 0]).all()
+    assert main([*common, "--masked", "0.1,0.2,0.3", "--out", str(tmp_path / "c.tif")]) == 0
+    np.testing.assert_allclose(tifffile.imread(tmp_path / "c.tif")[MASK], [[0.1, 0.2, 0.3]] * 3, rtol=1e-7)
+    assert main([*common, "--masked", "transparent", "--out", str(tmp_path / "d.tif")]) == 0
+    assert tifffile.imread(tmp_path / "d.tif").shape == (23, 9, 4)
+    assert main([*common, "--masked", "black", "--out", str(tmp_path / "e.png")]) == 0
+    capsys.readouterr()
+    for extra, message in [
+        (["--masked", "purple", "--out", str(tmp_path / "x.png")], "--masked: expected black, transparent"),
+        (["--masked", "300,0,0", "--out", str(tmp_path / "x.png")], "--masked: expected"),
+        (["--masked", "transparent", "--quantity", "lab", "--out", str(tmp_path / "x.tif")],
+         "--masked applies to --quantity rgb"),
+    ]:
+        assert main([*common, *extra]) == 2
+        err = capsys.readouterr().err
+        assert message in err and err.count("\n") == 1
+    assert not (tmp_path / "x.png").exists() and not (tmp_path / "x.tif").exists()
