@@ -230,6 +230,16 @@ def test_hostile_cubes(tmp_path, capsys, name):
     (["image", "{good}", "--illuminant", "D65", "--out", "{tmp}/x.bmp"], ["--out"]),
     (["image", "{cube}", "--illuminant", "D65", "--wavelengths", "400:700:10",
       "--scheduler", "not-an-address"], ["--scheduler"]),
+    (["image", "{cube}", "--illuminant", "D65", "--wavelengths", "400:700:10", "--masked", "see-through"],
+     ["--masked"]),
+    (["image", "{cube}", "--illuminant", "D65", "--wavelengths", "400:700:10", "--masked", "nan,0,0"],
+     ["--masked"]),
+    (["image", "{cube}", "--illuminant", "D65", "--wavelengths", "400:700:10", "--masked", "#12345g"],
+     ["--masked"]),
+    (["image", "{cube}", "--illuminant", "D65", "--wavelengths", "400:700:10", "--masked", "1e309,0,0"],
+     ["--masked"]),
+    (["image", "{cube}", "--illuminant", "D65", "--wavelengths", "400:700:10", "--masked", "",
+      "--out", "{tmp}/x.tif", "--quantity", "xyz"], ["--masked"]),
     (["recover", "--xyz", "nan", "1", "1"], []),
     (["recover", "--xyz", "1e308", "1e308", "1e308"], []),
     (["recover", "--hex", "zzzzzz"], ["--hex"]),
@@ -259,3 +269,22 @@ def test_wrong_output_suffixes(tmp_path, capsys, good):
     refused(["diagram", good, "--out", tmp_path / "d.bmp"], capsys, "--out")
     refused(["recover", "--xyz", "20", "20", "20", "--out", tmp_path / "r.csv",
              "--plot", tmp_path / "p.gif"], capsys, "--plot")
+
+
+@settings(max_examples=200 if LONG else 25, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(masked=st.one_of(st.text(max_size=20), st.sampled_from(["transparent", "black", "#00FF00", "0,0,0",
+                                                                 "65535,0,0", "0.5,0.5,0.5", "-1,0,0"])),
+       suffix=st.sampled_from([".png", ".tif"]), bit_depth=st.sampled_from(["8", "16"]))
+def test_generated_masked_options(tmp_path_factory, capsys, masked, suffix, bit_depth):
+    """``image --masked`` with any text: an image, or exit 2 with one line naming --masked."""
+    folder = tmp_path_factory.mktemp("masked")
+    values = np.full((3, 4, 31), 0.5)
+    values[1, 2] = np.nan
+    np.save(folder / "cube.npy", values)
+    code, _, err = run(["image", folder / "cube.npy", "--illuminant", "D65", "--wavelengths", "400:700:10",
+                        f"--masked={masked}", "--bit-depth", bit_depth, "--out", folder / f"out{suffix}"], capsys)
+    if code == 2:
+        assert "--masked" in err
+    else:
+        assert code == 0 and (folder / f"out{suffix}").is_file()
