@@ -132,3 +132,46 @@ def test_random_bytes_after_a_png_signature_are_refused(tail):
         assert "noise.png" in str(exc)
     else:  # pragma: no cover - random bytes never form chunks with matching CRCs and an IEND
         raise AssertionError("random bytes were decoded as a PNG")
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.data())
+def test_damaged_texel_files_are_refused_or_read_whole(tmp_path, data):
+    from spectrocolor.upsampling.texels import load_texel_coefficients, texel_bytes
+
+    valid = texel_bytes(srgb_table(), np.full((2, 3, 3), 0.3))
+    raw = bytearray(valid)
+    for _ in range(data.draw(st.integers(1, 4))):
+        at = data.draw(st.integers(0, len(raw) - 1))
+        raw[at] = data.draw(st.integers(0, 255))
+    if data.draw(st.booleans()):
+        raw = raw[:data.draw(st.integers(0, len(raw)))]
+    path = tmp_path / "fuzz.sctx"
+    path.write_bytes(bytes(raw))
+    try:
+        found = load_texel_coefficients(path)
+    except sc.SpectrumError as exc:
+        assert str(path) in str(exc)
+        return
+    assert bytes(raw) == valid  # a CRC-32 guards the file: only the unchanged one is read
+    assert found.nodes.shape == (2, 3, 4)
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(source=st.sampled_from(["D65", "A", "", "X1", "--x"]), resolution=st.integers(-3, 70),
+       strategy=st.sampled_from(["toward-grey", "clip", "nan"]))
+def test_cli_upsample_options_fuzz(tmp_path, capsys, source, resolution, strategy):
+    texture = tmp_path / "tex.png"
+    if not texture.exists():
+        Image.fromarray(np.full((2, 3, 3), 90, np.uint8)).save(texture)
+    out = tmp_path / "out.sctx"
+    try:
+        code = main(["upsample", str(texture), "--coefficients", str(out), "--from", source,
+                     "--resolution", str(min(resolution, 4) if resolution > 1 else resolution),
+                     "--out-of-range", strategy, "--force"])
+    except SystemExit as exc:  # argparse: a value it cannot parse ("nan" is not offered)
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code in (0, 2) and "Traceback" not in err
+    if code == 0:
+        assert out.exists()

@@ -1,9 +1,11 @@
-"""Reference reader for spectrocolor spectral upsampling tables (.scup, format version 1).
+"""Reference reader for spectrocolor spectral upsampling tables (.scup, format version 1)
+and texel coefficient files (.sctx, format version 1).
 
-Standalone (Python 3 and NumPy only); the layout and the lookup are documented in
+Standalone (Python 3 and NumPy only); the layouts and the lookup are documented in
 ``docs/upsampling.md``. Usage::
 
-    python reader.py TABLE.scup R G B      # prints "wavelength_nm reflectance" lines
+    python reader.py TABLE.scup R G B               # prints "wavelength_nm reflectance" lines
+    python reader.py TABLE.scup TEXELS.sctx X Y     # the same for texel (column X, row Y)
 """
 
 import struct
@@ -43,8 +45,35 @@ def spectrum(rho, rgb):
     return np.minimum(value, 1.0)
 
 
+def read_texels(path):
+    """Return (node indices (H, W, 4) uint32, weights (H, W, 4) float32) of a .sctx file."""
+    with open(path, "rb") as handle:
+        magic, version, width, height, n, K, fingerprint = struct.unpack("<8sIIIIII", handle.read(32))
+        if magic != b"SCTEXEL\0" or version != 1:
+            raise ValueError(f"{path}: not a version-1 texel coefficient file")
+        nodes = np.fromfile(handle, dtype="<u4", count=height * width * 4)
+        weights = np.fromfile(handle, dtype="<f4", count=height * width * 4)
+    if weights.size != height * width * 4:
+        raise ValueError(f"{path}: truncated")
+    return nodes.reshape(height, width, 4), weights.reshape(height, width, 4)
+
+
+def texel_spectrum(rho, nodes, weights):
+    """One texel's reflectance: its four node spectra blended with its (float32) weights."""
+    flat = rho.reshape(-1, rho.shape[-1])
+    value = flat[nodes[0]] * float(weights[0])
+    for j in range(1, 4):
+        value = value + flat[nodes[j]] * float(weights[j])
+    return np.minimum(value, 1.0)
+
+
 if __name__ == "__main__":
     wavelengths, nodes = read_table(sys.argv[1])
-    values = spectrum(nodes, [float(v) for v in sys.argv[2:5]])
+    if sys.argv[2].endswith(".sctx"):
+        texel_nodes, texel_weights = read_texels(sys.argv[2])
+        x, y = int(sys.argv[3]), int(sys.argv[4])
+        values = texel_spectrum(nodes, texel_nodes[y, x], texel_weights[y, x])
+    else:
+        values = spectrum(nodes, [float(v) for v in sys.argv[2:5]])
     for wavelength, value in zip(wavelengths, values, strict=True):
         print(f"{wavelength:.17g} {value:.17g}")

@@ -21,6 +21,7 @@ from ..errors import ColorimetryError, SpectrumError
 
 COMMAND_MODULES: tuple[str, ...] = (
     "colorimetry", "app", "render", "image", "report", "thinfilm", "recover", "relight", "light",
+    "upsample",
 )
 
 

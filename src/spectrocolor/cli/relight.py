@@ -153,7 +153,8 @@ def _channels_to_rgb(path: Path, codes: np.ndarray) -> np.ndarray:
     return codes[..., :3]
 
 
-def _table(args: argparse.Namespace):
+def table_for(args: argparse.Namespace):
+    """The ``--table`` (checked against ``--from``/``--space``), or one built for them."""
     from ..upsampling import load_table, upsampling_table
 
     if args.table is not None:
@@ -201,7 +202,7 @@ def _relight(args: argparse.Namespace) -> int:
         if value is not None:
             canonical_illuminant(value, option)  # a clear error before any work
     pairs = _pairs(args)
-    table = _table(args)
+    table = table_for(args)
     for photo, target in pairs:
         codes = read_photo(photo)
         out, inexact, clipped = relight_codes(table, codes, args)

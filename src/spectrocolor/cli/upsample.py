@@ -1,0 +1,89 @@
+"""``spectrocolor upsample``: a texture's per-texel coefficients for renderers (``.sctx``).
+
+Every texel's colour is located in an upsampling table (:mod:`spectrocolor.upsampling`): four
+node indices and four weights, written by
+:mod:`spectrocolor.upsampling.texels` (atomically) in the layout documented there
+and in ``docs/upsampling.md``. A renderer holding the table evaluates each texel's reflectance
+at any wavelength; ``--save-table`` writes the table the coefficients index.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..upsampling.apply import OUT_OF_RANGE_STRATEGIES
+from . import UserError
+from .files import add_force, check_files
+from .relight import read_photo, table_for
+
+#: Strategies that give coefficients ("nan" gives none).
+_OUT_OF_RANGE = tuple(name for name in OUT_OF_RANGE_STRATEGIES if name != "nan")
+
+
+def register(subparsers) -> None:
+    """Add the ``upsample`` sub-command."""
+    p = subparsers.add_parser(
+        "upsample",
+        help="per-texel spectral upsampling coefficients of a texture, for renderers",
+        description=(
+            "Locate every texel of a texture in an upsampling table and write its four node "
+            "indices and weights (.sctx; layout in docs/upsampling.md). A renderer holding the "
+            "table (.scup, --save-table) evaluates each texel's reflectance at any wavelength."
+        ),
+    )
+    p.add_argument("input", metavar="TEXTURE", help="texture (.png or .tif 8/16-bit, .jpg)")
+    p.add_argument("--coefficients", required=True, help="output .sctx file")
+    p.add_argument("--table", default=None, help="use a saved .scup upsampling table")
+    p.add_argument("--save-table", default=None,
+                   help="also write the table the coefficients index (.scup)")
+    p.add_argument("--from", default=None, dest="from_illuminant",
+                   help="the table's illuminant (default D65, or the --table's)")
+    p.add_argument("--space", default=None,
+                   help="RGB space of the texture (default sRGB, or the --table's)")
+    p.add_argument("--resolution", type=int, default=17,
+                   help="nodes per axis of the table built on the fly (default 17)")
+    p.add_argument("--out-of-range", choices=_OUT_OF_RANGE, default="toward-grey",
+                   help="colours the table cannot reproduce exactly (default toward-grey): "
+                   + OUT_OF_RANGE_STRATEGIES.help())
+    add_force(p)
+    p.set_defaults(handler=_upsample)
+
+
+def _upsample(args: argparse.Namespace) -> int:
+    from ..illuminants import canonical_illuminant
+    from ..safe_write import verify_size, write_bytes
+    from ..upsampling import rgb_linear_from_image, save_table
+    from ..upsampling.texels import HEADER, MAX_SIDE, texel_bytes
+
+    if not 2 <= args.resolution <= 65:
+        raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")
+    if args.from_illuminant is not None:
+        canonical_illuminant(args.from_illuminant, "--from")
+    for option, value, suffix in (("--coefficients", args.coefficients, ".sctx"),
+                                  ("--save-table", args.save_table, ".scup")):
+        if value is not None and Path(value).suffix.lower() != suffix:
+            raise UserError(f"{option} must end in {suffix}; got {value!r}")
+    check_files(args, ("coefficients", "save_table"), ("input", "table"))
+    if args.save_table is not None and args.table is not None:
+        raise UserError("--save-table writes a table built here; with --table the table is "
+                        "already saved")
+    codes = read_photo(Path(args.input))
+    if max(codes.shape[:2]) > MAX_SIDE:
+        raise UserError(f"{args.input}: {codes.shape[1]} x {codes.shape[0]} texels; the "
+                        f".sctx layout takes sides up to {MAX_SIDE}")
+    table = table_for(args)
+    rgb_linear = rgb_linear_from_image(codes, table.space)
+    data = texel_bytes(table, rgb_linear, args.out_of_range)
+    path = write_bytes(args.coefficients, data, verify=lambda p: verify_size(p, len(data)))
+    if args.save_table is not None:
+        save_table(table, args.save_table)
+    texels = codes.shape[0] * codes.shape[1]
+    flags = data[HEADER.size + 32 * texels:HEADER.size + 33 * texels]
+    inexact = texels - flags.count(1)
+    print(f"wrote {path}: {codes.shape[1]} x {codes.shape[0]} texels, {table.space} table under "
+          f"{table.illuminant} (n = {table.resolution}); {inexact} texels not reproduced exactly "
+          f"({args.out_of_range})" + (f"; table {args.save_table}" if args.save_table else ""),
+          file=sys.stdout)
+    return 0
