@@ -6,6 +6,7 @@ Registered when :mod:`spectrocolor.images` is imported::
     XYZ = cube.spectro.to_xyz(illuminant="D65")          # dims (..., "XYZ")
     lab = cube.spectro.to_lab(illuminant="D65")          # dims (..., "Lab")
     rgb8 = cube.spectro.to_rgb(illuminant="D65")         # dims (..., "RGB"), uint8
+    spectra = rgb.spectro.upsample(table)                # RGB (..., "RGB") -> (..., "wavelength")
 
 On a dask-backed array nothing is computed until ``.compute()``: the conversion is one
 ``xr.apply_ufunc(..., dask="parallelized")`` whose per-chunk function is the same block
@@ -258,3 +259,84 @@ class SpectroAccessor:
                                gamut=gamut, exposure=exposure, adaptation=adaptation,
                                bit_depth=bit_depth, output=output)
         return self._apply(plan, "RGB", ("R", "G", "B"))
+
+    def upsample(self, table, out_of_range: str = "toward-grey", dim: str = "RGB") -> xr.DataArray:
+        """Reflectance spectra of an RGB DataArray by an upsampling table, dims (..., "wavelength").
+
+        The array holds table coordinates (linear RGB of the table's space, 0–1; decode 8/16-bit
+        codes first with :func:`spectrocolor.upsampling.rgb_linear_from_image`) along ``dim``.
+        Each block goes through :func:`spectrocolor.upsampling.upsample_spectra`, so the numbers
+        equal the NumPy path's and :func:`spectrocolor.upsampling.upsample_dask`'s bit for bit;
+        on a dask-backed array the result is lazy, chunked like the input's other dimensions
+        (``dim`` is taken as one chunk).
+
+        Parameters
+        ----------
+        table : UpsamplingTable
+            From :func:`spectrocolor.upsampling_table` or :func:`spectrocolor.upsampling.load_table`.
+        out_of_range : str, default "toward-grey"
+            A key of :data:`spectrocolor.upsampling.OUT_OF_RANGE_STRATEGIES` ("nan" gives NaN
+            spectra for colours not reproduced exactly).
+        dim : str, default "RGB"
+            The dimension of length 3 holding the channels (as made by :meth:`to_rgb`).
+
+        Returns
+        -------
+        xarray.DataArray
+            float64 reflectance factors (0–1) with a ``wavelength`` coordinate in nm (attribute
+            ``units`` "nm") replacing ``dim``; attributes ``quantity`` ("reflectance"),
+            ``space``, ``illuminant``, ``observer`` and ``out_of_range``.
+
+        Raises
+        ------
+        ColorimetryError
+            For something other than an UpsamplingTable, an unknown strategy, or ``dim`` missing,
+            not of length 3, or an array that already has a ``wavelength`` dimension.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import xarray as xr
+        >>> import spectrocolor.images  # registers DataArray.spectro
+        >>> from spectrocolor import upsampling_table
+        >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+        >>> rgb = xr.DataArray(np.full((2, 4, 3), 0.5), dims=("y", "x", "RGB"))
+        >>> cube = rgb.spectro.upsample(table)
+        >>> cube.dims, cube.sizes["wavelength"], float(cube[0, 0, 0].round(9))
+        (('y', 'x', 'wavelength'), 81, 0.5)
+        """
+        from functools import partial
+
+        from ..errors import ColorimetryError
+        from ..upsampling import OUT_OF_RANGE_STRATEGIES, UpsamplingTable, upsample_spectra
+
+        if not isinstance(table, UpsamplingTable):
+            raise ColorimetryError(f"table: expected an UpsamplingTable, got {type(table).__name__}")
+        out_of_range = OUT_OF_RANGE_STRATEGIES.canonical(out_of_range)
+        array = self._array
+        if dim not in array.dims or array.sizes[dim] != 3:
+            raise ColorimetryError(
+                f"dim: the DataArray needs a dimension {dim!r} of length 3 holding the channels; "
+                f"its dims are {dict(array.sizes)}")
+        if "wavelength" in array.dims:
+            raise ColorimetryError("the DataArray already has a 'wavelength' dimension; upsample "
+                                   "takes RGB values")
+        if array.chunks is not None:
+            array = array.chunk({dim: -1})
+        wavelengths_nm = table.wavelengths_nm
+        result = xr.apply_ufunc(
+            partial(upsample_spectra, table),
+            array,
+            kwargs={"out_of_range": out_of_range},
+            input_core_dims=[[dim]],
+            output_core_dims=[["wavelength"]],
+            dask="parallelized",
+            output_dtypes=[np.float64],
+            dask_gufunc_kwargs={"output_sizes": {"wavelength": wavelengths_nm.size}},
+            keep_attrs=False,
+        )
+        result = result.assign_coords(wavelength=("wavelength", wavelengths_nm, {"units": "nm"}))
+        result.attrs.update({"quantity": "reflectance", "space": table.space,
+                             "illuminant": table.illuminant, "observer": table.observer,
+                             "out_of_range": out_of_range})
+        return result
