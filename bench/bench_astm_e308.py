@@ -92,7 +92,7 @@ def accuracy() -> None:
 
 def bandpass() -> None:
     """Largest |ΔXYZ100| per sample against 1 nm summation, TCS01–14 measured through a triangular
-    bandpass equal to the interval (the instrument E308 Table 5 is for), per summation method."""
+    bandpass equal to the interval (the instrument E308 Table 6 is for), per summation method."""
     from spectrocolor.astm_e308 import lagrange_matrix
     from spectrocolor.data_tables import load_table
 
@@ -106,7 +106,7 @@ def bandpass() -> None:
         triangle = np.clip(1 - np.abs(fine[None, :] - grid[:, None]) / step, 0, None)
         measured = sc.Spectrum(grid, true @ (triangle / triangle.sum(axis=1, keepdims=True)).T)
         cells = []
-        for method in ("sum", "astm-e308", "astm-e308-table5"):
+        for method in ("sum", "astm-e308", "astm-e308-table6"):
             XYZ = sc.tristimulus(measured, observer="1931", illuminant="D65", method=method)
             error = np.abs(XYZ - reference).max(axis=1)
             cells.append(f"{method} {error.mean():.4f}/{error.max():.4f}")

@@ -10,7 +10,7 @@ from hypothesis.extra.numpy import arrays
 
 import spectrocolor as sc
 from spectrocolor import ColorimetryError, Spectrum, SpectrumError
-from spectrocolor.astm_e308 import astm_e308_table5_weights, astm_e308_weights, illuminant_at_1nm, lagrange_matrix
+from spectrocolor.astm_e308 import astm_e308_table6_weights, astm_e308_weights, illuminant_at_1nm, lagrange_matrix
 from spectrocolor.bandpass import bandpass_correction
 
 colour = pytest.importorskip("colour")
@@ -147,10 +147,11 @@ def test_fluorescent_lamp_measured_from_360nm_is_accepted_as_a_spectrum():
     np.testing.assert_allclose(W.sum(axis=0), sc.white_point(lamp, observer="1931", wavelengths_nm=fine), rtol=1e-13)
 
 
-# ASTM E308-17 white points (the "white point" rows under each weight table of Tables 5 and 6, the
-# same for every interval and range, since E308's range adjustment keeps every 1 nm weight), typed
-# in to the printed three decimals (the 2° values are also the ASTM E308-01 reference whites widely
-# reprinted, e.g. in Lindbloom's tables). (X, Z); Y is 100.000 in every table.
+# ASTM E308 white points (the "white point" rows under each weight table of Tables 5 and 6, the
+# same for every interval and range, since E308's range adjustment keeps every 1 nm weight), to
+# three decimals, typed in from reprints of E308-01's table of white points, not from a copy of
+# E308-17: all 18 agree with the colorjs color-space table (both observers) and Unicolour's (2°),
+# and the 2° values with Lindbloom's list. (X, Z); Y is 100.000 in every table.
 E308_WHITE_POINTS = {
     ("1931", "A"): (109.850, 35.585),
     ("1931", "C"): (98.074, 118.232),
@@ -310,43 +311,44 @@ def test_data_outside_a_fluorescent_illuminants_range_are_refused():
         ("TWF_D65_CIE_1931_2_20", "1931", "D65", 20),
     ],
 )
-def test_weights_reproduce_e308_table_6_as_typed_in_by_colour_science(table, observer, illuminant, step):
-    """colour-science 0.4.7's tests carry three E308-15 Table 6 weight tables (360–830 nm, three
-    decimals as printed), cited there as "matching ASTM E308-15"; ours round to the same digits."""
+def test_weights_reproduce_e308_table_5_as_typed_in_by_colour_science(table, observer, illuminant, step):
+    """colour-science 0.4.7's tests carry three E308-15 weight tables (360–830 nm, three decimals
+    as printed), cited there as "matching ASTM E308-15" without a table number; they are the weights
+    without bandpass correction, E308's Table 5 (docs/astm_e308.md); ours round to the same digits."""
     printed = getattr(pytest.importorskip("colour.colorimetry.tests.test_tristimulus_values"), table)
     W = astm_e308_weights(np.arange(360.0, 831.0, step), observer, illuminant)
     np.testing.assert_array_equal(np.round(W, 3) + 0.0, np.asarray(printed) + 0.0)
 
 
-# ---------------------------------------------------------------- Table 5 (data not corrected for bandpass)
+# ---------------------------------------------------------------- Table 6 (data not corrected for bandpass)
 @pytest.mark.parametrize("observer", ["1931", "1964"])
 @pytest.mark.parametrize("illuminant", ["D65", "A", "FL11"])
 @pytest.mark.parametrize(("step", "start", "stop"), [(10, 380, 780), (10, 400, 700), (20, 380, 760), (20, 420, 700)])
-def test_table5_on_uncorrected_data_equals_table6_on_stearns_stearns_corrected_data(
+def test_table6_on_uncorrected_data_equals_table5_on_stearns_stearns_corrected_data(
     observer, illuminant, step, start, stop
 ):
-    """Table 5's defining property: E308's bandpass correction folded into the weights of the same grid."""
+    """Table 6's defining property: E308's bandpass correction folded into the weights of the same grid."""
     grid = sc.wavelength_grid(start, stop, step)
     measured = Spectrum(grid, np.random.default_rng(start + step).random((20, grid.size)))
-    table5 = sc.tristimulus(measured, observer=observer, illuminant=illuminant, method="astm-e308-table5")
-    table6 = sc.tristimulus(bandpass_correction(measured), observer=observer, illuminant=illuminant, method="astm-e308")
-    np.testing.assert_allclose(table5, table6, rtol=1e-12, atol=1e-12)
+    table6 = sc.tristimulus(measured, observer=observer, illuminant=illuminant, method="astm-e308-table6")
+    table5 = sc.tristimulus(bandpass_correction(measured), observer=observer, illuminant=illuminant, method="astm-e308")
+    np.testing.assert_allclose(table6, table5, rtol=1e-12, atol=1e-12)
 
 
 @pytest.mark.parametrize(("step", "start"), [(10, 360), (10, 380), (20, 360), (20, 380)])
-def test_table5_has_table6s_white_point(step, start):
+def test_table6_has_table5s_white_point(step, start):
     grid = sc.wavelength_grid(start, 780, step)
     np.testing.assert_allclose(
-        astm_e308_table5_weights(grid, "1964", "D50").sum(axis=0),
+        astm_e308_table6_weights(grid, "1964", "D50").sum(axis=0),
         astm_e308_weights(grid, "1964", "D50").sum(axis=0),
         rtol=1e-13,
     )
 
 
-def test_table5_brings_triangular_bandpass_data_closer_to_the_1nm_truth():
+def test_table6_brings_triangular_bandpass_data_closer_to_the_1nm_truth():
     """The 14 CIE test colour samples at 1 nm (5 nm table, E2022 Lagrange to 1 nm) measured through
-    a 10 nm triangular bandpass at 10 nm: Table 5 on the raw readings lands nearer the 1 nm XYZ
-    than Table 6 does, for every sample."""
+    a 10 nm triangular bandpass at 10 nm: Table 6 on the raw readings lands nearer the 1 nm XYZ
+    than Table 5 does, for every sample."""
     from importlib.resources import files
 
     tcs = sc.read_spectra(files("spectrocolor") / "data" / "reflectances_cie_tcs.csv")
@@ -358,19 +360,27 @@ def test_table5_brings_triangular_bandpass_data_closer_to_the_1nm_truth():
     reference = sc.tristimulus(Spectrum(fine, true), observer="1931", illuminant="D65", method="sum")
     errors = {
         table: np.abs(sc.tristimulus(measured, observer="1931", illuminant="D65", method=table) - reference).max(axis=1)
-        for table in ("astm-e308", "astm-e308-table5")
+        for table in ("astm-e308", "astm-e308-table6")
     }
-    assert np.all(errors["astm-e308-table5"] < errors["astm-e308"])
+    assert np.all(errors["astm-e308-table6"] < errors["astm-e308"])
 
 
 @pytest.mark.parametrize("step", [1, 5])
-def test_table5_is_refused_for_intervals_e308_has_no_table5_for(step):
-    with pytest.raises(ColorimetryError, match="Table 5 .* is for 10 or 20 nm data"):
-        sc.weights(sc.wavelength_grid(400, 700, step), observer="1931", illuminant="D65", method="astm-e308-table5")
+def test_table6_is_refused_for_intervals_e308_has_no_table6_for(step):
+    with pytest.raises(ColorimetryError, match="Table 6 .* is for 10 or 20 nm data"):
+        sc.weights(sc.wavelength_grid(400, 700, step), observer="1931", illuminant="D65", method="astm-e308-table6")
 
 
-def test_cli_method_astm_e308_table5_equals_the_library(capsys):
-    """``--method astm-e308-table5`` on the command line gives the library's Table 5 numbers."""
+def test_the_uncorrected_alias_names_table6():
+    grid = sc.wavelength_grid(400, 700, 20)
+    np.testing.assert_array_equal(
+        sc.weights(grid, observer="1931", illuminant="D65", method="astm-e308-uncorrected"),
+        astm_e308_table6_weights(grid, "1931", "D65"),
+    )
+
+
+def test_cli_method_astm_e308_table6_equals_the_library(capsys):
+    """``--method astm-e308-table6`` on the command line gives the library's Table 6 numbers."""
     import csv
     import io
     from importlib.resources import files
@@ -378,9 +388,9 @@ def test_cli_method_astm_e308_table5_equals_the_library(capsys):
     from spectrocolor.cli import main
 
     path = str(files("spectrocolor") / "data" / "reflectances_colorchecker_babel.csv")  # 380–730 nm, 10 nm
-    assert main(["xyz", path, "--method", "astm-e308-table5", "--format", "csv", "--observer", "1964"]) == 0
+    assert main(["xyz", path, "--method", "astm-e308-table6", "--format", "csv", "--observer", "1964"]) == 0
     rows = list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
-    XYZ = sc.tristimulus(sc.read_spectra(path), observer="1964", illuminant="D65", method="astm-e308-table5")
+    XYZ = sc.tristimulus(sc.read_spectra(path), observer="1964", illuminant="D65", method="astm-e308-table6")
     got = np.array([[float(row[c]) for c in "XYZ"] for row in rows])
     np.testing.assert_array_equal(got, XYZ)  # written as repr: exact
 
@@ -390,7 +400,7 @@ def test_cli_method_astm_e308_table5_equals_the_library(capsys):
     start=st.one_of(st.integers(300, 800), st.floats(allow_nan=True, allow_infinity=True)),
     step=st.one_of(st.sampled_from([1, 5, 10, 20, 2, 0, -10]), st.floats(-30, 30)),
     count=st.integers(0, 50),
-    method=st.sampled_from(["astm-e308", "astm-e308-table5"]),
+    method=st.sampled_from(["astm-e308", "astm-e308-table6"]),
 )
 def test_fuzz_any_grid_gives_weights_with_y_100_or_one_clear_error(start, step, count, method):
     grid = start + step * np.arange(count, dtype=float)

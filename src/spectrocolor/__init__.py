@@ -142,7 +142,7 @@ _PUBLIC: dict[str, str] = {
     "zawischa_strip": "thinfilm.zawischa",
     # ASTM E308 / E2022 weights
     "astm_e308_weights": "astm_e308",
-    "astm_e308_table5_weights": "astm_e308",
+    "astm_e308_table6_weights": "astm_e308",
     "bandpass_correction": "bandpass",
     # spectral upsampling: RGB images to exact reflectances by table
     "upsampling_table": "upsampling",

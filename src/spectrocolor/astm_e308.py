@@ -22,15 +22,19 @@ Lagrange scheme (cubic inside, quadratic at the ends) — the same interpolator 
 measured data. Linear interpolation of those 5 nm tables misses the printed white points by up to
 0.06 (C, Z). See :func:`illuminant_at_1nm`.
 
-**Which table.** :func:`astm_e308_weights` reproduces E308 **Table 6**: weights for spectral
-data that have already been corrected for the instrument's spectral bandpass (or were measured
-with a bandpass narrow enough to need none); it is the table colour-science's
-``tristimulus_weighting_factors_ASTME2022`` computes. :func:`astm_e308_table5_weights` gives
-**Table 5**, for 10 and 20 nm data *not* corrected for bandpass, measured with a triangular
+**Which table.** :func:`astm_e308_weights` reproduces E308 **Table 5**: weights for spectral
+data that have been corrected for the instrument's spectral bandpass (or were measured with a
+bandpass narrow enough to need none); it is the table colour-science's
+``tristimulus_weighting_factors_ASTME2022`` computes. :func:`astm_e308_table6_weights` gives
+**Table 6**, for 10 and 20 nm data *not* corrected for bandpass, measured with a triangular
 bandpass equal to the interval: E308's Stearns & Stearns correction (:mod:`spectrocolor.bandpass`)
-is folded into the Table 6 weights of the same grid, ``W₅ = Bᵀ W₆``, so that uncorrected data
-with Table 5 give exactly what Stearns–Stearns-corrected data give with Table 6. ``B`` keeps
-column sums, so both tables have the same white point, as in E308.
+is folded into the Table 5 weights of the same grid, ``W₆ = Bᵀ W₅``, so that uncorrected data
+with Table 6 give exactly what Stearns–Stearns-corrected data give with Table 5. ``B`` keeps
+column sums, so both tables have the same white point, as in E308. The numbering follows E308's
+own introduction (Tables 5 are the 1985 tables; the 1994 revision added the reduction of the
+bandpass dependence), Westland et al. (2012) §4.8.3 ("since ASTM Table 5 is used it is assumed
+that the reflectance data have been corrected for the spectral bandpass") and the OptProp
+toolbox's ``roo2xyz`` ("uncompensated": Table 6).
 
 **Range.** Weights are computed over E308's reference range, 360–780 nm (widened to the data's
 range when the data extend beyond it, and narrowed to where the observer and illuminant are
@@ -48,7 +52,10 @@ References
 ASTM E2022-11, *Standard Practice for Calculation of Weighting Factors for Tristimulus
 Integration*, §7 (weights from 1 nm data with Lagrange interpolation of the measured data).
 ASTM E308-17, *Standard Practice for Computing the Colors of Objects by Using the CIE System*,
-§7 (tristimulus integration with weights; Table 6; adjustment of weights to a shorter range).
+§7 (tristimulus integration with weights; Tables 5 and 6; adjustment of weights to a shorter
+range); the introduction of ASTM E308-22 (history of Tables 5 and 6).
+Westland, S., Ripamonti, C. & Cheung, V. (2012). *Computational Colour Science Using MATLAB*,
+2nd ed., Wiley, §4.5–4.6 and §4.8.3.
 """
 
 from __future__ import annotations
@@ -64,8 +71,8 @@ from .spectrum import validate_wavelengths
 
 #: Measurement intervals for which ASTM E308 gives (and E2022 computes) weights, nm.
 INTERVALS_NM = (1, 5, 10, 20)
-#: Measurement intervals for which ASTM E308 tabulates Table 5 (bandpass included) weights, nm.
-TABLE5_INTERVALS_NM = (10, 20)
+#: Measurement intervals for which ASTM E308 tabulates Table 6 (bandpass included) weights, nm.
+TABLE6_INTERVALS_NM = (10, 20)
 #: Wavelength range of the ASTM E308 weighting tables, nm.
 REFERENCE_RANGE_NM = (360.0, 780.0)
 
@@ -232,11 +239,11 @@ def illuminant_at_1nm(fine_nm: np.ndarray, illuminant) -> np.ndarray:
 
 
 def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
-    """ASTM E308 Table 6 weights (K, 3) for reflectance data on ``wavelengths_nm``, by ASTM E2022.
+    """ASTM E308 Table 5 weights (K, 3) for reflectance data on ``wavelengths_nm``, by ASTM E2022.
 
     ``XYZ100 = R @ W`` for reflectance or transmittance factors ``R`` (0–1) measured at
     ``wavelengths_nm``; the perfect white (R = 1) has Y = 100. See the module docstring for the
-    procedure, the table reproduced (Table 6: no bandpass correction in the weights; correct the
+    procedure, the table reproduced (Table 5: no bandpass correction in the weights; correct the
     data for bandpass first if your instrument does not) and the range adjustment.
 
     Parameters
@@ -268,7 +275,7 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
 
     References
     ----------
-    ASTM E2022-11 §7; ASTM E308-17 §7 and Table 6.
+    ASTM E2022-11 §7; ASTM E308-17 §7 and Table 5.
 
     Examples
     --------
@@ -298,20 +305,20 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
     return result
 
 
-def astm_e308_table5_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
-    """ASTM E308 Table 5 weights (K, 3): 10 or 20 nm data NOT corrected for the instrument's bandpass.
+def astm_e308_table6_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
+    """ASTM E308 Table 6 weights (K, 3): 10 or 20 nm data NOT corrected for the instrument's bandpass.
 
     For an instrument whose triangular bandpass equals its measurement interval (e.g. 10 nm data
     from a 10 nm bandpass) whose data have not been bandpass-corrected. E308's Stearns & Stearns
     correction ``B`` (:func:`spectrocolor.bandpass.stearns_stearns_matrix`, end rules at the first
-    and last *measured* wavelength) is folded into the Table 6 weights of the same grid:
-    ``W₅ = Bᵀ W₆``, hence ``R @ W₅ == (B @ R) @ W₆`` for every reflectance ``R``. Columns of ``B``
-    sum to one, so the white point is Table 6's.
+    and last *measured* wavelength) is folded into the Table 5 weights of the same grid:
+    ``W₆ = Bᵀ W₅``, hence ``R @ W₆ == (B @ R) @ W₅`` for every reflectance ``R``. Columns of ``B``
+    sum to one, so the white point is Table 5's.
 
     Parameters
     ----------
     wavelengths_nm : array_like, shape (K,)
-        The measured wavelengths, nm: uniform 10 or 20 nm (the intervals E308 gives Table 5 for),
+        The measured wavelengths, nm: uniform 10 or 20 nm (the intervals E308 gives Table 6 for),
         otherwise as for :func:`astm_e308_weights`.
     observer : str or Spectrum
         As for :func:`astm_e308_weights`.
@@ -336,15 +343,15 @@ def astm_e308_table5_weights(wavelengths_nm: np.ndarray, observer, illuminant) -
     Examples
     --------
     >>> from spectrocolor import wavelength_grid
-    >>> W5 = astm_e308_table5_weights(wavelength_grid(400, 700, 10), "1931", "D65")
-    >>> W6 = astm_e308_weights(wavelength_grid(400, 700, 10), "1931", "D65")
-    >>> bool(np.allclose(W5.sum(axis=0), W6.sum(axis=0), rtol=1e-13)), round(float(W5[13, 1] - W6[13, 1]), 3)
+    >>> W6 = astm_e308_table6_weights(wavelength_grid(400, 700, 10), "1931", "D65")
+    >>> W5 = astm_e308_weights(wavelength_grid(400, 700, 10), "1931", "D65")
+    >>> bool(np.allclose(W6.sum(axis=0), W5.sum(axis=0), rtol=1e-13)), round(float(W6[13, 1] - W5[13, 1]), 3)
     (True, 0.072)
     """
     grid, step = _validated_grid(wavelengths_nm)
-    if step not in TABLE5_INTERVALS_NM:
+    if step not in TABLE6_INTERVALS_NM:
         raise ColorimetryError(
-            f"wavelengths_nm: ASTM E308 Table 5 (bandpass included) is for 10 or 20 nm data, got {step} nm; "
+            f"wavelengths_nm: ASTM E308 Table 6 (bandpass included) is for 10 or 20 nm data, got {step} nm; "
             "for other intervals correct the data with bandpass_correction(...) if needed and use 'astm-e308'"
         )
     return stearns_stearns_matrix(grid.size).T @ astm_e308_weights(grid, observer, illuminant)

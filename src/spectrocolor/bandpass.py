@@ -11,8 +11,8 @@ triangle in units of the interval squared):
 
 Every ``R`` on the right is a *measured* value (the rule is one fixed linear map, the matrix of
 :func:`stearns_stearns_matrix`). The matrix is symmetric and each of its rows and columns sums
-to one, so a constant spectrum is unchanged and folding it into weights (E308 Table 5, see
-:func:`spectrocolor.astm_e308.astm_e308_table5_weights`) keeps the white point.
+to one, so a constant spectrum is unchanged and folding it into weights (E308 Table 6, see
+:func:`spectrocolor.astm_e308.astm_e308_table6_weights`) keeps the white point.
 
 **What "FWHM honoured" means here.** The rule is only valid for a bandpass equal to the interval.
 :func:`bandpass_correction` therefore checks every bandpass it knows of — the ``bandpass_nm``
@@ -152,7 +152,7 @@ def bandpass_correction(spectrum: Spectrum, method: str = "stearns-stearns", *, 
 
     Use it on data from an instrument whose bandpass equals its measurement interval (typically
     10 nm data from a 10 nm bandpass), then compute colour with ``method="astm-e308"`` (E308
-    Table 6). Equivalently, leave the data as measured and use ``method="astm-e308-table5"``.
+    Table 5). Equivalently, leave the data as measured and use ``method="astm-e308-table6"``.
 
     Parameters
     ----------

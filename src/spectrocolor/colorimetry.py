@@ -18,14 +18,14 @@ Summation methods (the ``method`` argument):
     sum with the 1 nm observer and illuminant. Interpolation is linear in ρ, so this is still
     a K × 3 matrix (``P.T @ W_1nm``) and costs nothing extra per spectrum.
 ``"astm-e308"``
-    The industry route for 1, 5, 10 and 20 nm reflectance data: ASTM E308 Table 6 weights
+    The industry route for 1, 5, 10 and 20 nm reflectance data: ASTM E308 Table 5 weights
     computed by ASTM E2022 (Lagrange interpolation to 1 nm folded into the weights, E308's
     range adjustment); reflectances only (an illuminant is required). See
     :mod:`spectrocolor.astm_e308`.
-``"astm-e308-table5"``
-    ASTM E308 Table 5 weights for 10 or 20 nm data *not* corrected for the instrument's bandpass
+``"astm-e308-table6"`` (alias ``"astm-e308-uncorrected"``)
+    ASTM E308 Table 6 weights for 10 or 20 nm data *not* corrected for the instrument's bandpass
     (triangular, equal to the interval): E308's Stearns & Stearns correction folded into the
-    Table 6 weights. See :mod:`spectrocolor.bandpass`.
+    Table 5 weights. See :mod:`spectrocolor.bandpass`.
 
 The cache holds weights per (grid, observer, illuminant name, method); weight arrays are
 read-only.
@@ -42,7 +42,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from .astm_e308 import astm_e308_table5_weights, astm_e308_weights
+from .astm_e308 import astm_e308_table6_weights, astm_e308_weights
 from .errors import ColorimetryError
 from .illuminants import canonical_illuminant
 from .illuminants import illuminant as named_illuminant
@@ -88,12 +88,13 @@ SUMMATION_METHODS = Registry("method", "a summation method")
 SUMMATION_METHODS.add("sum", _sum_weights, "sum at the spectrum's own samples (the definition; seeds 001, 003)")
 SUMMATION_METHODS.add("1nm", _one_nm_weights, "interpolate linearly to 1 nm, then sum (CIE 015's recommendation)")
 SUMMATION_METHODS.add(
-    "astm-e308", astm_e308_weights, "ASTM E308 Table 6 weights by ASTM E2022 (reflectances, uniform 1/5/10/20 nm)"
+    "astm-e308", astm_e308_weights, "ASTM E308 Table 5 weights by ASTM E2022 (reflectances, uniform 1/5/10/20 nm)"
 )
 SUMMATION_METHODS.add(
-    "astm-e308-table5",
-    astm_e308_table5_weights,
-    "ASTM E308 Table 5 weights: 10/20 nm data not corrected for a bandpass equal to the interval",
+    "astm-e308-table6",
+    astm_e308_table6_weights,
+    "ASTM E308 Table 6 weights: 10/20 nm data not corrected for a bandpass equal to the interval",
+    aliases=("astm-e308-uncorrected",),
 )
 #: The summation method used when none is given.
 DEFAULT_METHOD = "sum"

@@ -51,7 +51,7 @@ def add_spectral_options(parser: argparse.ArgumentParser, *, lights: bool) -> No
         choices=SUMMATION_METHODS.names(),
         default="sum",
         help="summation: sum at the file's samples, 1nm (linear to 1 nm), astm-e308 (ASTM E308/E2022 "
-        "weights; 1, 5, 10 or 20 nm data), astm-e308-table5 (E308 Table 5: 10 or 20 nm data not corrected "
+        "Table 5 weights; 1, 5, 10 or 20 nm data), astm-e308-table6 (E308 Table 6: 10 or 20 nm data not corrected "
         "for a bandpass equal to the interval) (default %(default)s)",
     )
     parser.add_argument("--range", nargs=2, type=float, metavar=("START", "STOP"), help="use only START–STOP nm")
