@@ -150,8 +150,8 @@ def test_fluorescent_lamp_measured_from_360nm_is_accepted_as_a_spectrum():
 # ASTM E308 white points (the "white point" rows under each weight table of Tables 5 and 6, the
 # same for every interval and range, since E308's range adjustment keeps every 1 nm weight), to
 # three decimals, typed in from reprints of E308-01's table of white points, not from a copy of
-# E308-17: all 18 agree with the colorjs color-space table (both observers) and Unicolour's (2°),
-# and the 2° values with Lindbloom's list. (X, Z); Y is 100.000 in every table.
+# E308-17: 17 of the 18 agree with the colorjs color-space table (both observers; its 2° D65 is
+# computed), the 2° A–D75 with Colors.jl's and Unicolour's. (X, Z); Y is 100.000 in every table.
 E308_WHITE_POINTS = {
     ("1931", "A"): (109.850, 35.585),
     ("1931", "C"): (98.074, 118.232),
