@@ -1,7 +1,9 @@
 """numba kernels of the table lookup and blend (imported only by :mod:`.compiled`).
 
 Each function repeats :func:`spectrocolor.upsampling.apply.lookup` and its blend for one query,
-operation for operation (see :mod:`spectrocolor.upsampling.compiled`).
+operation for operation (see :mod:`spectrocolor.upsampling.compiled`). The per-query helpers
+are inlined into the loops (``inline="always"``): as separate calls, passing the arrays cost
+several times the arithmetic.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ def _jit(**options):
     return decorate
 
 
-@_jit()
+@_jit(inline="always")
 def _locate(t, q, n, move, offsets):
     """(node0..3, weight0..3, outside) of query ``q`` of ``t`` (N, 3)."""
     t0, t1, t2 = t[q, 0], t[q, 1], t[q, 2]
@@ -57,7 +59,7 @@ def _locate(t, q, n, move, offsets):
             1.0 - high, high - middle, middle - low, low, outside)
 
 
-@_jit()
+@_jit(inline="always")
 def _blend_one(t, n, move, offsets, status, values, clamp, nan_inexact, out, exact, moved, q):
     i0, i1, i2, i3, w0, w1, w2, w3, outside = _locate(t, q, n, move, offsets)
     is_exact = (not outside and status[i0] == 0 and status[i1] == 0 and status[i2] == 0
@@ -76,7 +78,7 @@ def _blend_one(t, n, move, offsets, status, values, clamp, nan_inexact, out, exa
         out[q, k] = min(v, 1.0) if clamp else v
 
 
-@_jit()
+@_jit(inline="always")
 def _locate_one(t, n, move, offsets, status, nodes, weights, exact, moved, q):
     i0, i1, i2, i3, w0, w1, w2, w3, outside = _locate(t, q, n, move, offsets)
     nodes[q, 0], nodes[q, 1], nodes[q, 2], nodes[q, 3] = i0, i1, i2, i3
