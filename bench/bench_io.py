@@ -1,11 +1,11 @@
 """Reading measurement files: spectrocolor's readers vs colour-science and a plain NumPy limit.
 
 Run: .venv/bin/python bench/bench_io.py
-Writes 5 000 reflectance samples (380–730 nm, 10 nm) as long CSV, CGATS.17 (i1Profiler style)
+Writes 5 000 reflectance samples (380–730 nm, 10 nm) as long and wide CSV, CGATS.17 (i1Profiler style)
 and IES TM-27 XML (one sample) into a temporary folder and prints best-of-5 wall times measured
 in this one run: ``sc.read_spectra`` (format detected by content); colour-science's
 ``read_sds_from_csv_file`` (long CSV) and ``SpectralDistribution_IESTM2714.read`` (TM-27-14; it
-has no CGATS reader); and ``np.loadtxt`` on the numbers alone, the limit for a text parser in
+has no CGATS or wide-CSV reader); and ``np.loadtxt`` on the numbers alone, the limit for a text parser in
 NumPy.
 """
 
@@ -32,6 +32,11 @@ def main() -> None:
     spectra = sc.Spectrum(grid, values, names)
     long_csv = sc.write_spectra(spectra, folder / "long.csv")
     cgats = sc.write_spectra(spectra, folder / "samples.cgats")
+    wide_csv = folder / "wide.csv"  # one sample per row, as instrument software exports
+    wide_csv.write_text(
+        "name," + ",".join(f"{nm:g}" for nm in grid) + "\n"
+        + "".join(f"{n}," + ",".join(f"{v:.4f}" for v in row) + "\n" for n, row in zip(names, values, strict=True))
+    )
     numbers = folder / "numbers.txt"
     np.savetxt(numbers, values, fmt="%.4f")
     tm27 = folder / "lamp.xml"
@@ -54,6 +59,7 @@ def main() -> None:
             best_of(lambda: sc.read_spectra(long_csv)),
             best_of(lambda: colour.read_sds_from_csv_file(str(long_csv))),
         ),
+        ("wide CSV, 5000 samples", best_of(lambda: sc.read_spectra(wide_csv)), None),
         ("CGATS.17, 5000 samples", best_of(lambda: sc.read_spectra(cgats)), None),
         ("TM-27 XML, 1 sample", best_of(lambda: sc.read_spectra(tm27)), best_of(colour_tm27)),
     ]

@@ -41,11 +41,29 @@ EXPECTED = (
 #: One line and its terminator; the terminators are those of :meth:`str.splitlines`.
 _LINE = re.compile(r"([^\n\r\x0b\x0c\x1c-\x1e\x85\u2028\u2029]*)(?:\r\n|[\n\r\x0b\x0c\x1c-\x1e\x85\u2028\u2029])?")
 
+#: Line boundaries of :meth:`str.splitlines` other than ``\n`` and ``\r\n``.
+_RARE_BREAKS = "\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"
+
+
+def _lines(text: str):
+    """The lines of ``text`` as :meth:`str.splitlines` gives them, one at a time."""
+    if text.count("\r") == text.count("\r\n") and not any(c in text for c in _RARE_BREAKS):
+        start, end = 0, len(text)  # the common case (\n or \r\n only): str.find is fastest
+        while start < end:
+            stop = text.find("\n", start)
+            stop = end if stop < 0 else stop
+            yield text[start:stop].removesuffix("\r")
+            start = stop + 1
+    else:
+        for match in _LINE.finditer(text):
+            if match.start() == len(text):  # the empty match at the very end is not a line
+                break
+            yield match[1]
+
 
 def _content_lines(text: str):
     """``(line number, line)`` for every line that is neither blank nor a ``#`` comment, lazily."""
-    for line_number, match in enumerate(_LINE.finditer(text), start=1):
-        line = match[1]
+    for line_number, line in enumerate(_lines(text), start=1):
         if line.strip() and not line.lstrip().startswith("#"):
             yield line_number, line
 
