@@ -10,9 +10,15 @@
 * :func:`relight` — an image's colours under another light.
 * :func:`save_table`, :func:`load_table` — the ``.scup`` binary layout (readers in Python and
   C in ``docs/upsampling/``).
+* :func:`save_texel_coefficients`, :func:`load_texel_coefficients` — per-texel coefficients
+  (``.sctx``) for renderers.
 * :func:`read_png` — 8- and 16-bit PNG codes without loss (Pillow cuts 16-bit RGB to 8 bits).
 
-The core needs only NumPy/SciPy; dask is imported only by :func:`upsample_dask`.
+With numba installed (extra ``fast``) the lookup, blends and PNG filters run in compiled kernels
+(:mod:`spectrocolor.upsampling.compiled`), with the same numbers as the NumPy path.
+
+The core needs only NumPy/SciPy; dask is imported only by :func:`upsample_dask`, numba only
+when a kernel first runs.
 """
 
 from .apply import (
@@ -31,20 +37,24 @@ from .fileformat import load_table, save_table
 from .png_reader import read_png
 from .relight import relight, rgb_linear_from_image
 from .table import NODE_STATUS, UpsamplingTable, upsampling_table
+from .texels import TexelCoefficients, load_texel_coefficients, save_texel_coefficients
 
 __all__ = [
     "NODE_STATUS",
     "OUT_OF_RANGE_STRATEGIES",
     "Lookup",
+    "TexelCoefficients",
     "Upsampled",
     "UpsamplingTable",
     "colours_under",
     "load_table",
+    "load_texel_coefficients",
     "lookup",
     "read_png",
     "relight",
     "rgb_linear_from_image",
     "save_table",
+    "save_texel_coefficients",
     "texel_coefficients",
     "upsample",
     "upsample_blocks",
