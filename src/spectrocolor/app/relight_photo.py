@@ -30,9 +30,12 @@ from __future__ import annotations
 
 import base64
 import binascii
+import hashlib
 import io
 import re
 import time
+from collections import OrderedDict
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -216,26 +219,45 @@ def relight_codes(codes: np.ndarray, table, illuminant, adaptation: str, gamut: 
     >>> same["codes"].tolist() == photo.tolist(), same["colours"]
     (True, 2)
     """
+    return _relit(_Distinct.of(codes), table, illuminant, adaptation, gamut, exposure)
+
+
+@dataclass(frozen=True)
+class _Distinct:
+    """A photo's distinct colours (``rgb8``, (N, 3)), each pixel's index into them, their counts."""
+
+    shape: tuple
+    colour_codes: np.ndarray
+    where: np.ndarray
+    counts: np.ndarray
+
+    @classmethod
+    def of(cls, codes: np.ndarray) -> _Distinct:
+        packed = (codes[..., 0].astype(np.uint32) << 16) \
+            | (codes[..., 1].astype(np.uint32) << 8) | codes[..., 2]
+        distinct, where = np.unique(packed.ravel(), return_inverse=True)
+        colour_codes = np.stack([(distinct >> 16) & 255, (distinct >> 8) & 255, distinct & 255],
+                                axis=-1).astype(np.uint8)
+        return cls(codes.shape, colour_codes, where, np.bincount(where, minlength=len(distinct)))
+
+
+def _relit(photo: _Distinct, table, illuminant, adaptation: str, gamut: str,
+           exposure: str) -> dict:
     from ..display.render import render
     from ..upsampling import relight, rgb_linear_from_image
 
-    packed = (codes[..., 0].astype(np.uint32) << 16) | (codes[..., 1].astype(np.uint32) << 8) \
-        | codes[..., 2]
-    distinct, where = np.unique(packed.ravel(), return_inverse=True)
-    colour_codes = np.stack([(distinct >> 16) & 255, (distinct >> 8) & 255, distinct & 255],
-                            axis=-1).astype(np.uint8)
-    rgb_linear = np.concatenate([rgb_linear_from_image(colour_codes, SPACE), np.ones((1, 3))])
+    rgb_linear = np.concatenate([rgb_linear_from_image(photo.colour_codes, SPACE),
+                                 np.ones((1, 3))])  # and the perfect white, last
     relit = relight(table, rgb_linear, illuminant,
                     adaptation=None if adaptation == "none" else adaptation,
                     out_of_range=OUT_OF_RANGE)
     white_max = float(relit.rgb_linear[-1].max())  # the perfect white (ρ = 1) under the light
     factor = 1.0 / white_max if exposure == "fit white" and white_max > 1.0 else 1.0
     shown = render(factor * relit.XYZ100[:-1], space=SPACE, gamut=gamut, bit_depth=8)
-    counts = np.bincount(where, minlength=len(distinct))
-    return {"codes": shown.codes.astype(np.uint8)[where].reshape(codes.shape),
-            "outside_solid": int(counts[~relit.exact[:-1]].sum()),
-            "out_of_gamut": int(counts[~shown.in_gamut].sum()),
-            "colours": int(len(distinct)), "exposure_factor": factor}
+    return {"codes": shown.codes.astype(np.uint8)[photo.where].reshape(photo.shape),
+            "outside_solid": int(photo.counts[~relit.exact[:-1]].sum()),
+            "out_of_gamut": int(photo.counts[~shown.in_gamut].sum()),
+            "colours": len(photo.colour_codes), "exposure_factor": factor}
 
 
 def _png_base64(codes: np.ndarray) -> str:
@@ -244,6 +266,23 @@ def _png_base64(codes: np.ndarray) -> str:
     buffer = io.BytesIO()
     Image.fromarray(codes, "RGB").save(buffer, "PNG", compress_level=1)
     return base64.b64encode(buffer.getvalue()).decode("ascii")
+
+
+#: The last photos decoded (sha-256 of the file -> codes, size, distinct colours, PNG), so that
+#: relighting the same photo under another light skips decoding, sorting and one PNG encoding.
+_PHOTOS: OrderedDict[bytes, tuple] = OrderedDict()
+_PHOTOS_KEPT = 2
+
+
+def _photo(data: bytes) -> tuple:
+    key = hashlib.sha256(data).digest()
+    if key not in _PHOTOS:
+        codes, size = decode_photo(data)
+        _PHOTOS[key] = (codes, size, _Distinct.of(codes), _png_base64(codes))
+        while len(_PHOTOS) > _PHOTOS_KEPT:
+            _PHOTOS.popitem(last=False)
+    _PHOTOS.move_to_end(key)
+    return _PHOTOS[key]
 
 
 def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer: str,
@@ -278,7 +317,7 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
         ``outside_solid``, ``out_of_range`` (the strategy), ``out_of_gamut``, ``gamut``,
         ``exposure`` and ``exposure_factor`` (see :func:`relight_codes`), ``colours``,
         ``source``, ``adaptation``, ``space``, ``table`` (resolution, nodes, moved nodes) and
-        ``relight_ms`` (the work after decoding, ms).
+        ``relight_ms`` (the work after decoding, ms; a photo sent again is not decoded again).
 
     Raises
     ------
@@ -309,14 +348,14 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
         data = base64.b64decode(image_base64, validate=True)
     except (binascii.Error, ValueError):
         raise _bad("not valid base64 (send the file's bytes base64-encoded)") from None
-    codes, (width, height) = decode_photo(data)
+    codes, (width, height), distinct, taken_png = _photo(data)
     start = time.perf_counter()
     table = photo_table(source, observer, float(step_nm))
     light = Spectrum(compute.grid(float(step_nm)), np.asarray(illuminant_levels, dtype=float))
-    relit = relight_codes(codes, table, light, adaptation, gamut, exposure)
+    relit = _relit(distinct, table, light, adaptation, gamut, exposure)
     answer = {
         "relit_png": _png_base64(relit["codes"]),
-        "taken_png": _png_base64(codes),
+        "taken_png": taken_png,
         "width": int(codes.shape[1]), "height": int(codes.shape[0]),
         "photo_width": int(width), "photo_height": int(height),
         "downscaled": bool(codes.shape[1] != width or codes.shape[0] != height),
