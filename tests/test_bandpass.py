@@ -110,6 +110,7 @@ def test_a_declared_bandpass_equal_to_the_interval_is_accepted(fwhm):
         ({}, {"fwhm_nm": [10.0, 10.0, 12.0]}, r"metadata\['fwhm_nm'\]: a bandpass \(FWHM\) of 12 nm"),
         ({}, {"bandwidth_fwhm_nm": "2"}, r"metadata\['bandwidth_fwhm_nm'\]: a bandpass \(FWHM\) of 2 nm"),
         ({}, {"bandwidth_corrected": "true"}, "already bandwidth-corrected"),
+        ({}, {"bandwidth_corrected": ("false", "TRUE")}, "already bandwidth-corrected"),
         ({"bandpass_nm": "ten"}, {}, "bandpass_nm: expected a bandpass"),
         ({"bandpass_nm": -10.0}, {}, "bandpass_nm: expected positive finite"),
         ({"bandpass_nm": float("nan")}, {}, "bandpass_nm: expected positive finite"),

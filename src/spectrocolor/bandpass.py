@@ -115,7 +115,9 @@ def _stearns_stearns(spectrum: Spectrum, bandpass_nm) -> Spectrum:
             "spectrum: the Stearns & Stearns correction needs a uniform wavelength interval (it assumes a "
             "triangular bandpass equal to the interval); resample the data first"
         )
-    if str(spectrum.metadata.get("bandwidth_corrected", "")).strip().lower() in ("true", "1", "yes"):
+    declared = spectrum.metadata.get("bandwidth_corrected", ())  # TM-27: one value, or one per distribution
+    declared = declared if isinstance(declared, (tuple, list)) else (declared,)
+    if any(str(flag).strip().lower() in ("true", "1", "yes") for flag in declared):
         raise SpectrumError("spectrum: the file declares the data already bandwidth-corrected (BandwidthCorrected)")
     for where, fwhm in _declared_bandpasses(spectrum, bandpass_nm):
         worst = float(fwhm[np.argmax(np.abs(fwhm - step))])
