@@ -99,10 +99,12 @@ def test_all_five_filters_in_one_image_with_both_paths(monkeypatch):
     np.testing.assert_array_equal(decode_png(data), codes)
 
 
-def test_large_images_cross_bands(monkeypatch):
+@pytest.mark.parametrize("band, band_bytes", [(4, 2**25), (1024, 100)])  # by rows; by bytes: 2 rows
+def test_large_images_cross_bands(monkeypatch, band, band_bytes):
     from spectrocolor.upsampling import png_reader
 
-    monkeypatch.setattr(png_reader, "BAND", 4)
+    monkeypatch.setattr(png_reader, "BAND", band)
+    monkeypatch.setattr(png_reader, "BAND_BYTES", band_bytes)
     monkeypatch.setenv("SPECTROCOLOR_NUMBA", "0")
     codes = np.random.default_rng(8).integers(0, 65536, (11, 6, 4), dtype=np.uint16)
     np.testing.assert_array_equal(decode_png(encode(codes, 16, 6, [4, 3, 2, 1, 0, 4, 4, 3, 3, 2, 4])), codes)

@@ -196,14 +196,17 @@ def _chunks(data: bytes, bad):
     return header, b"".join(parts)
 
 
-#: Rows undone together (bounds the skewed work arrays to about 2 (BAND + W) BAND B bytes).
+#: Rows undone together, at most; fewer for wide images, so that a band holds at most
+#: BAND_BYTES of image bytes (the two int16 work arrays of a band take about four times that).
 BAND = 1024
+BAND_BYTES = 2**25
 
 
 def _unfilter(filtered: np.ndarray, filters: np.ndarray) -> np.ndarray:
     """Undo the scanline filters of ``filtered`` (H, W, B) bytes; row ``r`` used ``filters[r]``.
 
-    Done in bands of :data:`BAND` rows, each along its anti-diagonals (:func:`_unfilter_band`),
+    Done in bands of at most :data:`BAND` rows and :data:`BAND_BYTES` bytes, each along its
+    anti-diagonals (:func:`_unfilter_band`),
     or by the compiled kernel (numba, row by row) where it is available.
     """
     from .compiled import kernels
@@ -215,8 +218,9 @@ def _unfilter(filtered: np.ndarray, filters: np.ndarray) -> np.ndarray:
         compiled.unfilter_png(np.ascontiguousarray(filtered), np.ascontiguousarray(filters), out)
         return out
     above = np.zeros((width, depth), dtype=np.int16)  # the row above the image is zero
-    for top in range(0, height, BAND):
-        rows = slice(top, min(top + BAND, height))
+    band = max(1, min(BAND, BAND_BYTES // (width * depth)))
+    for top in range(0, height, band):
+        rows = slice(top, min(top + band, height))
         out[rows] = _unfilter_band(filtered[rows], filters[rows], above)
         above = out[rows.stop - 1].astype(np.int16)
     return out
