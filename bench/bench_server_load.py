@@ -8,6 +8,8 @@ Phases (each bounded by a request count, so the script stops by itself):
    GET /api/options (the body limit must refuse them early; the fifth must not wait);
 4. the largest accepted jobs: a 1 MB CSV import and an evaluation of 4 spectra at 1 nm, and
    parallel imports beyond MAX_PARSERS (answered 429 when the parsers stay busy);
+5. malformed HTTP: MALFORMED_ROUNDS requests that are not HTTP/1.1 (garbage request line, bad
+   chunk size), each on its own connection; every answer must be a JSON 400;
 
 and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
 memory (VmRSS) before and after, with its peak (VmHWM).
@@ -35,6 +37,9 @@ ROUNDS_EACH = 400
 CLIENTS = 4
 HOSTILE_MIB = 50
 PARALLEL_IMPORTS = 6
+MALFORMED_ROUNDS = 500
+MALFORMED = (b"HELLO\r\n\r\n",
+             b"POST /api/evaluate HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\nZZ\r\n")
 
 
 def start_server() -> tuple[subprocess.Popen, int]:
@@ -131,6 +136,20 @@ def hostile_chunked(port: int, results: list) -> None:
     results.append((status, sent))
 
 
+def malformed(port: int, data: bytes) -> tuple[float, int, str]:
+    """Send ``data`` raw on a new connection; (seconds, status, content type) of the answer."""
+    t0 = time.perf_counter()
+    with socket.create_connection(("127.0.0.1", port), timeout=30) as sock:
+        sock.sendall(data)
+        answer = b""
+        while chunk := sock.recv(65536):  # the server closes after a 400
+            answer += chunk
+    head = answer.split(b"\r\n\r\n", 1)[0].decode("latin-1").lower()
+    status = int(head.split()[1]) if head.startswith("http/") else 0
+    match = re.search(r"content-type: *([^\r\n;]+)", head)
+    return time.perf_counter() - t0, status, match.group(1) if match else "none"
+
+
 def main() -> None:
     proc, port = start_server()
     try:
@@ -211,6 +230,14 @@ def main() -> None:
         wall = time.perf_counter() - t0
         report(f"{PARALLEL_IMPORTS} parallel 1 MB imports", lat, statuses, wall)
         report("options during those imports", probe, probe_statuses, wall)
+
+        lat, st = [], collections.Counter()
+        t0 = time.perf_counter()
+        for i in range(MALFORMED_ROUNDS):
+            seconds, status, kind = malformed(port, MALFORMED[i % len(MALFORMED)])
+            lat.append(seconds)
+            st[f"{status} {kind}"] += 1
+        report("malformed HTTP, one per connection", lat, st, time.perf_counter() - t0)
 
         after = memory_mib(proc.pid)
         print(f"RSS before {before['VmRSS']:.0f} MiB, after {after['VmRSS']:.0f} MiB, "

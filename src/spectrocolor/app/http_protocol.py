@@ -64,7 +64,12 @@ class JSONErrorH11Protocol(H11Protocol):
     """
 
     def send_400_response(self, msg: str) -> None:
-        """Answer 400 with the explorer's JSON error body, then close the connection."""
+        """Answer 400 with the explorer's JSON error body, then close the connection.
+
+        A body that turns malformed (a bad chunk size) may arrive while the application is
+        already answering the request; its answer is then dropped, as uvicorn drops the
+        answer to a client that has gone, instead of failing in h11.
+        """
         what = "the request line, a header or the chunked framing is not HTTP/1.1"
         body = bad_request_body(f"{msg.rstrip('.')} ({what})")
         headers = [
@@ -72,6 +77,9 @@ class JSONErrorH11Protocol(H11Protocol):
             (b"content-length", str(len(body)).encode("ascii")),
             (b"connection", b"close"),
         ]
+        cycle = getattr(self, "cycle", None)
+        if cycle is not None and not cycle.response_complete:
+            cycle.disconnected = True  # the application's own answer, if it comes, is dropped
         try:
             for event in (h11.Response(status_code=400, headers=headers, reason=b"Bad Request"),
                           h11.Data(data=body), h11.EndOfMessage()):
