@@ -188,6 +188,8 @@ def plan_conversion(
     else:
         dtype, label = np.dtype(np.float64), output
     channels = 4 if isinstance(masked, str) else 3
+    if channels == 4:
+        label += " with alpha (0 where masked)"
     return ConversionPlan(label, blocks.rgb_block,
                           {"weights": scaled, "options": options}, dtype, adapt_from, channels)
 
