@@ -9,6 +9,8 @@ median / max of the warm ones. Beside it, in the same run and the same process:
 * the **plain NumPy limit** of the same job without spectra: decode the JPEG, codes -> linear
   through a 256-entry table, one 3 x 3 matrix per pixel (a von Kries relight), linear -> codes,
   encode one PNG;
+* the worker's steps timed in this process (decode, distinct colours, the library's relight of
+  them, rendering, PNG encoding);
 * **colour-science**: the same von Kries-type relight with its functions (``cctf_decoding``,
   ``chromatic_adaptation`` Bradford, ``cctf_encoding``) on the decoded photo.
 
@@ -89,6 +91,41 @@ def colour_science(data: bytes) -> float:
     return time.perf_counter() - start
 
 
+def in_process(data: bytes) -> dict:
+    """The worker's steps timed in this process (warm: tables built, kernels compiled)."""
+    import spectrocolor as sc
+    from spectrocolor.app import relight_photo as rp
+    from spectrocolor.display.render import render
+    from spectrocolor.upsampling import relight, rgb_linear_from_image
+
+    light = sc.Spectrum(np.arange(400.0, 701.0, 10.0), a_levels())
+    table = rp.photo_table("D65", "1931", 10.0)
+    rp.prepare()
+    steps = {}
+    start = time.perf_counter()
+    codes, _ = rp.decode_photo(data)
+    steps["decode"] = time.perf_counter() - start
+    packed = codes.reshape(-1, 3).astype(np.uint32)
+    start = time.perf_counter()
+    distinct = np.unique((packed[:, 0] << 16) | (packed[:, 1] << 8) | packed[:, 2])
+    steps["distinct colours (np.unique)"] = time.perf_counter() - start
+    colours = np.stack([(distinct >> 16) & 255, (distinct >> 8) & 255, distinct & 255], -1).astype(np.uint8)
+    linear = rgb_linear_from_image(colours)
+    start = time.perf_counter()
+    relit = relight(table, linear, light)
+    steps["library relight of the distinct colours"] = time.perf_counter() - start
+    start = time.perf_counter()
+    render(relit.XYZ100, space="sRGB", gamut="clip", bit_depth=8)
+    steps["render (gamut clip, encode)"] = time.perf_counter() - start
+    start = time.perf_counter()
+    out = rp.relight_codes(codes, table, light, "none", "clip")
+    steps["relight_codes, all of it"] = time.perf_counter() - start
+    start = time.perf_counter()
+    rp._png_base64(out["codes"])
+    steps["PNG + base64 of the relit picture"] = time.perf_counter() - start
+    return steps
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--size", type=int, default=1000, help="photo side, px (default 1000)")
@@ -111,6 +148,7 @@ def main() -> None:
     finally:
         proc.terminate()
         proc.wait(timeout=20)
+    steps = in_process(data)
     limit = min(numpy_limit(data) for _ in range(3))
     cs = min(colour_science(data) for _ in range(3))
     median = float(np.median(warm))
@@ -120,6 +158,8 @@ def main() -> None:
     print(f"POST /api/relight, warm (same photo, decoded once): median {median * 1e3:.0f} ms, "
           f"max {max(warm) * 1e3:.0f} ms "
           f"(server's relight_ms {answer['relight_ms']:.0f} ms)")
+    for name, seconds in steps.items():
+        print(f"  in process: {name}: {seconds * 1e3:.0f} ms")
     print(f"plain NumPy limit (decode, 3x3 von Kries, encode 1 PNG): {limit * 1e3:.0f} ms "
           f"-> ours / limit {median / limit:.2f}x")
     print(f"colour-science von Kries relight (Bradford), decode + encode: {cs * 1e3:.0f} ms "

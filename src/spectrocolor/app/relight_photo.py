@@ -43,7 +43,7 @@ import numpy as np
 from ..errors import SpectrumError
 
 __all__ = ["SOURCES", "ADAPTATIONS", "DEFAULT_ADAPTATION", "EXPOSURES", "DEFAULT_EXPOSURE", "MAX_SHOWN_SIDE_PX",
-           "MAX_PHOTO_PIXELS", "TABLE_RESOLUTION", "OUT_OF_RANGE", "photo_table", "decode_photo",
+           "MAX_PHOTO_PIXELS", "TABLE_RESOLUTION", "OUT_OF_RANGE", "photo_table", "prepare", "decode_photo",
            "relight_codes", "relight_photo"]
 
 #: Lights a photo may be declared as taken under (the table's illuminant), the default first.
@@ -115,6 +115,31 @@ def photo_table(source: str, observer: str, step_nm: float):
 
     return upsampling_table(SPACE, source, observer, (compute.START_NM, compute.STOP_NM, step_nm),
                             resolution=TABLE_RESOLUTION, measure_excess=False)
+
+
+def prepare(source: str = SOURCES[0], observer: str = "1931", step_nm: float = 10.0) -> int:
+    """Build (or find) the table and relight one colour, so that the first photo is answered quickly.
+
+    The relight also compiles the library's optional numba kernels in this process.
+
+    Parameters
+    ----------
+    source, observer, step_nm
+        As for :func:`photo_table`.
+
+    Returns
+    -------
+    int
+        Nodes of the table.
+
+    Examples
+    --------
+    >>> prepare()
+    4913
+    """
+    table = photo_table(source, observer, float(step_nm))
+    relight_codes(np.full((1, 1, 3), 128, np.uint8), table, "A", "none", "clip")
+    return int(table.resolution ** 3)
 
 
 def _bad(what: str) -> SpectrumError:

@@ -32,7 +32,7 @@ from .relight_photo import (
     EXPOSURES,
     MAX_SHOWN_SIDE_PX,
     SOURCES,
-    photo_table,
+    prepare,
     relight_photo,
 )
 
@@ -112,9 +112,9 @@ class _Workers:
             return self._pool
 
     def warm(self, *args) -> None:
-        """Start building a table in the worker now, without waiting (the first photo is quicker)."""
+        """Start preparing the worker now, without waiting (the first photo is quicker)."""
         try:
-            self._executor().submit(photo_table, *args)
+            self._executor().submit(prepare, *args)
         except BrokenProcessPool:
             self.close(wait=False)
 
