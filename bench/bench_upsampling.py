@@ -148,13 +148,12 @@ def apply_speed(table, size: int) -> None:
         return f"{pixels / timings[name]:10.3g}" if name in timings else "         -"
 
     print("   colours/s      |      numpy |      numba | NumPy limit | compiled limit | "
-          "numba/NumPy limit | numba/compiled limit")
+          "time: numpy/NumPy limit, numba/compiled limit")
     for what in ("spectra", "relight", "coefficients"):
         ratios = ""
         if f"{what} numba" in timings and f"{what} numpy limit" in timings:
-            ratios = (f" | {timings[f'{what} numpy limit'] / timings[f'{what} numba']:8.2f}x faster"
-                      f" | {timings[f'{what} numba'] / timings[f'{what} compiled limit']:8.2f}x "
-                      "slower")
+            ratios = (f" | {timings[f'{what} numpy'] / timings[f'{what} numpy limit']:5.2f}x, "
+                      f"{timings[f'{what} numba'] / timings[f'{what} compiled limit']:5.2f}x")
         print(f"   {what:14s} | {rate(what + ' numpy')} | {rate(what + ' numba')} | "
               f"{rate(what + ' numpy limit')}  | {rate(what + ' compiled limit')}     {ratios}")
     print("   (spectra: 81 float64 samples per colour; relight: colours under A, 3 channels; "
