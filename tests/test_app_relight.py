@@ -136,6 +136,18 @@ def test_an_edited_illuminant_is_the_one_used(client):
     assert white[0] > 3 * max(white[1], white[2]), white
 
 
+@pytest.mark.parametrize("adaptation", ["von kries", "bradford"])
+def test_a_line_light_that_cannot_be_adapted_to_is_one_error(client, adaptation):
+    """A single line at 700 nm: its white has Z = 0, no adaptation transform can reach it."""
+    line = [30.0 if w == 700 else 0.0 for w in WL]
+    image = png(np.full((2, 2, 3), 200))
+    r = client.post("/api/relight", json={"image": image, "illuminant": line,
+                                          "adaptation": adaptation})
+    assert r.status_code == 422 and r.json()["error"].startswith(f"adaptation '{adaptation}'")
+    relit = decoded(relight(client, image, line, adaptation="none")["relit_png"])[0, 0]
+    assert relit[0] > 0 and relit[1] == relit[2] == 0  # unadapted: pure deep red
+
+
 def test_a_large_photo_is_shown_downscaled(client):
     rows = np.linspace(0, 255, 1536).astype(np.uint8)
     photo = np.stack(np.broadcast_arrays(rows[:, None], 128, 255 - rows[:, None]), -1)

@@ -40,7 +40,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import SpectrumError
+from ..errors import ColorimetryError, SpectrumError
 
 __all__ = ["SOURCES", "ADAPTATIONS", "DEFAULT_ADAPTATION", "EXPOSURES", "DEFAULT_EXPOSURE", "MAX_SHOWN_SIDE_PX",
            "MAX_PHOTO_PIXELS", "TABLE_RESOLUTION", "OUT_OF_RANGE", "photo_table", "prepare", "decode_photo",
@@ -348,6 +348,9 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
     ------
     SpectrumError
         For a damaged or unaccepted image, an unknown source or adaptation.
+    ColorimetryError
+        When the light's white cannot be adapted (a single spectral line: some cone response
+        of its white is 0); ``adaptation="none"`` always works.
 
     Examples
     --------
@@ -377,7 +380,10 @@ def relight_photo(image_base64: str, illuminant_levels, step_nm: float, observer
     start = time.perf_counter()
     table = photo_table(source, observer, float(step_nm))
     light = Spectrum(compute.grid(float(step_nm)), np.asarray(illuminant_levels, dtype=float))
-    relit = _relit(distinct, table, light, adaptation, gamut, exposure)
+    try:
+        relit = _relit(distinct, table, light, adaptation, gamut, exposure)
+    except ColorimetryError as exc:  # e.g. a single line: its white has no blue cone response
+        raise ColorimetryError(f"adaptation {adaptation!r} under this illuminant: {exc}") from None
     answer = {
         "relit_png": _png_base64(relit["codes"]),
         "taken_png": taken_png,
