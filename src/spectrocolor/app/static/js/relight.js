@@ -67,12 +67,14 @@ async function relight(body, lightName) {
 function show(r, body, lightName) {
   const adaptation = P.options.adaptations.find(([v]) => v === r.adaptation)[1];
   const size = `${r.width} × ${r.height} px`;
-  $("photo-taken").src = `data:image/png;base64,${r.taken_png}`;
-  $("photo-taken").alt = `${P.name} as taken under ${r.source}, ${size}`;
-  $("photo-relit").src = `data:image/png;base64,${r.relit_png}`;
-  $("photo-relit").alt = `${P.name} relit under ${lightName} (adaptation: ${adaptation}), ${size}`;
-  $("photo-taken-caption").textContent = `As taken (under ${r.source})`;
-  $("photo-relit-caption").textContent = `Under ${lightName}`;
+  // the pictures are made here (none exist before a photo is chosen); text goes in as text
+  const picture = (id, png, alt, caption) => el("figure", {},
+    el("img", {id, src: `data:image/png;base64,${png}`, alt, width: r.width, height: r.height}),
+    el("figcaption", {id: `${id}-caption`}, caption));
+  fill($("photo-figures"),
+    picture("photo-taken", r.taken_png, `${P.name} as taken under ${r.source}, ${size}`, `As taken (under ${r.source})`),
+    picture("photo-relit", r.relit_png, `${P.name} relit under ${lightName} (adaptation: ${adaptation}), ${size}`,
+      `Under ${lightName}`));
   const n = (v) => v.toLocaleString("en-US");
   $("photo-status").textContent = `${n(r.pixels)} pixels (${size}`
     + `${r.downscaled ? `, reduced from ${r.photo_width} × ${r.photo_height}` : ""}): `
