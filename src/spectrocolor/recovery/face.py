@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import qp, zonotope
+from . import certificate, qp, zonotope
 
 #: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
 PLANE_TOLERANCE = 1e-10
@@ -111,6 +111,67 @@ def _strictly_feasible(W, b, lower, upper, rho, free):
     return out
 
 
+def _vertex_on_face(W, b, lower, upper, rho, free):
+    """A feasible point of the face with the free values from a simplex vertex (HiGHS), made
+    exact: values the vertex left at a bound join the working set, the others absorb the
+    rounding. Returns (rho, working set) or (None, None)."""
+    F = np.flatnonzero(free)
+    target = b - np.delete(rho, F) @ np.delete(W, F, axis=0)
+    got = qp._vertex_start(W[F], target, lower, upper)
+    if got is None:
+        return None, None
+    out, working = rho.copy(), ~free
+    out[F] = got[0]
+    working[F] = got[1]
+    return out, working
+
+
+def polish(W, Q, b, rho, mu, lower, upper, steps=2):
+    """Iterative refinement of a solution's free part with residuals in extended precision.
+
+    On a face the free generators are nearly dependent and the multipliers large, so
+    refinement with residuals in working precision stalls a few times above the
+    certificate's rounding level. Here the residuals of stationarity on the free samples,
+    ``(Q ρ − W μ)_F``, and of the colour, ``b − ρ @ W``, are summed in ``np.longdouble``
+    (64-bit significand on x86), and the correction solves the KKT system of the free samples
+    in the least-squares sense (the normals of a face are not reachable from its free
+    generators; their multiplier components stay as they are). Values at a bound stay there
+    exactly; a correction that would move a free value past a bound is not taken, and the
+    iterate with the smallest certificate ratio is returned (refinement of an ill-conditioned
+    system can also make things worse).
+
+    Returns rho, mu (new arrays).
+    """
+    F = np.flatnonzero((rho > lower) & (rho < upper))
+    if F.size == 0:
+        return rho, mu
+    m = W.shape[1]
+    Wl, Ql, bl = W.astype(np.longdouble), Q.astype(np.longdouble), b.astype(np.longdouble)
+    kkt = np.zeros((F.size + m, F.size + m))
+    kkt[:F.size, :F.size] = Q[np.ix_(F, F)]
+    kkt[:F.size, F.size:] = -W[F]
+    kkt[F.size:, :F.size] = W[F].T
+    def ratio(rho, mu):
+        return float(certificate.certify(W, 2.0 / Q[0, 0], b[None], rho[None], mu[None], lower,
+                                         upper, [True]).rounding_ratio[0])
+
+    best = (ratio(rho, mu), rho, mu)
+    rho, mu = rho.copy(), mu.copy()
+    for _ in range(steps):
+        r_l, m_l = rho.astype(np.longdouble), mu.astype(np.longdouble)
+        stationarity = (Ql[F] @ r_l - Wl[F] @ m_l)
+        colour = bl - r_l @ Wl
+        rhs = np.concatenate([-stationarity, colour]).astype(float)
+        step = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
+        new = rho[F] + step[:F.size]
+        if np.any(new <= lower) or np.any(new >= upper):
+            break
+        rho, mu = rho.copy(), mu + step[F.size:]
+        rho[F] = new
+        best = min(best, (ratio(rho, mu), rho, mu), key=lambda t: t[0])
+    return best[1], best[2]
+
+
 def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
     """Multipliers whose bound multipliers have the right signs with the widest margin.
 
@@ -120,7 +181,8 @@ def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
     multiplier of an inner level once an outer level's large multiple is added. A linear
     programme instead maximises the smallest margin ``σ_k λ_k / |w_k|`` over a box ten times
     the size of the level-by-level solution (``σ = +1`` at ``lower``, ``-1`` at ``upper``);
-    the certificate then checks the result. Returns None where no positive margin exists.
+    the certificate then checks the result (a margin of zero is a degenerate bound whose
+    multiplier vanishes, rounding decides its sign). Returns None where the LP fails.
     """
     from scipy.optimize import linprog
 
@@ -148,7 +210,7 @@ def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
     A = np.concatenate([sigma[:, None] * a, size[:, None]], axis=1)
     res = linprog(cost, A_ub=A, b_ub=sigma * c, bounds=[(-box, box)] * d + [(None, box)],
                   method="highs")
-    if res.status != 0 or res.x[-1] <= 0.0:
+    if res.status != 0:
         return None
     return base + N @ res.x[:d]
 
@@ -202,11 +264,15 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
         mu = np.zeros(m)
     elif free.any():
         Wb = W @ basis
-        start = _strictly_feasible(Wb, b @ basis, lower, upper, rho, free)
+        start, working = _strictly_feasible(Wb, b @ basis, lower, upper, rho, free), ~free
+        if start is None:
+            # the colour is on the boundary of the face's zonotope to rounding (below the
+            # facet test's reach): start from a vertex of it, its bounds in the working set
+            start, working = _vertex_on_face(Wb, b @ basis, lower, upper, rho, free)
         if start is None:
             return failed
         rho, mu_b, _, _, ok = qp.primal_active_set(Q, Wb, b @ basis, lower, upper, start,
-                                                    ~free, pinned=~free)
+                                                    working, pinned=~free)
         if not ok:
             return failed
         mu = basis @ mu_b
@@ -222,6 +288,7 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
         mu = _deepest_multipliers(W, Q, rho, mu, basis, ~free, lower)
         if mu is None:
             return failed
+    rho, mu = polish(W, Q, b, rho, mu, lower, upper)
     lam = Q @ rho - W @ mu
     lam[free & (rho > lower) & (rho < upper)] = 0.0
     return rho, mu, lam, True

@@ -515,12 +515,27 @@ def _vertex_start(W, b, lower, upper):
     x = np.clip(res.x, lower, upper)
     active = (x == lower) | (x == upper)
     F = np.flatnonzero(~active)
-    if F.size < W.shape[1]:
+    if F.size:
+        x[F] += np.linalg.lstsq(W[F].T, b - x @ W, rcond=None)[0]
+    if not (np.all((x >= lower) & (x <= upper)) and _exact(W, b, x)):
         return None
-    x[F] += np.linalg.lstsq(W[F].T, b - x @ W, rcond=None)[0]
-    if np.all((x >= lower) & (x <= upper)) and _exact(W, b, x):
-        return x, active
-    return None
+    # a degenerate vertex has fewer than m values off the bounds: values at a bound join the
+    # free set (staying where they are) until the free weights have rank m, as the primal
+    # active-set method needs
+    def rank(free):
+        sv = np.linalg.svd(W[free], compute_uv=False) if free.any() else np.zeros(1)
+        return int(np.count_nonzero(sv > 1e-12 * max(sv[0], np.finfo(float).tiny)))
+
+    m = W.shape[1]
+    have = rank(~active)
+    for k in np.flatnonzero(active):
+        if have >= m:
+            break
+        trial = ~active
+        trial[k] = True
+        if rank(trial) > have:
+            active[k], have = False, have + 1
+    return (x, active) if have >= m else None
 
 
 def _keeps_rank(W, active, index):

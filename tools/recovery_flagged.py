@@ -1,0 +1,74 @@
+"""Count the exact boundary colours that the smoothest-reflectance solver leaves flagged.
+
+Usage: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python tools/recovery_flagged.py``
+
+The sets are those of issue 10: every reflectance with at most two 0/1 transitions (blocks and
+their complements: colours on the boundary of the object-colour solid, many on degenerate
+facets) on 380–780 nm at 10 nm under D65 and A and at 5 nm under D65; the single-sample spike
+and notch at either end on 380–780/20 nm under E and D65; and, with ``bounds="nonnegative"``
+on 380–780/5 nm, every single-wavelength line and every reflectance zero below a cut.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+import spectrocolor as sc
+from spectrocolor.recovery.smoothest import smoothest_reflectance
+
+
+def blocks(K: int) -> np.ndarray:
+    """Every 0/1 spectrum with at most two transitions, except black and white."""
+    out = []
+    for i in range(K):
+        for j in range(i, K):
+            r = np.zeros(K)
+            r[i:j + 1] = 1.0
+            out += [r, 1.0 - r]
+    out = np.unique(np.array(out), axis=0)
+    return out[(out.sum(axis=1) > 0) & (out.sum(axis=1) < K)]
+
+
+def ends(K: int) -> np.ndarray:
+    R = np.zeros((4, K))
+    R[0, 0] = R[1, -1] = 1.0
+    R[2], R[3] = 1.0 - R[0], 1.0 - R[1]
+    return R
+
+
+def lines_and_cuts(K: int) -> np.ndarray:
+    eye = np.eye(K)
+    cuts = np.tril(np.ones((K, K)))[1:]  # zero below sample k, one from k on
+    return np.concatenate([eye, cuts[:, ::-1]])
+
+
+def count(name, grid, illuminant, R, bounds="unit"):
+    W = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant=illuminant))
+    t = time.perf_counter()
+    r = smoothest_reflectance(R @ W, illuminant=illuminant, wavelengths=grid, bounds=bounds)
+    seconds = time.perf_counter() - t
+    flagged = ~r.certificate.converged
+    methods = {str(m): int(np.count_nonzero(flagged & (r.method == m))) for m in np.unique(r.method)}
+    print(f"| {name} | {flagged.sum()} of {len(R)} | {np.count_nonzero(~r.feasible)} | "
+          f"{ {k: v for k, v in methods.items() if v} } | {seconds:.1f} s |")
+    return r
+
+
+def main():
+    print("| set | flagged | infeasible | flagged by method | time |")
+    print("| --- | --- | --- | --- | --- |")
+    for grid, ill in [((380.0, 780.0, 10.0), "D65"), ((380.0, 780.0, 10.0), "A"),
+                      ((400.0, 700.0, 10.0), "E"), ((400.0, 700.0, 10.0), "D65"),
+                      ((380.0, 780.0, 5.0), "D65")]:
+        K = len(sc.wavelength_grid(*grid))
+        count(f"blocks {grid[0]:g}–{grid[1]:g}/{grid[2]:g} {ill}", grid, ill, blocks(K))
+    for ill in ("E", "D65"):
+        count(f"end spikes/notches 380–780/20 {ill}", (380.0, 780.0, 20.0), ill, ends(21))
+    count("lines and cuts 380–780/5 D65, nonnegative", (380.0, 780.0, 5.0), "D65",
+          lines_and_cuts(81), bounds="nonnegative")
+
+
+if __name__ == "__main__":
+    main()
