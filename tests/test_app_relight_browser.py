@@ -190,6 +190,23 @@ def test_keyboard_axe_and_untrusted_names(browser, user_server):
         context.close()
 
 
+def test_a_file_over_the_upload_limit_is_reduced_in_the_browser_first(browser, user_server):
+    noise = np.random.default_rng(3).integers(0, 256, (1300, 1500, 3), dtype=np.uint8)
+    buffer = io.BytesIO()
+    Image.fromarray(noise, "RGB").save(buffer, "PNG")
+    assert len(buffer.getvalue()) > 1_400_000  # over the server's photo limit
+    context, page = open_setting4(browser, user_server)
+    try:
+        photo = upload(page, {"name": "big.png", "mimeType": "image/png", "buffer": buffer.getvalue()})
+        assert page.inner_text("#photo-name") == "big.png (reduced in the browser)"
+        answer = photo["answer"]
+        assert (answer["photo_width"], answer["photo_height"]) == (1024, 887)  # 1500 x 1300 at 1024
+        assert (answer["width"], answer["height"], answer["downscaled"]) == (1024, 887, False)
+        assert not page.errors, page.errors
+    finally:
+        context.close()
+
+
 @pytest.mark.parametrize("size", [PHONE, TABLET], ids=["phone", "tablet"])
 def test_phone_and_tablet_show_both_pictures_within_the_screen(browser, user_server, size):
     context, page = open_setting4(browser, user_server, size, touch=True)
