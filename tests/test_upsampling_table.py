@@ -123,3 +123,15 @@ def test_bad_resolution_is_refused_by_name(resolution):
 def test_unknown_space_is_refused():
     with pytest.raises(sc.ColorimetryError, match="space"):
         upsampling_table("not a space", resolution=2)
+
+
+@pytest.mark.parametrize("illuminant", ["D65", "A", "F11"])
+def test_the_white_corner_is_the_perfect_reflector_for_every_built_in_space(illuminant):
+    """t = (1, 1, 1) is the solid's vertex: an ulp of rounding in the colour map must not move it."""
+    from spectrocolor.display.spaces import RGB_SPACES
+
+    for space in RGB_SPACES:
+        table = upsampling_table(space, illuminant, resolution=2, measure_excess=False)
+        assert table.node_status[-1, -1, -1] == 0, space
+        assert np.all(table.reflectance[-1, -1, -1] == 1.0), space
+        np.testing.assert_array_equal(table.node_XYZ100[-1, -1, -1], table.weights.sum(axis=0))

@@ -390,6 +390,9 @@ def upsampling_table(space="sRGB", illuminant="D65", observer="1931",
     W = np.asarray(weights(grid, observer=observer, illuminant=illuminant), dtype=float)
     matrix, space_name = colour_map(space, W)
     target = t @ matrix.T
+    # The white corner is the perfect reflector by construction, a vertex of the object-colour
+    # solid: the rounding of t @ matrix.T can put it an ulp outside, so it is set exactly.
+    target[np.all(t == 1.0, axis=-1)] = W.sum(axis=0)
     rho, mu, result, ok = _solve_checked(target, illuminant, observer, wavelengths)
     R = np.asarray(result.roughness, dtype=float).copy()
     ok &= verify_reflectances(rho, target, W)
