@@ -187,12 +187,27 @@ def _png_header_only(width: int, height: int) -> str:
     return base64.b64encode(b"\x89PNG\r\n\x1a\n" + chunk + end).decode()
 
 
-def _png16() -> str:
-    buffer = io.BytesIO()
-    Image.fromarray(np.zeros((2, 2), np.uint16)).save(buffer, "PNG")  # grey, 16 bits
-    raw = bytearray(buffer.getvalue())
-    assert raw[24] == 16
-    return base64.b64encode(bytes(raw)).decode()
+def test_a_16_bit_png_is_read_whole_and_rounded_to_the_pages_8_bits(tmp_path):
+    """Pillow would cut 16-bit RGB to 8 bits by dropping the low byte; the photo reader decodes
+    all 16 bits and rounds (c / 257), so 0x8100 (128.498 × 257) becomes 128, not 0x81 = 129."""
+    from spectrocolor.pictures import write_image
+
+    codes16 = np.array([[[0x8100, 0x0000, 0xFFFF], [0x0101 * 200, 0x807F, 0x0081]]], np.uint16)
+    data = write_image(tmp_path / "photo16.png", codes16).read_bytes()
+    assert data[24] == 16
+    codes, size = relight_photo.decode_photo(data)
+    assert size == (2, 1)
+    assert codes.tolist() == [[[128, 0, 255], [200, 128, 1]]]
+    grey = io.BytesIO()
+    Image.fromarray(np.full((2, 2), 0x8100, np.uint16)).save(grey, "PNG")  # grey, 16 bits
+    assert relight_photo.decode_photo(grey.getvalue())[0].tolist() == [[[128] * 3] * 2] * 2
+
+
+def _png16_header_only(width: int, height: int) -> str:
+    header = struct.pack(">IIBBBBB", width, height, 16, 2, 0, 0, 0)
+    ihdr = b"IHDR" + header
+    raw = b"\x89PNG\r\n\x1a\n" + struct.pack(">I", 13) + ihdr + struct.pack(">I", zlib.crc32(ihdr))
+    return base64.b64encode(raw).decode()
 
 
 @pytest.mark.parametrize(("body", "status", "words"), [
@@ -201,7 +216,8 @@ def _png16() -> str:
     ({"image": _png_header_only(100_000, 100_000)}, 422, "at most 40000000"),
     ({"image": _png_header_only(8000, 6000)}, 422, "at most 40000000"),
     ({"image": _png_header_only(64, 64)}, 422, "cannot be read"),
-    ({"image": _png16()}, 422, "16-bit PNG"),
+    ({"image": _png16_header_only(100_000, 100_000)}, 422, "at most 40000000"),
+    ({"image": _png16_header_only(64, 64)}, 422, "the upload"),
     ({"illuminant": [30.0] * 30}, 422, "31"),
     ({"illuminant": [0.0] * 31}, 422, "dark everywhere"),
     ({"illuminant": [31.0] * 31}, 422, "illuminant"),

@@ -142,3 +142,23 @@ def test_tristimulus_of_a_table_starting_below_the_observer_says_how_to_restrict
         sc.tristimulus(sc.illuminant("D65"))
     XYZ = sc.tristimulus(sc.illuminant("D65").restrict(360, 830))
     assert XYZ[0] / XYZ[1] == pytest.approx(0.9505, abs=5e-4)
+
+
+def test_every_command_has_the_same_shared_defaults():
+    """One voice: wherever a command takes --illuminant, --observer or --gamut, its default is the
+    library's (D65, CIE 1931 2°, desaturate), so no command surprises with its own."""
+    import argparse
+
+    from spectrocolor.cli import build_parser
+    from spectrocolor.display.gamut import DEFAULT_GAMUT
+
+    shared = {"illuminant": "D65", "observer": "1931", "gamut": DEFAULT_GAMUT}
+    parser = build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    seen = {}
+    for name, command in commands.items():
+        for action in command._actions:
+            if action.dest in shared:
+                seen.setdefault(action.dest, []).append(name)
+                assert action.default == shared[action.dest], (name, action.dest, action.default)
+    assert {"image", "render", "relight"} <= set(seen["gamut"])

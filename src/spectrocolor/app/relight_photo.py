@@ -146,6 +146,24 @@ def _bad(what: str) -> SpectrumError:
     return SpectrumError(f"image: {what}")
 
 
+def _open_photo(data: bytes):
+    """A Pillow image of the photo; a 16-bit PNG is decoded by the library's own reader (Pillow
+    would cut it to 8 bits) and rounded to the 8-bit codes the page shows."""
+    from PIL import Image
+
+    if not (data[:8] == _PNG and len(data) > 24 and data[24] == 16):
+        return Image.open(io.BytesIO(data), formats=("PNG", "JPEG"))
+    width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+    if width * height > MAX_PHOTO_PIXELS:  # before any pixel is decoded
+        raise _bad(f"{width} x {height} pixels; at most {MAX_PHOTO_PIXELS} are read")
+    from ..upsampling.png_reader import decode_png
+
+    codes16 = decode_png(data, "the upload")
+    colour = codes16[..., :1].repeat(3, axis=-1) if codes16.shape[-1] < 3 else codes16[..., :3]
+    rgb8 = np.round(colour.astype(np.float64) / 257.0).astype(np.uint8)
+    return Image.fromarray(rgb8, "RGB")
+
+
 def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
     """8-bit RGB codes of a PNG or JPEG, downscaled to :data:`MAX_SHOWN_SIDE_PX` at most.
 
@@ -164,8 +182,8 @@ def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
     Raises
     ------
     SpectrumError
-        For anything but an 8-bit PNG or a JPEG, a damaged file, or more than
-        :data:`MAX_PHOTO_PIXELS` pixels.
+        For anything but a PNG (8 or 16 bits; 16-bit codes are rounded to 8 bits, the page's
+        depth) or a JPEG, a damaged file, or more than :data:`MAX_PHOTO_PIXELS` pixels.
 
     Examples
     --------
@@ -181,10 +199,8 @@ def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
 
     if data[:8] != _PNG and data[:3] != _JPEG:
         raise _bad("not a PNG or JPEG file (accepted: .png, .jpg)")
-    if data[:8] == _PNG and len(data) > 24 and data[24] == 16:
-        raise _bad("16-bit PNG is not read (it would be cut to 8 bits); save it as an 8-bit PNG")
     try:
-        with Image.open(io.BytesIO(data), formats=("PNG", "JPEG")) as image:
+        with _open_photo(data) as image:
             width, height = image.size
             if width * height > MAX_PHOTO_PIXELS:
                 raise _bad(f"{width} x {height} pixels; at most {MAX_PHOTO_PIXELS} are read")

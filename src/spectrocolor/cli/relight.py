@@ -15,10 +15,10 @@ from pathlib import Path
 import numpy as np
 
 from ..display.adaptation import ADAPTATION_METHODS
-from ..display.gamut import GAMUT_STRATEGIES
 from ..upsampling.apply import OUT_OF_RANGE_STRATEGIES
 from . import UserError
 from .files import add_force, check_files
+from .options import add_gamut
 
 _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 #: NaN spectra cannot be displayed, so the command offers the strategies that give colours.
@@ -60,8 +60,7 @@ def register(subparsers) -> None:
     p.add_argument("--out-of-range", choices=_OUT_OF_RANGE, default="toward-grey",
                    help="colours the table cannot reproduce exactly (default toward-grey): "
                    + OUT_OF_RANGE_STRATEGIES.help())
-    p.add_argument("--gamut", choices=tuple(GAMUT_STRATEGIES), default="clip",
-                   help="relit colours outside the display gamut (default clip)")
+    add_gamut(p)
     p.add_argument("--bit-depth", type=int, choices=(8, 16), default=8,
                    help="PNG bits per channel (default 8)")
     add_force(p)
