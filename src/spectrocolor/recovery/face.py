@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import certificate, qp, zonotope
+from . import qp, zonotope
 
 #: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
 PLANE_TOLERANCE = 1e-10
@@ -38,7 +38,8 @@ def _normals(G: np.ndarray) -> np.ndarray:
         n = np.stack([-G[:, 1], G[:, 0]], axis=1)
     else:
         i, j = np.triu_indices(len(G), 1)
-        n = np.cross(G[i], G[j])
+        unit, norm = zonotope.unit_cross(G[i], G[j])
+        n = unit * norm[:, None]
     norm = np.linalg.norm(n, axis=1)
     n = n[norm > 1e-12 * max(norm.max(initial=0.0), np.finfo(float).tiny)]
     n = n / np.linalg.norm(n, axis=1, keepdims=True)
@@ -124,52 +125,6 @@ def _vertex_on_face(W, b, lower, upper, rho, free):
     out[F] = got[0]
     working[F] = got[1]
     return out, working
-
-
-def polish(W, Q, b, rho, mu, lower, upper, steps=2):
-    """Iterative refinement of a solution's free part with residuals in extended precision.
-
-    On a face the free generators are nearly dependent and the multipliers large, so
-    refinement with residuals in working precision stalls a few times above the
-    certificate's rounding level. Here the residuals of stationarity on the free samples,
-    ``(Q ρ − W μ)_F``, and of the colour, ``b − ρ @ W``, are summed in ``np.longdouble``
-    (64-bit significand on x86), and the correction solves the KKT system of the free samples
-    in the least-squares sense (the normals of a face are not reachable from its free
-    generators; their multiplier components stay as they are). Values at a bound stay there
-    exactly; a correction that would move a free value past a bound is not taken, and the
-    iterate with the smallest certificate ratio is returned (refinement of an ill-conditioned
-    system can also make things worse).
-
-    Returns rho, mu (new arrays).
-    """
-    F = np.flatnonzero((rho > lower) & (rho < upper))
-    if F.size == 0:
-        return rho, mu
-    m = W.shape[1]
-    Wl, Ql, bl = W.astype(np.longdouble), Q.astype(np.longdouble), b.astype(np.longdouble)
-    kkt = np.zeros((F.size + m, F.size + m))
-    kkt[:F.size, :F.size] = Q[np.ix_(F, F)]
-    kkt[:F.size, F.size:] = -W[F]
-    kkt[F.size:, :F.size] = W[F].T
-    def ratio(rho, mu):
-        return float(certificate.certify(W, 2.0 / Q[0, 0], b[None], rho[None], mu[None], lower,
-                                         upper, [True]).rounding_ratio[0])
-
-    best = (ratio(rho, mu), rho, mu)
-    rho, mu = rho.copy(), mu.copy()
-    for _ in range(steps):
-        r_l, m_l = rho.astype(np.longdouble), mu.astype(np.longdouble)
-        stationarity = (Ql[F] @ r_l - Wl[F] @ m_l)
-        colour = bl - r_l @ Wl
-        rhs = np.concatenate([-stationarity, colour]).astype(float)
-        step = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
-        new = rho[F] + step[:F.size]
-        if np.any(new <= lower) or np.any(new >= upper):
-            break
-        rho, mu = rho.copy(), mu + step[F.size:]
-        rho[F] = new
-        best = min(best, (ratio(rho, mu), rho, mu), key=lambda t: t[0])
-    return best[1], best[2]
 
 
 def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
@@ -288,7 +243,7 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
         mu = _deepest_multipliers(W, Q, rho, mu, basis, ~free, lower)
         if mu is None:
             return failed
-    rho, mu = polish(W, Q, b, rho, mu, lower, upper)
+    rho, mu = qp.polish(W, Q, b, rho, mu, lower, upper)
     lam = Q @ rho - W @ mu
     lam[free & (rho > lower) & (rho < upper)] = 0.0
     return rho, mu, lam, True

@@ -415,10 +415,58 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
             rho[i], mu[i], lam[i] = np.nan, np.nan, np.nan
             continue
         r, mu_i, lm, it, ok = primal_active_set(Q, prob.W, b[i], lower, upper, *start)
+        if ok:
+            r, mu_i = polish(prob.W, Q, b[i], r, mu_i, lower, upper)
         rho[i], mu[i], lam[i] = r, mu_i, lm
         iterations[i] += it
         converged[i] = ok
     return Solution(rho, mu, lam, iterations, converged, method)
+
+
+def polish(W, Q, b, rho, mu, lower, upper, steps=2):
+    """Iterative refinement of a solution's free part with residuals in extended precision.
+
+    On a face the free generators are nearly dependent and the multipliers large, so
+    refinement with residuals in working precision stalls a few times above the
+    certificate's rounding level. Here the residuals of stationarity on the free samples,
+    ``(Q ρ − W μ)_F``, and of the colour, ``b − ρ @ W``, are summed in ``np.longdouble``
+    (64-bit significand on x86), and the correction solves the KKT system of the free samples
+    in the least-squares sense (the normals of a face are not reachable from its free
+    generators; their multiplier components stay as they are). Values at a bound stay there
+    exactly; a correction that would move a free value past a bound is not taken, and the
+    iterate with the smallest certificate ratio is returned (refinement of an ill-conditioned
+    system can also make things worse).
+
+    Returns rho, mu (new arrays).
+    """
+    F = np.flatnonzero((rho > lower) & (rho < upper))
+    if F.size == 0:
+        return rho, mu
+    m = W.shape[1]
+    Wl, Ql, bl = W.astype(np.longdouble), Q.astype(np.longdouble), b.astype(np.longdouble)
+    kkt = np.zeros((F.size + m, F.size + m))
+    kkt[:F.size, :F.size] = Q[np.ix_(F, F)]
+    kkt[:F.size, F.size:] = -W[F]
+    kkt[F.size:, :F.size] = W[F].T
+    def ratio(rho, mu):
+        return float(certificate.certify(W, 2.0 / Q[0, 0], b[None], rho[None], mu[None], lower,
+                                         upper, [True]).rounding_ratio[0])
+
+    best = (ratio(rho, mu), rho, mu)
+    rho, mu = rho.copy(), mu.copy()
+    for _ in range(steps):
+        r_l, m_l = rho.astype(np.longdouble), mu.astype(np.longdouble)
+        stationarity = (Ql[F] @ r_l - Wl[F] @ m_l)
+        colour = bl - r_l @ Wl
+        rhs = np.concatenate([-stationarity, colour]).astype(float)
+        step = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
+        new = rho[F] + step[:F.size]
+        if np.any(new <= lower) or np.any(new >= upper):
+            break
+        rho, mu = rho.copy(), mu + step[F.size:]
+        rho[F] = new
+        best = min(best, (ratio(rho, mu), rho, mu), key=lambda t: t[0])
+    return best[1], best[2]
 
 
 def _equality_qp(Q, W, b, rho, active):
@@ -502,26 +550,44 @@ def _exact(W, b, rho):
 
 
 def _vertex_start(W, b, lower, upper):
-    """A feasible vertex from the dual simplex method (HiGHS), made exact: the values the
-    simplex left at a bound stay there (working set), the others absorb the rounding."""
+    """A feasible point, exactly: a vertex from the dual simplex method (HiGHS) or, where its
+    feasibility tolerance is too coarse (colours 1e-12 of the solid's size from its boundary,
+    where the feasible set is a sliver), the bounded least-squares point of the exact active-set
+    method BVLS. Values at a bound stay there (working set), the others absorb the rounding."""
+    for point in (_simplex_point, _bvls_point):
+        x = point(W, b, lower, upper)
+        if x is None:
+            continue
+        x = np.clip(x, lower, upper)
+        active = (x == lower) | (x == upper)
+        F = np.flatnonzero(~active)
+        if F.size:
+            x[F] += np.linalg.lstsq(W[F].T, b - x @ W, rcond=None)[0]
+        if np.all((x >= lower) & (x <= upper)) and _exact(W, b, x):
+            return _with_rank(W, x, active)
+    return None
+
+
+def _simplex_point(W, b, lower, upper):
     from scipy.optimize import linprog
 
-    K = W.shape[0]
-    res = linprog(np.zeros(K), A_eq=W.T, b_eq=b,
-                  bounds=[(lower, None if not np.isfinite(upper) else upper)] * K,
+    res = linprog(np.zeros(W.shape[0]), A_eq=W.T, b_eq=b,
+                  bounds=[(lower, None if not np.isfinite(upper) else upper)] * W.shape[0],
                   method="highs-ds", options={"primal_feasibility_tolerance": 1e-10})
-    if res.status != 0:
-        return None
-    x = np.clip(res.x, lower, upper)
-    active = (x == lower) | (x == upper)
-    F = np.flatnonzero(~active)
-    if F.size:
-        x[F] += np.linalg.lstsq(W[F].T, b - x @ W, rcond=None)[0]
-    if not (np.all((x >= lower) & (x <= upper)) and _exact(W, b, x)):
-        return None
-    # a degenerate vertex has fewer than m values off the bounds: values at a bound join the
-    # free set (staying where they are) until the free weights have rank m, as the primal
-    # active-set method needs
+    return res.x if res.status == 0 else None
+
+
+def _bvls_point(W, b, lower, upper):
+    from scipy.optimize import lsq_linear
+
+    res = lsq_linear(W.T, b, bounds=(lower, upper), method="bvls", tol=1e-15)
+    return res.x if res.status >= 0 else None
+
+
+def _with_rank(W, x, active):
+    """``(x, active)`` with values at a bound freed (staying where they are) until the free
+    weights have rank m, as the primal active-set method needs (a degenerate vertex has fewer
+    than m values off the bounds); None if no such set exists."""
     def rank(free):
         sv = np.linalg.svd(W[free], compute_uv=False) if free.any() else np.zeros(1)
         return int(np.count_nonzero(sv > 1e-12 * max(sv[0], np.finfo(float).tiny)))

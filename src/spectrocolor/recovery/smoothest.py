@@ -113,13 +113,27 @@ def _boundary_solutions(setup: Setup, b: np.ndarray, lower: float, upper: float,
 
 
 def _face_or_flag(W, Q, b, lower, upper, facet_tolerance):
-    """One colour's face solution; a numerical breakdown on one degenerate colour is that
-    colour's failure (flagged, NaN), never the batch's."""
+    """One colour's face solution, or failing that the dense primal active-set method from an
+    exact feasible start (a colour within rounding of the boundary whose face the facet test
+    could not pin down); a numerical breakdown on one degenerate colour is that colour's
+    failure (flagged, NaN), never the batch's."""
+    K, m = W.shape
+    failed = np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False
     try:
-        return face.face_solution(W, Q, b, lower, upper, facet_tolerance)
+        got = face.face_solution(W, Q, b, lower, upper, facet_tolerance)
+        if got[3] and certify(W, 2.0 / Q[0, 0], b[None], got[0][None], got[1][None], lower,
+                              upper, [True]).converged[0]:
+            return got
+        start = qp._vertex_start(W, b, lower, upper)
+        if start is None:
+            return got
+        rho, mu, lam, _, ok = qp.primal_active_set(Q, W, b, lower, upper, *start)
+        if not ok:
+            return got
+        rho, mu = qp.polish(W, Q, b, rho, mu, lower, upper)
+        return rho, mu, lam, True
     except (np.linalg.LinAlgError, ValueError, FloatingPointError):
-        K, m = W.shape
-        return np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False
+        return failed
 
 
 def smoothest_reflectance(
@@ -251,7 +265,8 @@ def _solve_scaled(setup: Setup, b: np.ndarray):
             np.ldexp(cert.primal_residual, e), cert.bound_violation,
             np.ldexp(cert.multiplier_sign_violation, e), np.ldexp(cert.stationarity, e),
             cert.rounding_ratio, cert.converged & exact)
-        distance = np.ldexp(distance, e)
+        # an outside colour keeps a positive distance even where it underflows
+        distance = np.where(feasible, 0.0, np.maximum(np.ldexp(distance, e), np.nextafter(0.0, 1.0)))
     return rho_out, mu_out, feasible, distance, method, certificate
 
 

@@ -28,15 +28,31 @@ class Facets:
     pairs: np.ndarray  # (F, 2) generator indices spanning each facet
 
 
+def unit_cross(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit vectors along ``a × b`` (rows; 0 where ``a × b = 0``) and ``|a × b|``, formed in
+    extended precision.
+
+    Two nearly parallel generators (the red end of the spectrum, at an angle θ of 1e-4 or
+    less) have a cross product whose float64 rounding turns the normal by about ε/θ, and the
+    generators then miss their own facet plane by that much: a boundary colour looks 1e-11
+    inside the solid. In ``np.longdouble`` (64-bit significand on x86) the products of float64
+    entries are exact and the difference is rounded once, so the normal, rounded to float64 at
+    the end, is within a few ε of the exact one whatever θ.
+    """
+    a, b = a.astype(np.longdouble), b.astype(np.longdouble)
+    n = np.cross(a, b)
+    norm = np.sqrt((n * n).sum(axis=-1))
+    unit = (n / np.where(norm > 0, norm, 1)[..., None]).astype(float)  # 0 for parallel rows
+    return unit, norm.astype(float)
+
+
 def _pair_normals(W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     K = W.shape[0]
     i, j = np.triu_indices(K, 1)
-    n = np.cross(W[i], W[j])
-    norm = np.linalg.norm(n, axis=1)
+    n, norm = unit_cross(W[i], W[j])
     scale = np.linalg.norm(W[i], axis=1) * np.linalg.norm(W[j], axis=1)
     keep = norm > 1e-12 * np.maximum(scale, np.finfo(float).tiny)
-    n = n[keep] / norm[keep, None]
-    return n, np.stack([i[keep], j[keep]], axis=1)
+    return n[keep], np.stack([i[keep], j[keep]], axis=1)
 
 
 def _blocked(normals: np.ndarray, W: np.ndarray, reduce) -> np.ndarray:
