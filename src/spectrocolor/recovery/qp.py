@@ -435,9 +435,43 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
     generators; their multiplier components stay as they are). Values at a bound stay there
     exactly; a correction that would move a free value past a bound is not taken, and the
     iterate with the smallest certificate ratio is returned (refinement of an ill-conditioned
-    system can also make things worse).
+    system can also make things worse). Where ``np.longdouble`` is float64 (some platforms)
+    this is plain refinement, and the certificate still decides.
 
-    Returns rho, mu (new arrays).
+    Parameters
+    ----------
+    W : numpy.ndarray, shape (K, m)
+        Tristimulus weights (XYZ100 per unit reflectance).
+    Q : numpy.ndarray, shape (K, K)
+        Hessian of the roughness, nm⁻¹ (:meth:`Problem.hessian_dense`).
+    b : numpy.ndarray, shape (m,)
+        The colour, XYZ100.
+    rho, mu : numpy.ndarray, shapes (K,) and (m,)
+        A solution (reflectance factors within ``[lower, upper]``) and its multipliers.
+    lower, upper : float
+        The bounds (``upper`` may be ``inf``).
+    steps : int, default 2
+        Refinement steps.
+
+    Returns
+    -------
+    rho, mu : numpy.ndarray
+        New arrays: the best of the iterates by the certificate's rounding ratio.
+
+    References
+    ----------
+    N. J. Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed., SIAM (2002),
+    ch. 12 (iterative refinement with residuals in extra precision).
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> W = np.asarray(weights(wavelength_grid(400, 700, 20), illuminant="D65"))
+    >>> prob = make_problem(W, 20.0)
+    >>> b = np.array([30.0, 30.0, 30.0])
+    >>> rho, mu = polish(W, prob.hessian_dense(), b, b @ prob.unconstrained, b @ prob.multipliers, 0.0, 1.0)
+    >>> bool(np.abs(rho @ W - b).max() < 1e-12)
+    True
     """
     F = np.flatnonzero((rho > lower) & (rho < upper))
     if F.size == 0:

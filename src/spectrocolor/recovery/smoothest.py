@@ -285,8 +285,10 @@ def _solve_unit(setup: Setup, b: np.ndarray):
     ``ρ ≥ 0`` at their own scale (:func:`_solve_scaled`); where that solution stays ``≤ 1`` it
     is the solution with ``0 ≤ ρ ≤ 1`` too (same KKT conditions, upper bound inactive). Near the
     white, ``white − b`` is exact and the same holds for ``1 − ρ`` by the symmetry ``ρ → 1 − ρ``
-    of the programme. Other colours, and vertex colours whose solution reaches the other bound,
-    are solved directly.
+    of the programme; there b itself is known only to ε of the white, so a colour outside by
+    less than ``BOUNDARY_TOLERANCE`` of the white is on the boundary, as elsewhere on the solid.
+    Other colours, and vertex colours whose solution reaches the other bound or fails, are
+    solved directly.
     """
     prob = setup.problem
     N, K = len(b), prob.size
@@ -303,8 +305,12 @@ def _solve_unit(setup: Setup, b: np.ndarray):
         r, m, f, dist, meth, cert = _solve_scaled(setup, d[near])
         # the solution with ρ ≥ 0 is the unit one where it stays ≤ 1 (converged or not: at
         # this scale the solid's facets cannot do better); a failed cone solve (NaN) goes on
+        # near the white, ``white − b`` carries the rounding of b (absolute, ε of the white):
+        # a colour outside by less than the solid's own tolerance is left to the solid's test
+        # (on its boundary, as everywhere else on the solid)
+        slack = BOUNDARY_TOLERANCE * np.abs(setup.white).max() if flip else 0.0
         with np.errstate(invalid="ignore"):
-            take = ~f | np.all(r <= 1.0, axis=1)
+            take = (~f & (dist > slack)) | np.all(r <= 1.0, axis=1)
         idx = near[take]
         rho[idx] = 1.0 - r[take] if flip else r[take]
         mu[idx] = -m[take] if flip else m[take]
