@@ -74,9 +74,10 @@ def abs_hess_times(rho: np.ndarray, step_nm: float) -> np.ndarray:
 def hess_times(rho: np.ndarray, step_nm: float) -> np.ndarray:
     """``Q ρ`` along the last axis (``ρ Q ρ / 2 = Σ (Δρ)² / h``)."""
     d = np.diff(rho, axis=-1) * (2.0 / step_nm)
-    out = np.zeros_like(rho)
-    out[..., :-1] -= d
-    out[..., 1:] += d
+    out = np.empty_like(rho)
+    out[..., 0] = -d[..., 0]
+    out[..., 1:-1] = d[..., :-1] - d[..., 1:]
+    out[..., -1] = d[..., -1]
     return out
 
 

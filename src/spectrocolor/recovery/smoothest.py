@@ -44,6 +44,8 @@ __all__ = ["BOUNDS", "DEFAULT_WAVELENGTHS", "Certificate", "SmoothestResult", "s
            "smoothest_reflectance"]
 
 BOUNDS = ("unit", "nonnegative", None)
+#: Fixed-width strings for :attr:`SmoothestResult.method` (the longest name has 40 characters).
+_METHOD_DTYPE = "<U48"
 #: Colours whose gauge is within this of the boundary are solved as boundary colours.
 BOUNDARY_TOLERANCE = 1e-12
 #: Colours this close to the boundary on which the active-set methods fail are tried on a face.
@@ -199,7 +201,7 @@ def smoothest_reflectance(
         rho, mu = qp.solve_unconstrained(prob, b)
         feasible = np.ones(len(b), dtype=bool)
         distance = np.zeros(len(b))
-        method = np.full(len(b), "unconstrained", dtype=object)
+        method = np.full(len(b), "unconstrained", dtype=_METHOD_DTYPE)
         certificate = certify(prob.W, prob.step_nm, b, rho, mu, None, None, feasible)
     elif bounds == "nonnegative":
         rho, mu, feasible, distance, method, certificate = _solve_scaled(setup, b)
@@ -225,7 +227,7 @@ def smoothest_reflectance(
         roughness=roughness.reshape(shape),
         multipliers=mu.reshape(*shape, 3),
         certificate=certificate.reshape(shape),
-        method=method.astype(str).reshape(shape),
+        method=method.reshape(shape),
         bounds=bounds,
         observer=obs,
         illuminant=ill,
@@ -294,7 +296,7 @@ def _solve_unit(setup: Setup, b: np.ndarray):
     N, K = len(b), prob.size
     rho, mu = np.full((N, K), np.nan), np.full((N, 3), np.nan)
     feasible, converged = np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
-    distance, method = np.zeros(N), np.full(N, "infeasible", dtype=object)
+    distance, method = np.zeros(N), np.full(N, "infeasible", dtype=_METHOD_DTYPE)
     done = np.zeros(N, dtype=bool)
     for flip in (False, True):
         d = setup.white - b if flip else b
@@ -339,7 +341,7 @@ def _solve_bounded(setup: Setup, b: np.ndarray, lower: float, upper: float):
     rho, mu = qp.solve_unconstrained(prob, b)
     converged = np.ones(N, dtype=bool)
     distance = np.zeros(N)
-    method = np.full(N, "unconstrained", dtype=object)
+    method = np.full(N, "unconstrained", dtype=_METHOD_DTYPE)
     cone = not np.isfinite(upper)
     facets = setup.cone if cone else setup.solid
     black = np.all(b == 0, axis=1)
@@ -358,7 +360,7 @@ def _solve_bounded(setup: Setup, b: np.ndarray, lower: float, upper: float):
         sol = qp.solve_bounded(prob, b[todo], lower, upper)
         rho[todo], mu[todo] = sol.rho, sol.mu
         converged[todo] = sol.converged
-        method[todo] = np.asarray(qp.METHODS, dtype=object)[sol.method]
+        method[todo] = np.asarray(qp.METHODS, dtype=_METHOD_DTYPE)[sol.method]
         # a colour that close to the boundary that the active-set methods could not
         # settle is tried on its face; the certificate decides whether that is exact
         near = todo[~sol.converged & (depth[todo] <= NEAR_BOUNDARY)]
