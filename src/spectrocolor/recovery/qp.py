@@ -348,6 +348,8 @@ def _interior_point(prob, b, lower, upper, iterations=60):
         alpha = 0.995 * step_to_boundary(np.concatenate([s_l, s_u, z_l, z_u], 1),
                                          np.concatenate([drho, -drho, dz_l, dz_u], 1))
         al = np.where(gap > 1e-15 * (1.0 + np.abs(mu).max(axis=1)), alpha, 0.0)[:, None]
+        if not al.any():  # every gap closed: the iterations left would change nothing
+            break
         rho = rho + al * drho
         s_l = s_l + al * drho
         if has_upper:
