@@ -303,17 +303,18 @@ def _interior_point(prob, b, lower, upper, iterations=60):
     mu = np.zeros((N, W.shape[1]))
     m = 2 * K if has_upper else K
 
-    def newton(r_d, r_p, c_l, c_u, s_l, s_u):
+    def newton(r_d, r_p, c_l, c_u, s_l, s_u, z_l, z_u):
+        n = len(r_d)
         sig = z_l / s_l + (z_u / s_u if has_upper else 0.0)
         h = -r_d + c_l / s_l - (c_u / s_u if has_upper else 0.0)
         d = (diag_q + sig).ravel()
-        off = np.concatenate([np.broadcast_to(off_q, (N, K - 1)), np.zeros((N, 1))], axis=1)
+        off = np.concatenate([np.broadcast_to(off_q, (n, K - 1)), np.zeros((n, 1))], axis=1)
         off = off.ravel()[:-1]
-        rhs = np.empty((N, K, 1 + W.shape[1]))
+        rhs = np.empty((n, K, 1 + W.shape[1]))
         rhs[..., 0] = h
         rhs[..., 1:] = W
-        _, _, _, x, _ = lapack.dgtsv(off.copy(), d, off.copy(), rhs.reshape(N * K, -1))
-        x = x.reshape(N, K, -1)
+        _, _, _, x, _ = lapack.dgtsv(off.copy(), d, off.copy(), rhs.reshape(n * K, -1))
+        x = x.reshape(n, K, -1)
         M = np.einsum("kj,nki->nji", W, x[..., 1:])
         M += 1e-14 * np.einsum("nii->n", M)[:, None, None] * np.eye(W.shape[1])
         dmu = np.linalg.solve(M, (-r_p - x[..., 0] @ W)[..., None])[..., 0]
@@ -330,34 +331,39 @@ def _interior_point(prob, b, lower, upper, iterations=60):
     # slacks are state variables: recomputing them from rho would lose them to cancellation
     s_l = rho - lower
     s_u = (upper - rho) if has_upper else np.ones_like(rho)
+    # a colour whose gap has closed never moves again: iterate on the others only
+    live = np.arange(N)
     for _ in range(iterations):
-        gap = ((s_l * z_l).sum(axis=1) + ((s_u * z_u).sum(axis=1) if has_upper else 0)) / m
-        r_d = prob.hess_times(rho) - mu @ W.T - z_l + z_u
-        r_p = rho @ W - b
+        r, u, sl, su, zl, zu = rho[live], mu[live], s_l[live], s_u[live], z_l[live], z_u[live]
+        gap = ((sl * zl).sum(axis=1) + ((su * zu).sum(axis=1) if has_upper else 0)) / m
+        keep = gap > 1e-15 * (1.0 + np.abs(u).max(axis=1))
+        if not keep.any():
+            break
+        live, gap = live[keep], gap[keep]
+        r, u, sl, su, zl, zu = r[keep], u[keep], sl[keep], su[keep], zl[keep], zu[keep]
+        r_d = prob.hess_times(r) - u @ W.T - zl + zu
+        r_p = r @ W - b[live]
         # predictor
-        a = newton(r_d, r_p, -s_l * z_l, -s_u * z_u, s_l, s_u)
-        alpha = step_to_boundary(np.concatenate([s_l, s_u, z_l, z_u], 1),
+        a = newton(r_d, r_p, -sl * zl, -su * zu, sl, su, zl, zu)
+        alpha = step_to_boundary(np.concatenate([sl, su, zl, zu], 1),
                                  np.concatenate([a[0], -a[0], a[2], a[3]], 1))
         al = alpha[:, None]
-        gap_aff = (((s_l + al * a[0]) * (z_l + al * a[2])).sum(axis=1)
-                   + (((s_u - al * a[0]) * (z_u + al * a[3])).sum(axis=1) if has_upper else 0)) / m
+        gap_aff = (((sl + al * a[0]) * (zl + al * a[2])).sum(axis=1)
+                   + (((su - al * a[0]) * (zu + al * a[3])).sum(axis=1) if has_upper else 0)) / m
         sigma = np.clip((gap_aff / gap) ** 3, 0.0, 1.0)[:, None]
-        c_l = sigma * gap[:, None] - s_l * z_l - a[0] * a[2]
-        c_u = sigma * gap[:, None] - s_u * z_u + a[0] * a[3]
-        drho, dmu, dz_l, dz_u = newton(r_d, r_p, c_l, c_u, s_l, s_u)
-        alpha = 0.995 * step_to_boundary(np.concatenate([s_l, s_u, z_l, z_u], 1),
-                                         np.concatenate([drho, -drho, dz_l, dz_u], 1))
-        al = np.where(gap > 1e-15 * (1.0 + np.abs(mu).max(axis=1)), alpha, 0.0)[:, None]
-        if not al.any():  # every gap closed: the iterations left would change nothing
-            break
-        rho = rho + al * drho
-        s_l = s_l + al * drho
+        c_l = sigma * gap[:, None] - sl * zl - a[0] * a[2]
+        c_u = sigma * gap[:, None] - su * zu + a[0] * a[3]
+        drho, dmu, dz_l, dz_u = newton(r_d, r_p, c_l, c_u, sl, su, zl, zu)
+        al = 0.995 * step_to_boundary(np.concatenate([sl, su, zl, zu], 1),
+                                      np.concatenate([drho, -drho, dz_l, dz_u], 1))[:, None]
+        rho[live] = r + al * drho
+        s_l[live] = sl + al * drho
         if has_upper:
-            s_u = s_u - al * drho
-        mu = mu + al * dmu
-        z_l = z_l + al * dz_l
+            s_u[live] = su - al * drho
+        mu[live] = u + al * dmu
+        z_l[live] = zl + al * dz_l
         if has_upper:
-            z_u = z_u + al * dz_u
+            z_u[live] = zu + al * dz_u
     # complementarity ratio at the nearer bound: large = active, small = free
     at_upper = (s_u < s_l) if has_upper else np.zeros_like(rho, dtype=bool)
     with np.errstate(divide="ignore", invalid="ignore"):
