@@ -46,14 +46,16 @@ def _normals(G: np.ndarray) -> np.ndarray:
     return np.concatenate([n, -n])
 
 
-def _touching_facet(G, c, lower, upper, tol):
+def _touching_facet(G, c, lower, upper, tol, choice=0):
     """The outward normal of a facet of the zonotope (or cone) of G containing c, or None.
 
-    The candidate normals (n² of them) are projected on the generators in blocks, so memory
-    stays O(n²) rather than O(n³)."""
+    With ``choice = j``, the facet with the j-th smallest slack among the distinct facets within
+    ``tol`` of c (a colour on an edge lies on several; rounding can rank one that does not
+    quite hold it first). The candidate normals (n² of them) are projected on the generators
+    in blocks, so memory stays O(n²) rather than O(n³)."""
     normals = _normals(G)
     in_plane = PLANE_TOLERANCE * np.linalg.norm(G, axis=1)
-    best, best_slack = None, np.inf
+    slacks, found = [], []
     rows = max(1, zonotope.BLOCK // max(len(G), 1))
     for i in range(0, len(normals), rows):
         n = normals[i:i + rows]
@@ -66,10 +68,20 @@ def _touching_facet(G, c, lower, upper, tol):
         if len(n) == 0:
             continue
         slack = support - n @ c
-        f = int(np.argmin(slack))
-        if slack[f] < best_slack:
-            best, best_slack = n[f], slack[f]
-    return best if best_slack <= tol else None
+        near = np.flatnonzero(slack <= tol)
+        near = near[np.argsort(slack[near], kind="stable")[:4 * (choice + 1)]]
+        slacks.append(slack[near])
+        found.append(n[near])
+    if not slacks or not sum(len(v) for v in slacks):
+        return None
+    slack, n = np.concatenate(slacks), np.concatenate(found)
+    distinct = []
+    for k in np.argsort(slack, kind="stable"):
+        if all(abs(float(n[k] @ d)) < 1.0 - 1e-9 for d in distinct):
+            distinct.append(n[k])
+        if len(distinct) > choice:
+            return distinct[choice]
+    return None
 
 
 def _strictly_feasible(W, b, lower, upper, rho, free):
@@ -171,11 +183,12 @@ def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
 
 
 def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upper: float,
-                  facet_tolerance: float = FACET_TOLERANCE):
+                  facet_tolerance: float = FACET_TOLERANCE, choice: int = 0):
     """The smoothest ``rho`` with ``W.T rho = b`` and bounds, for a colour b on the boundary.
 
     ``facet_tolerance`` (relative, see :data:`FACET_TOLERANCE`) decides which facets the
-    colour is on; the caller checks the result's residual.
+    colour is on; ``choice`` picks, at the first level, the facet with that rank among those
+    holding the colour (:func:`_touching_facet`); the caller checks the result.
 
     Returns rho (K,), mu (m,), lam (K,) and whether it was solved; NaN where not.
     """
@@ -196,7 +209,7 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
             break
         G = W[F] @ basis
         c = (b - rho @ W) @ basis
-        n = _touching_facet(G, c, lower, upper, on_facet)
+        n = _touching_facet(G, c, lower, upper, on_facet, choice if not levels else 0)
         if n is None:
             break
         p = G @ n

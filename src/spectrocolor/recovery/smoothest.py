@@ -50,6 +50,8 @@ _METHOD_DTYPE = "<U48"
 BOUNDARY_TOLERANCE = 1e-12
 #: Colours this close to the boundary on which the active-set methods fail are tried on a face.
 NEAR_BOUNDARY = 1e-9
+#: Facets tried, in order of slack, for a boundary colour whose first face solution fails.
+FACET_CHOICES = 4
 
 
 @dataclass(frozen=True)
@@ -121,11 +123,20 @@ def _face_or_flag(W, Q, b, lower, upper, facet_tolerance):
     failure (flagged, NaN), never the batch's."""
     K, m = W.shape
     failed = np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False
+    def certified(got):
+        return got[3] and certify(W, 2.0 / Q[0, 0], b[None], got[0][None], got[1][None], lower,
+                                  upper, [True]).converged[0]
+
     try:
         got = face.face_solution(W, Q, b, lower, upper, facet_tolerance)
-        if got[3] and certify(W, 2.0 / Q[0, 0], b[None], got[0][None], got[1][None], lower,
-                              upper, [True]).converged[0]:
+        if certified(got):
             return got
+        # a colour on an edge lies on several facets, and rounding can rank first one that
+        # does not quite hold it: the next ones are tried (the certificate judges each)
+        for choice in range(1, FACET_CHOICES):
+            other = face.face_solution(W, Q, b, lower, upper, facet_tolerance, choice)
+            if certified(other):
+                return other
         start = qp._vertex_start(W, b, lower, upper)
         if start is None:
             return got
