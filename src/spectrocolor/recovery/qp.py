@@ -33,10 +33,11 @@ J. Nocedal, S. J. Wright, *Numerical Optimization*, 2nd ed., Springer (2006), Al
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import lapack, lu_factor, lu_solve
+from scipy.linalg import LinAlgWarning, lapack, lu_factor, lu_solve
 
 from ..errors import ColorimetryError
 from . import certificate
@@ -532,8 +533,12 @@ def _equality_qp(Q, W, b, rho, active):
     fixed = np.where(active, rho, 0.0)
     rhs = np.concatenate([-Q[F] @ fixed, b - fixed @ W])
     try:
-        lu = lu_factor(kkt, check_finite=False)
+        with warnings.catch_warnings():  # an exactly singular matrix is answered just below
+            warnings.simplefilter("ignore", LinAlgWarning)
+            lu = lu_factor(kkt, check_finite=False)
     except (np.linalg.LinAlgError, ValueError):
+        return None
+    if np.any(np.diag(lu[0]) == 0.0):  # the free weights lost rank exactly
         return None
     sol = lu_solve(lu, rhs, check_finite=False)
     # the multipliers are orders of magnitude larger than rho, so the normwise backward
