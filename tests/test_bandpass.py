@@ -181,3 +181,12 @@ def test_fuzz_any_input_gives_a_result_or_one_spectrum_error(values, step, bandp
     except SpectrumError:
         return
     assert out.values.shape == spectrum.values.shape
+
+
+def test_values_that_would_overflow_are_one_error_not_inf():
+    grid = 400.0 + 10.0 * np.arange(5)
+    with pytest.raises(SpectrumError, match="overflow float64"):
+        bandpass_correction(Spectrum(grid, [1.0, 1.6e308, -1.6e308, 1.0, 1.0]))
+    big = bandpass_correction(Spectrum(grid, [1e307] * 5))  # a flat line is its own correction
+    assert np.all(np.isfinite(big.values)) and np.allclose(big.values, 1e307, rtol=1e-15)
+

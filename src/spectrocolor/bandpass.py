@@ -128,6 +128,12 @@ def _stearns_stearns(spectrum: Spectrum, bandpass_nm) -> Spectrum:
                 f"interval (within {BANDPASS_TOLERANCE:.0%}), so the data are not corrected"
             )
     measured = spectrum.values
+    finite = np.abs(measured[np.isfinite(measured)])
+    if finite.size and finite.max() > np.finfo(float).max / (1.0 + 4.0 * STEARNS_ALPHA):
+        raise SpectrumError(  # |corrected| ≤ (1 + 4α) max |measured|: beyond, float64 overflows
+            f"spectrum: values up to {finite.max():.3g} would overflow float64 in the correction; "
+            "scale the data first (the correction is linear)"
+        )
     corrected = (1.0 + 2.0 * STEARNS_ALPHA) * measured  # the matrix's three diagonals, so a NaN (masked)
     corrected[..., 1:] -= STEARNS_ALPHA * measured[..., :-1]  # reading spoils only its two neighbours
     corrected[..., :-1] -= STEARNS_ALPHA * measured[..., 1:]
