@@ -13,10 +13,6 @@ server's guard (``MAX_BODY_BYTES``, 413 beyond), so a photo file may have up to
 
 from __future__ import annotations
 
-import concurrent.futures
-import multiprocessing
-import threading
-from concurrent.futures.process import BrokenProcessPool
 from typing import Annotated, Literal
 
 from fastapi import APIRouter
@@ -35,6 +31,7 @@ from .relight_photo import (
     prepare,
     relight_photo,
 )
+from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 #: Photos relit at the same time (each worker keeps its own tables).
 RELIGHT_WORKERS = 1
@@ -80,59 +77,14 @@ class RelightRequest(BaseModel):
         return self
 
 
-class _Workers:
-    """At most ``count`` relights at once, each in a worker process that keeps its tables."""
-
-    def __init__(self, count: int):
-        self._slots = threading.BoundedSemaphore(count)
-        self._lock = threading.Lock()
-        self._count = count
-        self._pool: concurrent.futures.ProcessPoolExecutor | None = None
-
-    def run(self, *args):
-        if not self._slots.acquire(timeout=RELIGHT_WAIT_S):
-            return None
-        try:
-            return self._executor().submit(relight_photo, *args).result(timeout=RELIGHT_TIMEOUT_S)
-        except concurrent.futures.TimeoutError:
-            raise SpectrumError(f"image: relighting took more than {RELIGHT_TIMEOUT_S:g} s; "
-                                "send a smaller photo") from None
-        except BrokenProcessPool:
-            self.close(wait=False)  # a worker died (out of memory?): start afresh next time
-            raise SpectrumError("image: the worker stopped on this photo (out of memory?); "
-                                "send a smaller photo") from None
-        finally:
-            self._slots.release()
-
-    def _executor(self) -> concurrent.futures.ProcessPoolExecutor:
-        with self._lock:
-            if self._pool is None:
-                self._pool = concurrent.futures.ProcessPoolExecutor(
-                    self._count, mp_context=multiprocessing.get_context("spawn"))
-            return self._pool
-
-    def warm(self, *args) -> None:
-        """Start preparing the worker now, without waiting (the first photo is quicker)."""
-        try:
-            self._executor().submit(prepare, *args)
-        except BrokenProcessPool:
-            self.close(wait=False)
-
-    def close(self, wait: bool = True) -> None:
-        with self._lock:
-            pool, self._pool = self._pool, None
-        if pool is not None:
-            pool.shutdown(wait=wait, cancel_futures=True)
-
-
-_workers = _Workers(RELIGHT_WORKERS)
+_workers = WorkerPool(RELIGHT_WORKERS, RELIGHT_WAIT_S, RELIGHT_TIMEOUT_S)
 router.on_shutdown.append(_workers.close)
 
 
 @router.get("/api/relight/options")
 def relight_options():
     """The choices of the photo panel, defaults first, and its limits; starts the default table."""
-    _workers.warm(SOURCES[0], "1931", 10.0)
+    _workers.warm(prepare, SOURCES[0], "1931", 10.0)
     return {"sources": list(SOURCES),
             "adaptations": [[k, label, why] for k, (label, why) in ADAPTATIONS.items()],
             "exposures": [[k, label, why] for k, (label, why) in EXPOSURES.items()],
@@ -143,9 +95,15 @@ def relight_options():
 
 @router.post("/api/relight")
 def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread pool
-    answer = _workers.run(req.image, req.illuminant, float(req.step_nm), req.observer,
-                          req.source, req.adaptation, req.gamut, req.exposure)
-    if answer is None:
+    try:
+        return _workers.run(relight_photo, req.image, req.illuminant, float(req.step_nm),
+                            req.observer, req.source, req.adaptation, req.gamut, req.exposure)
+    except Busy:
         return JSONResponse({"error": "the server is busy relighting other photos; try again"},
                             status_code=429)
-    return answer
+    except WorkerTimeout:
+        raise SpectrumError(f"image: relighting took more than {RELIGHT_TIMEOUT_S:g} s; "
+                            "send a smaller photo") from None
+    except WorkerDied:
+        raise SpectrumError("image: the worker stopped on this photo (out of memory?); "
+                            "send a smaller photo") from None

@@ -2,31 +2,24 @@
 
 Parsing a large CSV is pure-Python work: in a thread it holds the interpreter lock and every
 other request waits (a 1 MB file took the explorer's answers from milliseconds to seconds).
-:class:`UploadParser` hands each file to one of ``workers`` processes (started on first use, with
-the ``spawn`` method, so nothing of the server is copied into them), lets at most ``workers``
-files be parsed at a time, answers :class:`Busy` when none frees up within ``wait_s``, and turns
-everything a hostile file can make a parser raise into one :class:`SpectrumError`.
+:class:`UploadParser` hands each file to a :class:`~spectrocolor.app.workers.WorkerPool` (spawned
+processes, at most ``workers`` files at a time, :class:`Busy` when none frees up within
+``wait_s``) and turns everything a hostile file can make a parser raise into one
+:class:`SpectrumError`.
 """
 
 from __future__ import annotations
 
-import concurrent.futures
 import csv
-import multiprocessing
 import tempfile
-import threading
-from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
 from ..errors import SpectrumError
+from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 __all__ = ["Busy", "UploadParser"]
 
 _NAME = "\0upload\0"  # stands for the user's file name in messages made in the worker
-
-
-class Busy(Exception):
-    """Every parser stayed busy for the whole wait."""
 
 
 def _parse(content: str, suffix: str, step_nm: float, method: str, scale: str,
@@ -63,42 +56,22 @@ class UploadParser:
     """
 
     def __init__(self, workers: int, wait_s: float, timeout_s: float):
-        self.workers, self.wait_s, self.timeout_s = workers, wait_s, timeout_s
-        self._slots = threading.BoundedSemaphore(workers)
-        self._lock = threading.Lock()
-        self._pool: concurrent.futures.ProcessPoolExecutor | None = None
-
-    def _executor(self) -> concurrent.futures.ProcessPoolExecutor:
-        with self._lock:
-            if self._pool is None:
-                self._pool = concurrent.futures.ProcessPoolExecutor(
-                    self.workers, mp_context=multiprocessing.get_context("spawn"))
-            return self._pool
+        self._pool = WorkerPool(workers, wait_s, timeout_s)
 
     def parse(self, filename: str, content: str, suffix: str, step_nm: float, method: str,
               scale: str, max_spectra: int) -> dict:
         """The page's import answer for ``content``; raises SpectrumError or :class:`Busy`."""
-        if not self._slots.acquire(timeout=self.wait_s):
-            raise Busy
         try:
-            future = self._executor().submit(_parse, content, suffix, step_nm, method, scale,
-                                             max_spectra)
-            return future.result(timeout=self.timeout_s)
+            return self._pool.run(_parse, content, suffix, step_nm, method, scale, max_spectra)
         except SpectrumError as exc:
             raise SpectrumError(str(exc).replace(_NAME, filename)) from None
-        except concurrent.futures.TimeoutError:
-            raise SpectrumError(f"{filename}: reading it took more than {self.timeout_s:g} s; "
+        except WorkerTimeout:
+            raise SpectrumError(f"{filename}: reading it took more than {self._pool.timeout_s:g} s; "
                                 "import a smaller file") from None
-        except BrokenProcessPool:
-            self.close(wait=False)  # a worker died (e.g. out of memory): start afresh next time
+        except WorkerDied:
             raise SpectrumError(f"{filename}: the reader stopped on this file (out of memory?); "
                                 "import a smaller file") from None
-        finally:
-            self._slots.release()
 
     def close(self, wait: bool = True) -> None:
         """Stop the worker processes (a later upload starts new ones)."""
-        with self._lock:
-            pool, self._pool = self._pool, None
-        if pool is not None:
-            pool.shutdown(wait=wait, cancel_futures=True)
+        self._pool.close(wait)
