@@ -17,7 +17,7 @@ from typing import Annotated, Literal
 
 from fastapi import APIRouter
 from fastapi.responses import JSONResponse
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
 
 from ..errors import SpectrumError
 from . import compute
@@ -31,6 +31,7 @@ from .relight_photo import (
     prepare,
     relight_photo,
 )
+from .request_models import Level, StrictRequest
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 #: Photos relit at the same time (each worker keeps its own tables).
@@ -43,13 +44,10 @@ _MAX_BASE64 = 4 * ((MAX_PHOTO_BYTES + 2) // 3)
 
 router = APIRouter()
 
-Level = Annotated[float, Field(ge=0, le=compute.FULL_LEVEL, allow_inf_nan=False)]
 
-
-class RelightRequest(BaseModel):
+class RelightRequest(StrictRequest):
     """A photo and setting 4's illuminant (bin levels on the explorer's grid)."""
 
-    model_config = ConfigDict(extra="forbid")
     image: Annotated[str, Field(min_length=1, max_length=_MAX_BASE64)]
     illuminant: Annotated[list[Level], Field(min_length=31, max_length=301)]
     step_nm: Literal[10, 5, 2, 1] = 10
@@ -58,13 +56,6 @@ class RelightRequest(BaseModel):
     adaptation: Literal[tuple(ADAPTATIONS)] = DEFAULT_ADAPTATION  # type: ignore[valid-type]
     gamut: Literal["flag", "clip", "preserve-luminance", "desaturate"] = "clip"
     exposure: Literal[tuple(EXPOSURES)] = DEFAULT_EXPOSURE  # type: ignore[valid-type]
-
-    @model_validator(mode="before")
-    @classmethod
-    def _no_bool_step(cls, data):
-        if isinstance(data, dict) and isinstance(data.get("step_nm"), bool):
-            raise ValueError("step_nm: expected a number of nm (10, 5, 2 or 1), got a boolean")
-        return data
 
     @model_validator(mode="after")
     def _check(self):

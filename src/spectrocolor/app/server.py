@@ -26,7 +26,7 @@ from fastapi import FastAPI
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
 from starlette.exceptions import HTTPException
 
 from spectrocolor.display.explain import GAMUT_ACTIONS
@@ -37,6 +37,7 @@ from . import compute
 from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
 from .lab_routes import router as lab_router
 from .relight_routes import router as relight_router
+from .request_models import Level, StrictRequest
 from .uploads import Busy, UploadParser
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
@@ -60,7 +61,6 @@ Display = Literal["sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy"]
 Gamut = Literal["flag", "clip", "preserve-luminance", "desaturate"]
 Normalise = Literal["fixed", "per-colour", "spectra-exact"]
 Adaptation = Literal["bradford", "display rgb", "none"]
-Level = Annotated[float, Field(ge=0, le=compute.FULL_LEVEL, allow_inf_nan=False)]
 Levels = Annotated[list[Level], Field(min_length=31, max_length=MAX_BINS)]
 
 
@@ -68,19 +68,8 @@ def _bins(step_nm: float) -> int:
     return len(compute.grid(float(step_nm)))
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid")
 
-    @model_validator(mode="before")
-    @classmethod
-    def _no_bool_step(cls, data):
-        # JSON true/false would pass as 1/0 (bool is an int in Python): not a step in nm
-        if isinstance(data, dict) and isinstance(data.get("step_nm"), bool):
-            raise ValueError("step_nm: expected a number of nm (10, 5, 2 or 1), got a boolean")
-        return data
-
-
-class ModelRequest(_Strict):
+class ModelRequest(StrictRequest):
     step_nm: Step = 10
     observer: Observer = "1931"
     display: Display = "sRGB"
@@ -132,7 +121,7 @@ class MetamerRequest(ModelRequest):
         return self
 
 
-class ImportRequest(_Strict):
+class ImportRequest(StrictRequest):
     filename: Annotated[str, Field(min_length=1, max_length=200)]
     content: Annotated[str, Field(min_length=1, max_length=1_000_000)]
     step_nm: Step = 10
@@ -140,7 +129,7 @@ class ImportRequest(_Strict):
     scale: Literal["peak", "unit", "levels"] = "peak"
 
 
-class ExportRequest(_Strict):
+class ExportRequest(StrictRequest):
     format: Literal["csv", "json"] = "csv"
     step_nm: Step = 10
     names: Annotated[list[Annotated[str, Field(min_length=1, max_length=60,
