@@ -96,12 +96,13 @@ def test_cli_options_fuzz(tmp_path, capsys, to, adapt, strategy):
 
 def valid_png() -> bytes:
     """A 16-bit RGB PNG of 3 x 4 pixels from the project's writer."""
-    import io
+    import tempfile
 
-    from spectrocolor.pictures import _png16_rgb
+    from spectrocolor.pictures import write_image
 
     codes = (np.arange(36, dtype=np.uint16).reshape(3, 4, 3) * 1801)
-    return io.BytesIO(_png16_rgb(codes)).getvalue()
+    with tempfile.TemporaryDirectory() as folder:
+        return write_image(f"{folder}/valid.png", codes).read_bytes()
 
 
 @settings(max_examples=150, deadline=None)
