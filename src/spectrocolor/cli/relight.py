@@ -48,18 +48,10 @@ def register(subparsers) -> None:
                    help="output .png (or an existing folder when INPUT is a folder)")
     p.add_argument("--to", required=True, dest="to_illuminant",
                    help="the new light, e.g. A, F11, D50")
-    p.add_argument("--from", default=None, dest="from_illuminant",
-                   help="the light the photo was taken under (default D65, or the --table's)")
     p.add_argument("--adapt", choices=_ADAPT_CHOICES, default="none",
                    help="chromatic adaptation to the new light (default none)")
-    p.add_argument("--space", default=None,
-                   help="RGB space of the photo and the output (default sRGB, or the --table's)")
-    p.add_argument("--resolution", type=int, default=17,
-                   help="nodes per axis of the table built on the fly (default 17)")
-    p.add_argument("--table", default=None, help="use a saved .scup upsampling table")
-    p.add_argument("--out-of-range", choices=_OUT_OF_RANGE, default="toward-grey",
-                   help="colours the table cannot reproduce exactly (default toward-grey): "
-                   + OUT_OF_RANGE_STRATEGIES.help())
+    add_table_options(p, taken="the light the photo was taken under",
+                      space="RGB space of the photo and the output", out_of_range=_OUT_OF_RANGE)
     add_gamut(p)
     p.add_argument("--bit-depth", type=int, choices=(8, 16), default=8,
                    help="PNG bits per channel (default 8)")
@@ -152,6 +144,30 @@ def _channels_to_rgb(path: Path, codes: np.ndarray) -> np.ndarray:
     return codes[..., :3]
 
 
+def add_table_options(parser: argparse.ArgumentParser, *, taken: str, space: str,
+                      out_of_range: tuple[str, ...]) -> None:
+    """The options that choose or build the upsampling table (``relight`` and ``upsample``)."""
+    parser.add_argument("--from", default=None, dest="from_illuminant",
+                        help=f"{taken} (default D65, or the --table's)")
+    parser.add_argument("--space", default=None, help=f"{space} (default sRGB, or the --table's)")
+    parser.add_argument("--resolution", type=int, default=17,
+                        help="nodes per axis of the table built on the fly (default 17)")
+    parser.add_argument("--table", default=None, help="use a saved .scup upsampling table")
+    parser.add_argument("--out-of-range", choices=out_of_range, default="toward-grey",
+                        help="colours the table cannot reproduce exactly (default toward-grey): "
+                        + OUT_OF_RANGE_STRATEGIES.help())
+
+
+def check_table_options(args: argparse.Namespace) -> None:
+    """One clear error for a ``--resolution`` or ``--from`` no table can have, before any work."""
+    from ..illuminants import canonical_illuminant
+
+    if not 2 <= args.resolution <= 65:
+        raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")
+    if args.from_illuminant is not None:
+        canonical_illuminant(args.from_illuminant, "--from")
+
+
 def table_for(args: argparse.Namespace):
     """The ``--table`` (checked against ``--from``/``--space``), or one built for them."""
     from ..upsampling import load_table, upsampling_table
@@ -193,13 +209,10 @@ def relight_codes(table, codes: np.ndarray, args: argparse.Namespace) -> tuple[n
 def _relight(args: argparse.Namespace) -> int:
     from ..pictures import write_image
 
-    if not 2 <= args.resolution <= 65:
-        raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")
+    check_table_options(args)
     from ..illuminants import canonical_illuminant
 
-    for option, value in (("--to", args.to_illuminant), ("--from", args.from_illuminant)):
-        if value is not None:
-            canonical_illuminant(value, option)  # a clear error before any work
+    canonical_illuminant(args.to_illuminant, "--to")  # a clear error before any work
     pairs = _pairs(args)
     table = table_for(args)
     for photo, target in pairs:

@@ -16,7 +16,7 @@ from pathlib import Path
 from ..upsampling.apply import OUT_OF_RANGE_STRATEGIES
 from . import UserError
 from .files import add_force, check_files
-from .relight import read_photo, table_for
+from .relight import add_table_options, check_table_options, read_photo, table_for
 
 #: Strategies that give coefficients ("nan" gives none).
 _OUT_OF_RANGE = tuple(name for name in OUT_OF_RANGE_STRATEGIES if name != "nan")
@@ -35,32 +35,20 @@ def register(subparsers) -> None:
     )
     p.add_argument("input", metavar="TEXTURE", help="texture (.png or .tif 8/16-bit, .jpg)")
     p.add_argument("--coefficients", required=True, help="output .sctx file")
-    p.add_argument("--table", default=None, help="use a saved .scup upsampling table")
     p.add_argument("--save-table", default=None,
                    help="also write the table the coefficients index (.scup)")
-    p.add_argument("--from", default=None, dest="from_illuminant",
-                   help="the table's illuminant (default D65, or the --table's)")
-    p.add_argument("--space", default=None,
-                   help="RGB space of the texture (default sRGB, or the --table's)")
-    p.add_argument("--resolution", type=int, default=17,
-                   help="nodes per axis of the table built on the fly (default 17)")
-    p.add_argument("--out-of-range", choices=_OUT_OF_RANGE, default="toward-grey",
-                   help="colours the table cannot reproduce exactly (default toward-grey): "
-                   + OUT_OF_RANGE_STRATEGIES.help())
+    add_table_options(p, taken="the table's illuminant", space="RGB space of the texture",
+                      out_of_range=_OUT_OF_RANGE)
     add_force(p)
     p.set_defaults(handler=_upsample)
 
 
 def _upsample(args: argparse.Namespace) -> int:
-    from ..illuminants import canonical_illuminant
     from ..safe_write import verify_size, write_bytes
     from ..upsampling import rgb_linear_from_image, save_table
     from ..upsampling.texels import HEADER, MAX_SIDE, texel_bytes
 
-    if not 2 <= args.resolution <= 65:
-        raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")
-    if args.from_illuminant is not None:
-        canonical_illuminant(args.from_illuminant, "--from")
+    check_table_options(args)
     for option, value, suffix in (("--coefficients", args.coefficients, ".sctx"),
                                   ("--save-table", args.save_table, ".scup")):
         if value is not None and Path(value).suffix.lower() != suffix:
