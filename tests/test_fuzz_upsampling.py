@@ -96,13 +96,12 @@ def test_cli_options_fuzz(tmp_path, capsys, to, adapt, strategy):
 
 def valid_png() -> bytes:
     """A 16-bit RGB PNG of 3 x 4 pixels from the project's writer."""
-    import tempfile
+    import io
 
-    from spectrocolor.pictures import write_image
+    from spectrocolor.pictures import _png16_rgb
 
     codes = (np.arange(36, dtype=np.uint16).reshape(3, 4, 3) * 1801)
-    with tempfile.TemporaryDirectory() as folder:
-        return write_image(f"{folder}/valid.png", codes).read_bytes()
+    return io.BytesIO(_png16_rgb(codes)).getvalue()
 
 
 @settings(max_examples=150, deadline=None)

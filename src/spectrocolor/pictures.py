@@ -17,9 +17,9 @@ Netpbm PPM format specification, https://netpbm.sourceforge.net/doc/ppm.html
 map and converted cube goes through it or :func:`save_image`):
 
 * PNG, 8-bit: Pillow.
-* PNG, 16-bit RGB: Pillow cannot write 16-bit RGB PNG, so the package's own PNG encoder
-  (:func:`spectrocolor.images.stream.write_png_blocks`, the one that streams converted cubes)
-  writes it as a single block. 16-bit grey goes through Pillow.
+* PNG, 16-bit RGB: Pillow cannot write 16-bit RGB PNG, so it is encoded here (the PNG format:
+  signature, IHDR, one zlib-compressed IDAT of unfiltered rows, IEND; samples big-endian).
+  16-bit grey goes through Pillow.
 * TIFF, float32 or float64 (e.g. XYZ100, CIELAB, linear RGB): tifffile, with a JSON
   description holding the metadata you pass (quantity, illuminant, ...).
 
@@ -30,6 +30,8 @@ sections 5 and 11.2.
 
 from __future__ import annotations
 
+import struct
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -451,9 +453,7 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
             with atomic_path(path, verify=lambda p: verify_png(p, width, height)) as temporary:
                 Image.fromarray(array).save(temporary, format="PNG")
         elif array.dtype == np.uint16:
-            from .images.stream import write_png_blocks
-
-            write_png_blocks(path, [array], height, width, 3, 16)
+            write_bytes(path, _png16_rgb(array), verify=lambda p: verify_png(p, width, height))
         else:
             raise SpectrumError(
                 f"PNG needs uint8 or uint16 codes; got {array.dtype} (render with bit_depth=8 or"
@@ -476,3 +476,21 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
             ".tif/.tiff (float)"
         )
     return path
+
+
+def _chunk(kind: bytes, data: bytes) -> bytes:
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+
+def _png16_rgb(codes: np.ndarray) -> bytes:
+    """A 16-bit RGB PNG datastream of ``codes`` (H, W, 3) uint16."""
+    height, width, _ = codes.shape
+    header = struct.pack(">IIBBBBB", width, height, 16, 2, 0, 0, 0)
+    rows = codes.astype(">u2").reshape(height, width * 3).view(np.uint8)  # (H, 6 W) bytes
+    filtered = np.concatenate([np.zeros((height, 1), np.uint8), rows], axis=1)  # filter 0: none
+    return (
+        b"\x89PNG\r\n\x1a\n"
+        + _chunk(b"IHDR", header)
+        + _chunk(b"IDAT", zlib.compress(filtered.tobytes(), 6))
+        + _chunk(b"IEND", b"")
+    )
