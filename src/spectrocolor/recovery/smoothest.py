@@ -36,7 +36,7 @@ from ..errors import ColorimetryError
 from ..illuminants import DEFAULT_ILLUMINANT
 from ..observers import DEFAULT_OBSERVER
 from ..spectrum import Spectrum
-from . import face, qp, zonotope
+from . import exact, face, qp, zonotope
 from .certificate import Certificate, certify
 from .inputs import DEFAULT_WAVELENGTHS, Setup, setup_for, xyz_array
 
@@ -52,6 +52,10 @@ BOUNDARY_TOLERANCE = 1e-12
 NEAR_BOUNDARY = 1e-9
 #: Facets tried, in order of slack, for a boundary colour whose first face solution fails.
 FACET_CHOICES = 4
+#: :attr:`SmoothestResult.method` of colours solved on their face in floating point, and of
+#: those that only the exact rational solver (:mod:`.exact`) settled.
+FACE_METHOD = "boundary face"
+EXACT_METHOD = "boundary face, exact rational arithmetic"
 
 
 @dataclass(frozen=True)
@@ -80,7 +84,9 @@ class SmoothestResult:
         How each colour was solved: ``"unconstrained"`` (closed form), ``"active set"``
         (batched primal-dual active set), ``"active set restarted from interior point"``,
         ``"dense primal active set"`` (the one-at-a-time fallback), ``"boundary face"``
-        (a colour on the boundary, solved on its face), ``"black or white"`` or
+        (a colour on or within 1e-9 of the boundary, solved on its face),
+        ``"boundary face, exact rational arithmetic"`` (such a colour that only the exact
+        solver of :mod:`spectrocolor.recovery.exact` settled), ``"black or white"`` or
         ``"infeasible"``.
     bounds : str or None
     observer, illuminant : str
@@ -109,44 +115,58 @@ class SmoothestResult:
 def _boundary_solutions(setup: Setup, b: np.ndarray, lower: float, upper: float,
                         facet_tolerance: float = face.FACET_TOLERANCE):
     """Exact solutions for colours on the boundary of the solid or cone (one at a time: such
-    colours are rare, and each is a small dense problem on a face; see :mod:`.face`)."""
+    colours are rare, and each is a small dense problem on a face; see :mod:`.face`).
+
+    Returns rho, mu, lam, whether each settled, and how each was solved (``FACE_METHOD`` or
+    ``EXACT_METHOD``)."""
     Q = setup.problem.hessian_dense()
     out = [_face_or_flag(setup.W, Q, bi, lower, upper, facet_tolerance) for bi in b]
     return (np.array([o[0] for o in out]), np.array([o[1] for o in out]),
-            np.array([o[2] for o in out]), np.array([o[3] for o in out], dtype=bool))
+            np.array([o[2] for o in out]), np.array([o[3] for o in out], dtype=bool),
+            np.array([o[4] for o in out], dtype=_METHOD_DTYPE))
 
 
 def _face_or_flag(W, Q, b, lower, upper, facet_tolerance):
-    """One colour's face solution, or failing that the dense primal active-set method from an
+    """One colour's face solution; failing that, the dense primal active-set method from an
     exact feasible start (a colour within rounding of the boundary whose face the facet test
-    could not pin down); a numerical breakdown on one degenerate colour is that colour's
-    failure (flagged, NaN), never the batch's."""
+    could not pin down); failing that too, the solution in exact rational arithmetic
+    (:mod:`.exact`, slow but certain). A numerical breakdown on one degenerate colour is that
+    colour's failure (flagged, NaN), never the batch's. Returns rho, mu, lam, settled, method.
+    """
     K, m = W.shape
+    step_nm = 2.0 / Q[0, 0]
     failed = np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False
     def certified(got):
-        return got[3] and certify(W, 2.0 / Q[0, 0], b[None], got[0][None], got[1][None], lower,
+        return got[3] and certify(W, step_nm, b[None], got[0][None], got[1][None], lower,
                                   upper, [True]).converged[0]
 
+    best = failed
     try:
-        got = face.face_solution(W, Q, b, lower, upper, facet_tolerance)
-        if certified(got):
-            return got
+        best = face.face_solution(W, Q, b, lower, upper, facet_tolerance)
+        if certified(best):
+            return (*best, FACE_METHOD)
         # a colour on an edge lies on several facets, and rounding can rank first one that
         # does not quite hold it: the next ones are tried (the certificate judges each)
         for choice in range(1, FACET_CHOICES):
             other = face.face_solution(W, Q, b, lower, upper, facet_tolerance, choice)
             if certified(other):
-                return other
+                return (*other, FACE_METHOD)
         start = qp._vertex_start(W, b, lower, upper)
-        if start is None:
-            return got
-        rho, mu, lam, _, ok = qp.primal_active_set(Q, W, b, lower, upper, *start)
-        if not ok:
-            return got
-        rho, mu = qp.polish(W, Q, b, rho, mu, lower, upper)
-        return rho, mu, lam, True
+        if start is not None:
+            rho, mu, lam, _, ok = qp.primal_active_set(Q, W, b, lower, upper, *start)
+            if ok:
+                rho, mu = qp.polish(W, Q, b, rho, mu, lower, upper)
+                best = rho, mu, lam, True
+                if certified(best):
+                    return (*best, FACE_METHOD)
     except (np.linalg.LinAlgError, ValueError, FloatingPointError):
-        return failed
+        best = failed
+    # every floating-point route missed rounding level (nearly parallel generators): exactly
+    got = exact.exact_solution(W, step_nm, b, lower, upper)
+    if got is None:
+        return (*best, FACE_METHOD)
+    rho, mu = got
+    return rho, mu, Q @ rho - W @ mu, True, EXACT_METHOD
 
 
 def smoothest_reflectance(
@@ -372,9 +392,13 @@ def _solve_bounded(setup: Setup, b: np.ndarray, lower: float, upper: float):
         rho[todo], mu[todo] = sol.rho, sol.mu
         converged[todo] = sol.converged
         method[todo] = np.asarray(qp.METHODS, dtype=_METHOD_DTYPE)[sol.method]
-        # a colour that close to the boundary that the active-set methods could not
-        # settle is tried on its face; the certificate decides whether that is exact
-        near = todo[~sol.converged & (depth[todo] <= NEAR_BOUNDARY)]
+        # a colour that close to the boundary whose active-set result is not certified
+        # (unsettled, or off rounding level: the free weights are nearly dependent there) is
+        # tried on its face; the certificate decides whether that is exact
+        near = todo[depth[todo] <= NEAR_BOUNDARY]
+        if near.size:
+            near = near[~certify(prob.W, prob.step_nm, b[near], rho[near], mu[near], lower,
+                                 upper, converged[near]).converged]
         if near.size:
             got = _boundary_solutions(setup, b[near], lower, upper, NEAR_BOUNDARY)
             passed = certify(prob.W, prob.step_nm, b[near], got[0], got[1], lower, upper,
@@ -382,11 +406,11 @@ def _solve_bounded(setup: Setup, b: np.ndarray, lower: float, upper: float):
             take = near[passed]
             rho[take], mu[take] = got[0][passed], got[1][passed]
             converged[take] = True
-            method[take] = "boundary face"
+            method[take] = got[4][passed]
     if on_boundary.any():
         idx = np.flatnonzero(on_boundary)
-        rho[idx], mu[idx], _, converged[idx] = _boundary_solutions(setup, b[idx], lower, upper)
-        method[idx] = "boundary face"
+        rho[idx], mu[idx], _, converged[idx], method[idx] = _boundary_solutions(
+            setup, b[idx], lower, upper)
     # black and white have one reflectance each; zero multipliers certify them
     rho[black], mu[black] = 0.0, 0.0
     rho[white], mu[white] = 1.0, 0.0

@@ -1,0 +1,158 @@
+"""The exact rational solver of the smoothest reflectance (recovery.exact), the boundary fallback.
+
+Its answers are judged by the package's certificate and by the independent KKT check of
+``kkt_check.py`` (which sees only ρ, and μ as a hint), never by the solver's own state.
+"""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import spectrocolor as sc
+from kkt_check import assert_kkt
+from spectrocolor.recovery.certificate import certify
+from spectrocolor.recovery.exact import exact_solution
+from spectrocolor.recovery.smoothest import smoothest_reflectance
+
+RED_END = (380.0, 780.0, 10.0)
+
+#: Two-transition block colours on 380–780/10 nm under D65 that the floating-point face and
+#: dense solvers left flagged (measured before recovery.exact existed: 82 of 1 640 were, all
+#: with an edge at 700–770 nm, where z̄ = 0 and the generators are parallel to 1e-4). Each is
+#: (first, last) nm of the block of ones, or of the notch of zeros in the white.
+FLAGGED_BLOCKS = [(400, 770), (420, 730), (510, 740), (550, 720), (640, 760)]
+FLAGGED_NOTCHES = [(440, 730), (530, 750), (640, 700)]
+
+
+def _weights(grid, illuminant="D65"):
+    return np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant=illuminant))
+
+
+def _flagged_colours():
+    W = _weights(RED_END)
+    grid = sc.wavelength_grid(*RED_END)
+    R = []
+    for (first, last), ones in [(p, True) for p in FLAGGED_BLOCKS] + [(p, False) for p in FLAGGED_NOTCHES]:
+        inside = (grid >= first) & (grid <= last)
+        R.append(np.where(inside == ones, 1.0, 0.0))
+    return W, np.array(R)
+
+
+def _certified(W, step, b, rho, mu, upper):
+    return bool(certify(W, step, b[None], rho[None], mu[None], 0.0, upper, [True]).converged[0])
+
+
+def test_previously_flagged_red_end_blocks_are_certified_by_the_exact_solver():
+    W, R = _flagged_colours()
+    for b in R @ W:
+        got = exact_solution(W, RED_END[2], b, 0.0, 1.0)
+        assert got is not None
+        rho, mu = got
+        assert _certified(W, RED_END[2], b, rho, mu, 1.0)
+        assert_kkt(W, RED_END[2], rho, 1.0, mu_hint=mu)
+
+
+def test_previously_flagged_red_end_blocks_are_certified_by_smoothest_reflectance():
+    W, R = _flagged_colours()
+    r = smoothest_reflectance(R @ W, wavelengths=RED_END)
+    assert np.all(r.feasible) and np.all(r.certificate.converged)
+    assert set(r.method) <= {"boundary face", "boundary face, exact rational arithmetic"}
+    for rho, mu in zip(r.spectrum.values, r.multipliers, strict=True):
+        assert_kkt(W, RED_END[2], rho, 1.0, mu_hint=mu)
+
+
+def test_a_vertex_of_a_three_sample_grid_has_the_multipliers_of_its_gradient():
+    """W = I on three samples: b = (1, 0, 0) admits only ρ = (1, 0, 0); every sample's
+    constraint is then its own, so μ = Q ρ = (2/h)(1, −1, 0) exactly (h = 10 nm: ±0.2 rounded)."""
+    rho, mu = exact_solution(np.eye(3), 10.0, np.array([1.0, 0.0, 0.0]), 0.0, 1.0)
+    assert rho.tolist() == [1.0, 0.0, 0.0]
+    assert mu.tolist() == [0.2, -0.2, 0.0]
+
+
+def test_a_colour_outside_by_more_than_rounding_is_refused():
+    """A block colour is on the boundary (its supporting plane does not pass through black), so
+    1 + 1e-9 times it is outside the solid by 1e-9 of its size, far beyond the half primal
+    tolerance (~1e-14) within which the nearest feasible colour may replace it."""
+    W, R = _flagged_colours()
+    assert exact_solution(W, RED_END[2], (R[2] @ W) * (1.0 + 1e-9), 0.0, 1.0) is None
+
+
+def test_interior_colours_agree_with_the_floating_point_solver():
+    """Two independent methods, one exact: on interior colours the float active-set solution is
+    certified, and the optimum is unique (strictly convex programme), so they agree to the
+    conditioning of the programme (1e-9 here is 1e4 times the certificate's own level)."""
+    grid = (400.0, 700.0, 20.0)
+    W = _weights(grid)
+    rng = np.random.default_rng(7)
+    b = rng.random((4, 16)) ** 3 @ W[:16] + 0.02 * W.sum(axis=0)
+    r = smoothest_reflectance(b, wavelengths=grid)
+    assert np.all(r.certificate.converged)
+    for bi, rho_float in zip(b, r.spectrum.values, strict=True):
+        rho, mu = exact_solution(W, grid[2], bi, 0.0, 1.0)
+        assert _certified(W, grid[2], bi, rho, mu, 1.0)
+        np.testing.assert_allclose(rho, rho_float, rtol=0, atol=1e-9)
+
+
+def test_single_wavelength_colours_with_nonnegative_bounds():
+    """Lines (one sample non-zero) are on edges of the cone of non-negative spectra; with
+    ``upper = inf`` the simplex has no upper bounds on ρ."""
+    grid = (380.0, 780.0, 5.0)
+    W = _weights(grid)
+    for k in (0, 50, 70, 80):  # 380, 630, 730, 780 nm
+        b = W[k].copy()
+        rho, mu = exact_solution(W, grid[2], b, 0.0, np.inf)
+        assert _certified(W, grid[2], b, rho, mu, np.inf)
+        assert_kkt(W, grid[2], rho, np.inf, mu_hint=mu)
+
+
+@settings(max_examples=25, deadline=None)
+@given(grid=st.sampled_from([(380.0, 780.0, 20.0), (380.0, 780.0, 40.0), (400.0, 700.0, 20.0),
+                             (360.0, 820.0, 20.0)]),
+       illuminant=st.sampled_from(["E", "D65", "A"]),
+       data=st.data())
+def test_random_exact_boundary_and_vertex_sums_are_certified(grid, illuminant, data):
+    """Random two-transition blocks (boundary colours) and random 0/1 spectra (sums of
+    generators: on the boundary or inside) on coarse grids: the exact solver always certifies."""
+    W = _weights(grid, illuminant)
+    K = W.shape[0]
+    if data.draw(st.booleans(), label="block"):
+        first = data.draw(st.integers(0, K - 1), label="first")
+        last = data.draw(st.integers(first, K - 1), label="last")
+        rho0 = np.zeros(K)
+        rho0[first:last + 1] = 1.0
+        if data.draw(st.booleans(), label="notch"):
+            rho0 = 1.0 - rho0
+    else:
+        rho0 = np.array(data.draw(st.lists(st.sampled_from([0.0, 1.0]), min_size=K, max_size=K),
+                                  label="ones"))
+    if rho0.min() == rho0.max():
+        return  # black and white are exact by construction elsewhere
+    b = rho0 @ W
+    got = exact_solution(W, grid[2], b, 0.0, 1.0)
+    assert got is not None
+    rho, mu = got
+    assert _certified(W, grid[2], b, rho, mu, 1.0)
+    assert_kkt(W, grid[2], rho, 1.0, mu_hint=mu)
+    assert smoothest_reflectance(b, illuminant=illuminant, wavelengths=grid).certificate.converged
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("illuminant", ["D65", "A"])
+def test_every_red_end_block_is_certified(illuminant):
+    """All 1 640 two-transition blocks on 380–780/10 nm: none flagged (82 under D65 and 57
+    under A were before the exact fallback), every one passes the independent check."""
+    W = _weights(RED_END, illuminant)
+    K = W.shape[0]
+    R = []
+    for i in range(K):
+        for j in range(i, K):
+            r = np.zeros(K)
+            r[i:j + 1] = 1.0
+            R += [r, 1.0 - r]
+    R = np.unique(np.array(R), axis=0)
+    R = R[(R.sum(axis=1) > 0) & (R.sum(axis=1) < K)]
+    r = smoothest_reflectance(R @ W, illuminant=illuminant, wavelengths=RED_END)
+    assert np.all(r.feasible) and np.all(r.certificate.converged)
+    for rho, mu in zip(r.spectrum.values, r.multipliers, strict=True):
+        assert_kkt(W, RED_END[2], rho, 1.0, mu_hint=mu)
