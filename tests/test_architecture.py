@@ -16,7 +16,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "spectrocolor"
 RANK = {"foundation": 0, "data": 1, "spectra": 2, "colour": 2, "colorimetry": 3, "applications": 4,
         "presentation": 5, "interfaces": 6}
 
-FOUNDATION = {"errors", "registry", "arguments", "safe_write", "spreadsheet", "__init__", "__main__"}
+FOUNDATION = {"errors", "registry", "arguments", "safe_write", "spreadsheet", "numba_support", "__init__",
+              "__main__"}
 DATA = {"data_tables"}
 SPECTRA = {"spectrum", "interpolation", "sampling", "observers", "illuminants", "spectrum_io", "io"}
 COLOUR = {"coordinates", "differences", "display"}

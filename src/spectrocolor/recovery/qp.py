@@ -40,7 +40,7 @@ import numpy as np
 from scipy.linalg import LinAlgWarning, lapack, lu_factor, lu_solve
 
 from ..errors import ColorimetryError
-from . import certificate
+from . import certificate, compiled
 
 _MAX_PDAS_ITER = 30
 #: Values of :attr:`Solution.method`: how each colour was solved.
@@ -68,6 +68,8 @@ class Problem:
         ``mu = b @ multipliers`` are its Lagrange multipliers.
     kkt_inverse : ndarray (K + m, K + m)
         Inverse of the KKT matrix ``[[Q, -W], [W.T, 0]]`` (for iterative refinement).
+    pinned : PinnedKKT or None
+        The same KKT system solved in O(K) (the compiled refinement; see :class:`PinnedKKT`).
     """
 
     W: np.ndarray
@@ -75,6 +77,7 @@ class Problem:
     unconstrained: np.ndarray
     multipliers: np.ndarray
     kkt_inverse: np.ndarray
+    pinned: PinnedKKT | None = None
 
     @property
     def size(self) -> int:
@@ -98,6 +101,75 @@ class Problem:
     def hess_times(self, rho: np.ndarray) -> np.ndarray:
         """``Q @ rho`` along the last axis."""
         return certificate.hess_times(rho, self.step_nm)
+
+
+@dataclass(frozen=True)
+class PinnedKKT:
+    """The KKT system ``[[Q, −W], [Wᵀ, 0]] [δρ; δμ] = [s; r]`` solved in O(K) per right-hand side.
+
+    ``Q`` is singular (constants), so it is pinned at the first sample:
+    ``Q̂ = Q + c e₀ e₀ᵀ`` with ``c = 2/h`` is a positive definite tridiagonal matrix, factored
+    once by the Thomas algorithm. With ``t = δρ₀``, ``Q̂ δρ = s + W δμ + c e₀ t``, so
+    ``δρ = y + P [δμ; t]`` with ``y = Q̂⁻¹ s`` and ``P = Q̂⁻¹ [W, c e₀]``, and the ``m + 1``
+    unknowns ``[δμ; t]`` solve ``S [δμ; t] = [r − Wᵀ y; −y₀]`` with
+    ``S = [[Wᵀ P], [P₀ − e_m]]``. Each refinement step then costs a tridiagonal solve and
+    ``O(K m)`` products, where the dense inverse of :attr:`Problem.kkt_inverse` costs
+    ``O((K + m)²)``.
+
+    Attributes
+    ----------
+    sub : ndarray (K,)
+        Sub-diagonal of ``Q̂`` (``sub[k]`` couples sample k to k − 1; ``sub[0] = 0``), nm⁻¹.
+    sup_factor, inverse_denominator : ndarray (K,)
+        The Thomas algorithm's forward-sweep factors (super-diagonal over pivot; 1 / pivot).
+    P : ndarray (K, m + 1)
+        ``Q̂⁻¹ [W, c e₀]``.
+    S_lu : ndarray (m + 1, m + 1)
+        LU factors of ``S`` (``scipy.linalg.lu_factor`` layout), with pivots ``S_piv``.
+    S_piv : ndarray (m + 1,) of int64
+
+    References
+    ----------
+    G. H. Golub, C. F. Van Loan, *Matrix Computations*, 4th ed., Johns Hopkins (2013), §4.3
+    (tridiagonal systems) and §2.1.4 (rank-one changes).
+    """
+
+    sub: np.ndarray
+    sup_factor: np.ndarray
+    inverse_denominator: np.ndarray
+    P: np.ndarray
+    S_lu: np.ndarray
+    S_piv: np.ndarray
+
+
+def _pinned_kkt(prob: Problem) -> PinnedKKT:
+    """Factor the pinned Hessian and form ``P`` and ``S`` (see :class:`PinnedKKT`)."""
+    from scipy.linalg import solve_banded
+
+    W = prob.W
+    K, m = W.shape
+    diag, off = prob.hessian_bands()
+    c = 2.0 / prob.step_nm
+    diag = diag.copy()
+    diag[0] += c
+    sub = np.concatenate([[0.0], off])
+    sup_factor, inverse_denominator = np.empty(K), np.empty(K)
+    previous = 0.0
+    for k in range(K):
+        inverse_denominator[k] = 1.0 / (diag[k] - sub[k] * previous)
+        previous = (off[k] if k < K - 1 else 0.0) * inverse_denominator[k]
+        sup_factor[k] = previous
+    rhs = np.zeros((K, m + 1))
+    rhs[:, :m] = W
+    rhs[0, m] = c
+    bands = np.zeros((3, K))
+    bands[0, 1:], bands[1], bands[2, :-1] = off, diag, off
+    P = solve_banded((1, 1), bands, rhs)
+    S = np.concatenate([W.T @ P, P[:1]], axis=0)
+    S[m, m] -= 1.0
+    S_lu, S_piv = lu_factor(S)
+    return PinnedKKT(sub, sup_factor, inverse_denominator, np.ascontiguousarray(P), S_lu,
+                     S_piv.astype(np.int64))
 
 
 def make_problem(W: np.ndarray, step_nm: float) -> Problem:
@@ -124,7 +196,8 @@ def make_problem(W: np.ndarray, step_nm: float) -> Problem:
     multipliers = np.ascontiguousarray(inverse[K:, K:].T)
     for a in (inverse, unconstrained, multipliers):
         a.setflags(write=False)
-    return Problem(W, float(step_nm), unconstrained, multipliers, inverse)
+    prob = Problem(W, float(step_nm), unconstrained, multipliers, inverse)
+    return Problem(W, float(step_nm), unconstrained, multipliers, inverse, _pinned_kkt(prob))
 
 
 def solve_unconstrained(prob: Problem, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -135,6 +208,9 @@ def solve_unconstrained(prob: Problem, b: np.ndarray) -> tuple[np.ndarray, np.nd
     both KKT equations, one matrix product) brings it to the certificate's rounding level.
     Blocks of colours keep the work in cache.
     """
+    found = compiled.kernels()
+    if found is not None and prob.pinned is not None:
+        return compiled.closed_form(found, prob, b, _REFINE_STEPS)
     N, K = len(b), prob.size
     rho = np.empty((N, K))
     mu = np.empty((N, prob.W.shape[1]))
@@ -237,6 +313,9 @@ def _pdas(prob, b, lower, upper, lo_act, up_act, max_iter):
     Returns rho, mu, lam, iterations, converged; colours whose reduced system became
     singular or that did not settle within ``max_iter`` are returned unconverged.
     """
+    found = compiled.kernels()
+    if found is not None:
+        return compiled.pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, _REFINE_STEPS)
     N, K = b.shape[0], prob.size
     rho = np.full((N, K), np.nan)
     mu = np.full((N, prob.W.shape[1]), np.nan)

@@ -12,33 +12,24 @@ reassociation or fused multiply-add), and the tests hold both paths to a few ulp
 hypothesis. Without numba, or with the environment variable ``SPECTROCOLOR_NUMBA=0``,
 :func:`kernels` returns None and the NumPy path runs.
 
-Threads: the kernels run with numba's ``prange`` on ``numba.get_num_threads()`` threads (set
-by ``NUMBA_NUM_THREADS``) when called from the main thread, and serially from any other thread
-(dask's worker threads already run chunks in parallel).
-
-Compiled code is cached (``cache=True``) beside this file or, where that folder is not
-writable, in numba's per-user cache folder (or ``NUMBA_CACHE_DIR``); where neither can be
-written, the kernels are compiled in each process without a cache.
+The switch, the compile cache and the thread rule (parallel kernels from the main thread,
+serial ones from any other) are :mod:`spectrocolor.numba_support`'s.
 """
 
 from __future__ import annotations
 
-import os
-import threading
 from functools import lru_cache
 from types import SimpleNamespace
 
 import numpy as np
+
+from ..numba_support import numba_enabled, pick
 
 __all__ = ["MOVE_CODES", "kernels", "run_blend", "run_locate"]
 
 #: The out-of-range strategies the kernel implements: strategy name -> how a query outside the
 #: cube is moved (0 toward grey, 1 clip per channel). Other strategies use the NumPy path.
 MOVE_CODES = {"toward-grey": 0, "clip": 1, "nan": 1}
-
-
-def _disabled() -> bool:
-    return os.environ.get("SPECTROCOLOR_NUMBA", "1").strip().lower() in ("0", "no", "off", "false")
 
 
 @lru_cache(maxsize=1)
@@ -67,20 +58,16 @@ def kernels():
     >>> k is None or len(k.blend) == 2
     True
     """
-    if _disabled():
+    if not numba_enabled():
         return None
     return _compiled()
-
-
-def _variant(pair):
-    return pair[threading.current_thread() is threading.main_thread()]
 
 
 def run_blend(found_kernels, t, n, move, offsets, status, values, clamp, nan_inexact, out):
     """Blend ``values`` (n³, C) at queries ``t`` (N, 3) into ``out`` (N, C); (exact, moved)."""
     exact = np.empty(t.shape[0], dtype=np.bool_)
     moved = np.empty(t.shape[0], dtype=np.bool_)
-    _variant(found_kernels.blend)(t, n, move, offsets, status, values, clamp, nan_inexact, out,
+    pick(found_kernels.blend)(t, n, move, offsets, status, values, clamp, nan_inexact, out,
                                   exact, moved)
     return exact, moved
 
@@ -94,5 +81,5 @@ def run_locate(found_kernels, t, n, move, offsets, status, node_dtype=np.intp,
     weights = np.empty((count, 4), dtype=weight_dtype)
     exact = np.empty(count, dtype=np.bool_)
     moved = np.empty(count, dtype=np.bool_)
-    _variant(found_kernels.locate)(t, n, move, offsets, status, nodes, weights, exact, moved)
+    pick(found_kernels.locate)(t, n, move, offsets, status, nodes, weights, exact, moved)
     return nodes, weights, exact, moved

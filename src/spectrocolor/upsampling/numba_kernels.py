@@ -11,17 +11,12 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from ..numba_support import jit
+
 __all__ = ["blend_parallel", "blend_serial", "locate_parallel", "locate_serial"]
 
 
-def _jit(**options):
-    """``numba.njit(cache=True, ...)``, or without a cache where no cache folder is writable."""
-    def decorate(function):
-        try:
-            return numba.njit(cache=True, **options)(function)
-        except RuntimeError:  # "cannot cache function ...: no locator available for file ..."
-            return numba.njit(cache=False, **options)(function)
-    return decorate
+_jit = jit
 
 
 @_jit(inline="always")

@@ -1,0 +1,111 @@
+"""The optional compiled kernels of the smoothest-reflectance solvers (numba, extra ``fast``).
+
+Three kernels (:mod:`.numba_kernels`) take one colour at a time through what the NumPy path
+does with whole-batch arrays: the closed form with its refinement
+(:func:`.qp.solve_unconstrained`), the primal-dual active-set iterations (:func:`.qp._pdas`)
+and the certificate's measures (:func:`.certificate.certify`). Each colour's samples stay in
+the processor's cache, and the refinement of the closed form is an O(K) solve
+(:class:`.qp.PinnedKKT`) instead of a product with the dense KKT inverse.
+
+The kernels sum in another order than BLAS does, so their results agree with the NumPy
+path's to rounding rather than bit for bit; the certificate's tolerances hold for any order of
+summation, and the tests hold the kernels' certificate measures to the NumPy path's and both
+paths' solutions to each other. Without numba, or with ``SPECTROCOLOR_NUMBA=0``, :func:`kernels`
+returns None and the NumPy path runs (:mod:`spectrocolor.numba_support`: switch, cache and
+thread rule).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from types import SimpleNamespace
+
+import numpy as np
+
+from ..numba_support import numba_enabled
+from . import certificate
+
+__all__ = ["closed_form", "kernels", "measures", "pdas"]
+
+
+@lru_cache(maxsize=1)
+def _compiled():
+    try:
+        from . import numba_kernels as nk
+    except ImportError:  # numba is not installed (the extra "fast")
+        return None
+    return SimpleNamespace(closed_form=nk.closed_form, pdas=nk.pdas, measures=nk.measures)
+
+
+def kernels():
+    """The compiled kernels, or None without numba or with ``SPECTROCOLOR_NUMBA=0``.
+
+    Returns
+    -------
+    types.SimpleNamespace or None
+        ``closed_form``, ``pdas`` and ``measures``: numba dispatchers.
+
+    Examples
+    --------
+    >>> k = kernels()
+    >>> k is None or callable(k.pdas)
+    True
+    """
+    if not numba_enabled():
+        return None
+    return _compiled()
+
+
+def _factors(step_nm: float, size: int):
+    """``2/h``, ``PRIMAL_FACTOR γ_{K+1}`` and ``DUAL_FACTOR``: the certificate's constants."""
+    return (2.0 / step_nm, certificate.PRIMAL_FACTOR * certificate.gamma(size + 1),
+            certificate.DUAL_FACTOR)
+
+
+def _layouts(W):
+    """``Wᵀ`` and ``|W|ᵀ`` (m, K), contiguous: the kernels' layout of the weights."""
+    WT = np.ascontiguousarray(np.asarray(W, dtype=np.float64).T)
+    return WT, np.abs(WT)
+
+
+def closed_form(found, prob, b, refine_steps):
+    """Unconstrained minimisers and multipliers ``(rho (N, K), mu (N, m))`` of colours ``b``.
+
+    Each is refined once (by :class:`.qp.PinnedKKT`) and again, at most ``refine_steps`` times
+    in all, while a residual exceeds a quarter of the certificate's tolerance.
+    """
+    b = np.ascontiguousarray(b, dtype=np.float64)
+    K, m = prob.W.shape
+    rho, mu = np.empty((len(b), K)), np.empty((len(b), m))
+    t, primal, dual = _factors(prob.step_nm, K)
+    pin = prob.pinned
+    stacked = np.vstack([pin.sub, pin.sup_factor, pin.inverse_denominator, pin.P.T])
+    found.closed_form(*_layouts(prob.W), b, prob.unconstrained, prob.multipliers, t, stacked,
+                      pin.S_lu, pin.S_piv, refine_steps, primal, dual, rho, mu)
+    return rho, mu
+
+
+def pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, refine_steps):
+    """:func:`.qp._pdas` compiled: returns rho, mu, lam, iterations, converged."""
+    b = np.ascontiguousarray(b, dtype=np.float64)
+    N, (K, m) = len(b), prob.W.shape
+    lo, up = np.array(lo_act, dtype=np.bool_, order="C"), np.array(up_act, dtype=np.bool_, order="C")
+    rho, mu, lam = np.empty((N, K)), np.empty((N, m)), np.empty((N, K))
+    iterations, converged = np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.bool_)
+    t, primal, dual = _factors(prob.step_nm, K)
+    found.pdas(*_layouts(prob.W), b, prob.unconstrained, prob.multipliers, -t, t, float(lower),
+               float(upper), lo, up, max_iter, refine_steps, primal, dual, rho, mu, lam,
+               iterations, converged)
+    return rho, mu, lam, iterations, converged
+
+
+def measures(found, W, step_nm, b, rho, mu, lower, upper):
+    """The certificate's five measures (5, N) (:func:`.certificate.certify`); rows holding a
+    NaN or an infinity come back with an infinite ratio, for the caller to measure again."""
+    b, rho, mu = (np.ascontiguousarray(a, dtype=np.float64) for a in (b, rho, mu))
+    out = np.empty((5, len(b)))
+    t, primal, dual = _factors(step_nm, W.shape[0])
+    bounded = lower is not None
+    found.measures(*_layouts(W), t, b, rho, mu, float(lower) if bounded else 0.0,
+                   float(upper) if bounded else 0.0, bounded, primal, dual, out)
+    return out

@@ -1,0 +1,478 @@
+"""numba kernels of the smoothest-reflectance solvers (imported only by :mod:`.compiled`).
+
+One colour at a time, with its ``K`` samples in the processor's cache, each kernel does what
+the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch arrays:
+
+* ``closed_form_*``: the unconstrained minimiser ``b @ U`` and its multipliers, refined by the
+  O(K) KKT solve of :class:`.qp.PinnedKKT` until the residuals are within a quarter of the
+  certificate's tolerances (:func:`.qp.solve_unconstrained`);
+* ``pdas_*``: the primal-dual active-set iterations of :func:`.qp._pdas` (the same reduced
+  solve, refinement and rule for keeping a bound; the tridiagonal systems are solved by the
+  Thomas algorithm, stable here because every run of free samples is a positive definite path
+  Laplacian);
+* ``measures_*``: the certificate's five measures (:func:`.certificate.certify`).
+
+The kernels run on one thread: a batch is a loop over colours that allocates its work arrays
+once, and parallelism belongs to the caller (dask runs chunks in parallel threads, which numba's
+default threading layer must not be entered from at once). The per-sample helpers are inlined
+into the per-colour functions (``inline="always"``); the per-colour functions are not inlined
+into the loops, which keeps compilation to a few tens of seconds, once per machine (cached).
+The weights are passed transposed (``WT``, ``m × K``) so that the loops over samples are
+contiguous. Sums may be reassociated (``fastmath={"reassoc"}``: vectorised, no assumption
+about NaN or infinity), so results agree with the NumPy path to rounding, not bit for bit; the
+certificate's tolerances hold for any order of summation (:mod:`.certificate`), and the
+certificate decides every verdict.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..numba_support import jit
+
+__all__ = ["closed_form", "measures", "pdas"]
+
+EPS = float(np.finfo(np.float64).eps)
+TINY = float(np.finfo(np.float64).tiny)
+#: Sums may be reassociated (vectorised); NaN and infinity keep their meaning.
+_FAST = {"reassoc"}
+
+
+def _inline(function):
+    return jit(inline="always", fastmath=_FAST)(function)
+
+
+def _compiled(function):
+    return jit(fastmath=_FAST)(function)
+
+
+@_inline
+def _hess_times(rho, t, out):
+    """``Q ρ`` for the path Laplacian ``Q`` with ``t = 2/h`` (:func:`.certificate.hess_times`)."""
+    K = rho.shape[0]
+    out[0] = (rho[0] - rho[1]) * t
+    for k in range(1, K - 1):
+        out[k] = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
+    out[K - 1] = (rho[K - 1] - rho[K - 2]) * t
+
+
+@_inline
+def _abs_hess_times(rho, t, out):
+    """``|Q| |ρ|`` (:func:`.certificate.abs_hess_times`)."""
+    K = rho.shape[0]
+    out[0] = (abs(rho[0]) + abs(rho[1])) * t
+    for k in range(1, K - 1):
+        out[k] = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+    out[K - 1] = (abs(rho[K - 2]) + abs(rho[K - 1])) * t
+
+
+@_inline
+def _weighted(WT, mu, out):
+    """``W μ`` (K,)."""
+    K = WT.shape[1]
+    for k in range(K):
+        out[k] = mu[0] * WT[0, k]
+    for j in range(1, WT.shape[0]):
+        for k in range(K):
+            out[k] += mu[j] * WT[j, k]
+
+
+@_inline
+def _dual_tolerance(absWT, mu, abs_q_rho, dual_factor, out):
+    """``DUAL_FACTOR ε (|Q||ρ| + |W||μ|)`` (K,)."""
+    K = absWT.shape[1]
+    for k in range(K):
+        out[k] = abs_q_rho[k]
+    for j in range(absWT.shape[0]):
+        for k in range(K):
+            out[k] += abs(mu[j]) * absWT[j, k]
+    for k in range(K):
+        out[k] *= dual_factor * EPS
+
+
+@_inline
+def _colour_residual(WT, absWT, b, rho, r, size):
+    """``r = b − ρ W`` and ``size = |b| + |ρ| |W|`` (m,)."""
+    K = WT.shape[1]
+    for j in range(WT.shape[0]):
+        total = 0.0
+        scale = 0.0
+        for k in range(K):
+            total += rho[k] * WT[j, k]
+            scale += abs(rho[k]) * absWT[j, k]
+        r[j] = b[j] - total
+        size[j] = abs(b[j]) + scale
+
+
+@_inline
+def _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, check, work, r,
+               size):
+    """The colour residual ``r`` and the stationarity residual ``s = (W μ − Q ρ)`` on the free
+    samples (``work[0]``); with ``check``, whether either exceeds a quarter of the
+    certificate's tolerance (else False)."""
+    K = WT.shape[1]
+    s, q_rho, w_mu, tol = work[0], work[1], work[2], work[3]
+    _colour_residual(WT, absWT, b, rho, r, size)
+    _hess_times(rho, t, q_rho)
+    _weighted(WT, mu, w_mu)
+    for k in range(K):
+        s[k] = (w_mu[k] - q_rho[k]) * free[k]
+    if not check:
+        return False
+    for j in range(WT.shape[0]):
+        if abs(r[j]) > 0.25 * primal_factor * size[j]:
+            return True
+    _abs_hess_times(rho, t, q_rho)
+    _dual_tolerance(absWT, mu, q_rho, dual_factor, tol)
+    for k in range(K):
+        if abs(s[k]) > 0.25 * tol[k]:
+            return True
+    return False
+
+
+@_inline
+def _lu_small(M, piv):
+    """In-place LU with partial pivoting of the small square ``M``; returns its determinant."""
+    n = M.shape[0]
+    det = 1.0
+    for c in range(n):
+        p = c
+        for i in range(c + 1, n):
+            if abs(M[i, c]) > abs(M[p, c]):
+                p = i
+        piv[c] = p
+        if p != c:
+            det = -det
+            for j in range(n):
+                M[c, j], M[p, j] = M[p, j], M[c, j]
+        det *= M[c, c]
+        if M[c, c] != 0.0:
+            for i in range(c + 1, n):
+                M[i, c] /= M[c, c]
+                for j in range(c + 1, n):
+                    M[i, j] -= M[i, c] * M[c, j]
+    return det
+
+
+@_inline
+def _lu_solve_small(LU, piv, x):
+    """Solve in place with the factors of :func:`_lu_small` (or ``scipy.linalg.lu_factor``)."""
+    n = LU.shape[0]
+    for c in range(n):
+        p = piv[c]
+        if p != c:
+            x[c], x[p] = x[p], x[c]
+    for i in range(n):
+        for j in range(i):
+            x[i] -= LU[i, j] * x[j]
+    for i in range(n - 1, -1, -1):
+        for j in range(i + 1, n):
+            x[i] -= LU[i, j] * x[j]
+        x[i] /= LU[i, i]
+
+
+@_inline
+def _thomas_solve(sub, sup_factor, inverse_denominator, rhs, out):
+    """Solve ``T x = rhs`` with the Thomas factors of ``T`` (``sub[k]`` couples row k to k − 1)."""
+    K = rhs.shape[0]
+    y = rhs[0] * inverse_denominator[0]
+    out[0] = y
+    for k in range(1, K):
+        y = (rhs[k] - sub[k] * y) * inverse_denominator[k]
+        out[k] = y
+    for k in range(K - 2, -1, -1):
+        out[k] -= sup_factor[k] * out[k + 1]
+
+
+@_inline
+def _linear_map(b, U, out):
+    """``b @ U`` for one colour (``U`` (m, n))."""
+    for i in range(U.shape[1]):
+        out[i] = b[0] * U[0, i]
+    for j in range(1, U.shape[0]):
+        for i in range(U.shape[1]):
+            out[i] += b[j] * U[j, i]
+
+
+# --- the closed form ----------------------------------------------------------------------
+
+
+@_inline
+def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
+                     dual_factor, rho, mu, work, small):
+    K, m = WT.shape[1], WT.shape[0]
+    sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
+    _linear_map(b, U, rho)
+    _linear_map(b, Mu, mu)
+    free, y = work[4], work[5]
+    for k in range(K):
+        free[k] = 1.0
+    r, size, rhs = small[0], small[1], small[2]
+    for step in range(refine_steps + 1):
+        # every closed form needs one step (cancellation in b @ U); later ones only if checked
+        bad = _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, step > 0,
+                         work, r, size)
+        if (step > 0 and not bad) or step == refine_steps:
+            break
+        # [[Q, −W], [Wᵀ, 0]] [δρ; δμ] = [s; r]: δρ = y + P [δμ; τ], y = Q̂⁻¹ s (qp.PinnedKKT)
+        _thomas_solve(sub, sup_factor, inverse_denominator, work[0], y)
+        for j in range(m):
+            total = 0.0
+            for k in range(K):
+                total += WT[j, k] * y[k]
+            rhs[j] = r[j] - total
+        rhs[m] = -y[0]
+        _lu_solve_small(S_lu, S_piv, rhs)
+        for j in range(m + 1):
+            for k in range(K):
+                y[k] += P[j, k] * rhs[j]
+        for k in range(K):
+            rho[k] += y[k]
+        for j in range(m):
+            mu[j] += rhs[j]
+
+
+@_compiled
+def closed_form(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
+                dual_factor, rho, mu):
+    """Unconstrained minimisers ``rho`` (N, K) and multipliers ``mu`` (N, m) of colours ``b``.
+
+    ``t = 2/h``; ``primal_factor`` is ``PRIMAL_FACTOR γ_{K+1}`` and ``dual_factor``
+    ``DUAL_FACTOR`` of :mod:`.certificate`; ``pin`` stacks the sub-diagonal, the forward-sweep
+    factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`.
+    """
+    K, m = WT.shape[1], WT.shape[0]
+    work = np.empty((6, K))
+    small = np.empty((3, m + 1))
+    for n in range(b.shape[0]):
+        _closed_form_one(WT, absWT, b[n], U, Mu, t, pin, S_lu, S_piv, refine_steps,
+                         primal_factor, dual_factor, rho[n], mu[n], work, small)
+
+
+# --- the active-set iterations --------------------------------------------------------------
+
+
+@_inline
+def _thomas_solve_rows(sub, sup_factor, inverse_denominator, rhs, out):
+    """:func:`_thomas_solve` for every row of ``rhs`` (q, K) at once (their recurrences are
+    independent, so the processor overlaps them)."""
+    q, K = rhs.shape
+    for i in range(q):
+        out[i, 0] = rhs[i, 0] * inverse_denominator[0]
+    for k in range(1, K):
+        a, d = sub[k], inverse_denominator[k]
+        for i in range(q):
+            out[i, k] = (rhs[i, k] - a * out[i, k - 1]) * d
+    for k in range(K - 2, -1, -1):
+        c = sup_factor[k]
+        for i in range(q):
+            out[i, k] -= c * out[i, k + 1]
+
+
+@_inline
+def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_steps,
+                   primal_factor, dual_factor, rho, mu, work, R, X, M, piv, small):
+    """One reduced solve of :func:`.qp._reduced_solve` for one colour; returns ``ok``.
+
+    ``R`` and ``X`` (m + 1, K) hold the right-hand sides (bounds; free weights) and their
+    solutions ``p`` and ``P``."""
+    K, m = WT.shape[1], WT.shape[0]
+    free, sub, sup_factor, inverse_denominator = work[4], work[5], work[6], work[7]
+    y = work[9]
+    r, size, dmu = small[0], small[1], small[2]
+    active_count = 0
+    for k in range(K):
+        free[k] = 0.0 if (lo[k] or up[k]) else 1.0
+        active_count += 1 - int(free[k])
+    if active_count == 0:
+        _linear_map(b, U, rho)
+        _linear_map(b, Mu, mu)
+        return True
+    # The tridiagonal matrix with identity rows on the active samples. Its Thomas pivots are
+    # known in closed form (so no chain of divisions): in units of 2/h, a run of free samples
+    # from the first sample has pivots 1; a run after an active sample is a path Laplacian
+    # with a fixed left end, whose n-th pivot is (n + 1)/n, or 1/n at the last sample (half
+    # diagonal). Identity rows have pivot 1 and no couplings.
+    run, from_start = 0, True
+    for k in range(K):
+        if free[k] == 0.0:
+            run, from_start = 0, False
+            sub[k], inverse_denominator[k], sup_factor[k] = 0.0, 1.0, 0.0
+            continue
+        run += 1
+        sub[k] = off_q if k > 0 else 0.0
+        if from_start:
+            inverse_scaled = 1.0
+        elif k == K - 1:
+            inverse_scaled = float(run)
+        else:
+            inverse_scaled = run / (run + 1.0)
+        inverse_denominator[k] = inverse_scaled / t
+        sup_factor[k] = -inverse_scaled if k < K - 1 else 0.0
+    for k in range(K):
+        R[0, k] = lower if lo[k] else (upper if up[k] else 0.0)
+    for j in range(m):
+        for k in range(K):
+            R[1 + j, k] = WT[j, k] * free[k]
+    _thomas_solve_rows(sub, sup_factor, inverse_denominator, R, X)
+    p, P = X[0], X[1:]
+    _colour_residual(WT, absWT, b, p, r, size)
+    scale = 0.0
+    for i in range(m):
+        for j in range(m):
+            value = 0.0
+            for k in range(K):
+                value += WT[i, k] * P[j, k]
+            M[i, j] = value
+            scale += value * value
+    det = _lu_small(M, piv)
+    if not abs(det) > 1e-13 * scale ** (0.5 * m):
+        return False
+    for i in range(m):
+        mu[i] = r[i]
+    _lu_solve_small(M, piv, mu)
+    for k in range(K):
+        rho[k] = p[k]
+    for j in range(m):
+        for k in range(K):
+            rho[k] += P[j, k] * mu[j]
+    for k in range(K):
+        if lo[k]:
+            rho[k] = lower
+        elif up[k]:
+            rho[k] = upper
+    for _ in range(refine_steps):
+        if not _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, True,
+                          work, r, size):
+            break
+        _thomas_solve(sub, sup_factor, inverse_denominator, work[0], y)
+        for i in range(m):
+            total = 0.0
+            for k in range(K):
+                total += y[k] * WT[i, k]
+            dmu[i] = r[i] - total
+        _lu_solve_small(M, piv, dmu)
+        for j in range(m):
+            mu[j] += dmu[j]
+            for k in range(K):
+                y[k] += P[j, k] * dmu[j]
+        for k in range(K):
+            rho[k] += y[k] * free[k]
+    return True
+
+
+@_inline
+def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_steps,
+              primal_factor, dual_factor, rho, mu, lam, work, R, X, M, piv, small):
+    """:func:`.qp._pdas` for one colour from the active sets ``lo``/``up`` (updated in place).
+    Returns (iterations, converged); on failure the outputs are NaN."""
+    K, m = WT.shape[1], WT.shape[0]
+    q_rho, w_mu, tol = work[1], work[2], work[3]
+    ok = True
+    it = 0
+    for it in range(1, max_iter + 1):
+        ok = _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_steps,
+                            primal_factor, dual_factor, rho, mu, work, R, X, M, piv, small)
+        if not ok:
+            break
+        _hess_times(rho, t, q_rho)
+        _weighted(WT, mu, w_mu)
+        for k in range(K):
+            lam[k] = q_rho[k] - w_mu[k]
+        _abs_hess_times(rho, t, q_rho)
+        _dual_tolerance(absWT, mu, q_rho, dual_factor, tol)
+        same = True
+        for k in range(K):
+            if lo[k] or up[k]:
+                # a bound stays while its multiplier has the right sign to within half the
+                # certificate's tolerance
+                new_lo = lo[k] and lam[k] > -0.5 * tol[k]
+                new_up = up[k] and lam[k] < 0.5 * tol[k]
+            else:
+                lam[k] = 0.0
+                new_lo = rho[k] < lower
+                new_up = rho[k] > upper
+            if new_lo != lo[k] or new_up != up[k]:
+                same = False
+            lo[k], up[k] = new_lo, new_up
+        if same:
+            return it, True
+    for k in range(K):
+        rho[k] = np.nan
+        lam[k] = np.nan
+    for j in range(m):
+        mu[j] = np.nan
+    return it, False
+
+
+@_compiled
+def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_steps,
+         primal_factor, dual_factor, rho, mu, lam, iterations, converged):
+    """:func:`.qp._pdas` for colours ``b`` (N, m) from the active sets ``lo``/``up`` (N, K),
+    which are updated in place."""
+    K, m = WT.shape[1], WT.shape[0]
+    work = np.empty((10, K))
+    R, X = np.empty((m + 1, K)), np.empty((m + 1, K))
+    M = np.empty((m, m))
+    piv = np.empty(m, dtype=np.int64)
+    small = np.empty((3, m))
+    for n in range(b.shape[0]):
+        iterations[n], converged[n] = _pdas_one(
+            WT, absWT, b[n], U, Mu, off_q, t, lower, upper, lo[n], up[n], max_iter, refine_steps,
+            primal_factor, dual_factor, rho[n], mu[n], lam[n], work, R, X, M, piv, small)
+
+
+# --- the certificate's measures --------------------------------------------------------------
+
+
+@_inline
+def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor, dual_factor,
+                  out, n, work, small):
+    K, m = WT.shape[1], WT.shape[0]
+    finite = True
+    for k in range(K):
+        finite = finite and np.isfinite(rho[k])
+    for j in range(m):
+        finite = finite and np.isfinite(mu[j])
+    r, size = small[0], small[1]
+    _colour_residual(WT, absWT, b, rho, r, size)
+    residual_max, ratio = 0.0, 0.0
+    for j in range(m):
+        residual_max = max(residual_max, abs(r[j]))
+        ratio = max(ratio, abs(r[j]) / max(primal_factor * size[j], TINY))
+    lam, w_mu, tol = work[0], work[1], work[2]
+    _hess_times(rho, t, lam)
+    _weighted(WT, mu, w_mu)
+    for k in range(K):
+        lam[k] -= w_mu[k]
+    _abs_hess_times(rho, t, w_mu)
+    _dual_tolerance(absWT, mu, w_mu, dual_factor, tol)
+    violation, wrong_max, off_max = 0.0, 0.0, 0.0
+    for k in range(K):
+        wrong, off = 0.0, abs(lam[k])
+        if bounded:
+            violation = max(violation, lower - rho[k], rho[k] - upper)
+            if rho[k] == lower:
+                wrong, off = max(-lam[k], 0.0), 0.0
+            elif rho[k] == upper:
+                wrong, off = max(lam[k], 0.0), 0.0
+        wrong_max = max(wrong_max, wrong)
+        off_max = max(off_max, off)
+        ratio = max(ratio, max(off, wrong) / max(tol[k], TINY))
+    out[0, n] = residual_max
+    out[1, n] = violation
+    out[2, n] = wrong_max
+    out[3, n] = off_max
+    # a row holding NaN or infinity is measured again by the NumPy path (its NaN semantics)
+    out[4, n] = ratio if finite else np.inf
+
+
+@_compiled
+def measures(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor, dual_factor, out):
+    """The certificate's measures (:func:`.certificate.certify`) into ``out`` (5, N): primal
+    residual, bound violation, sign violation, stationarity and rounding ratio."""
+    work = np.empty((3, WT.shape[1]))
+    small = np.empty((2, WT.shape[0]))
+    for n in range(b.shape[0]):
+        _measures_one(WT, absWT, t, b[n], rho[n], mu[n], lower, upper, bounded, primal_factor,
+                      dual_factor, out, n, work, small)

@@ -1,0 +1,137 @@
+"""The compiled kernels of the smoothest-reflectance solvers against the NumPy path.
+
+With numba installed the closed form, the active-set iterations and the certificate's measures
+run compiled (``spectrocolor.recovery.compiled``); ``SPECTROCOLOR_NUMBA=0`` runs the NumPy path.
+Both must answer every colour the same way (feasible or not, solved by the same method,
+certified), and every certified answer must pass the independent KKT check of
+``tests/kkt_check.py``. The kernels sum in another order than BLAS, so solutions are compared
+to the rounding of the closed form's own product, not bit for bit.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+import pytest
+from kkt_check import kkt_violation
+
+import spectrocolor as sc
+from spectrocolor.recovery import certificate, compiled, qp
+from spectrocolor.recovery.inputs import setup_for
+
+pytestmark = pytest.mark.skipif(compiled._compiled() is None, reason="numba is not installed")
+
+EPS = np.finfo(float).eps
+GRIDS = [(380.0, 780.0, 10.0), (400.0, 700.0, 5.0)]
+
+
+def _colours(grid, illuminant="D65", count=120):
+    """Interior, saturated, near-boundary (depth 1e-6 and 1e-9) and outside colours."""
+    setup = setup_for(grid, "1931", illuminant)[0]
+    W = setup.W
+    K = W.shape[0]
+    rng = np.random.default_rng(11)
+    smooth = np.cumsum(rng.normal(size=(count, K)), axis=1)
+    smooth = (smooth - smooth.min(axis=1, keepdims=True)) / np.ptp(smooth, axis=1, keepdims=True)
+    interior = (0.05 + 0.9 * smooth) @ W
+    saturated = smooth @ W
+    vertices = (rng.normal(size=(count, 3)) @ W.T > 0).astype(float) @ W
+    centre = setup.white / 2
+    near = np.concatenate([centre + (vertices - centre) * (1 - d) for d in (1e-6, 1e-9)])
+    outside = centre + (vertices[:20] - centre) * 1.01
+    return np.concatenate([interior, saturated, near, outside])
+
+
+def _solve(XYZ, grid, bounds, monkeypatch, numba_on):
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "1" if numba_on else "0")
+    return sc.smoothest_reflectance(XYZ, wavelengths=grid, bounds=bounds)
+
+
+@pytest.mark.parametrize("bounds", ["unit", "nonnegative", None])
+@pytest.mark.parametrize("grid", GRIDS)
+def test_both_paths_answer_every_colour_alike_and_pass_the_independent_check(grid, bounds,
+                                                                            monkeypatch):
+    XYZ = _colours(grid)
+    fast = _solve(XYZ, grid, bounds, monkeypatch, True)
+    plain = _solve(XYZ, grid, bounds, monkeypatch, False)
+    np.testing.assert_array_equal(fast.feasible, plain.feasible)
+    np.testing.assert_array_equal(fast.method, plain.method)
+    assert fast.feasible.sum() > len(XYZ) // 2
+    for result in (fast, plain):
+        assert result.certificate.converged[result.feasible].all()
+    if bounds is None:
+        return
+    W = setup_for(grid, "1931", "D65")[0].W
+    upper = 1.0 if bounds == "unit" else np.inf
+    for i in np.flatnonzero(fast.feasible)[::3]:
+        ratio = kkt_violation(W, grid[2], fast.spectrum.values[i], upper, fast.multipliers[i])
+        assert ratio <= 1.0, (i, ratio, fast.method[i])
+
+
+@pytest.mark.parametrize("grid", GRIDS)
+def test_closed_forms_agree_to_the_rounding_of_the_product(grid, monkeypatch):
+    prob = setup_for(grid, "1931", "D65")[0].problem
+    XYZ = _colours(grid)
+    rho_fast, mu_fast = qp.solve_unconstrained(prob, XYZ)
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "0")
+    rho_plain, mu_plain = qp.solve_unconstrained(prob, XYZ)
+    # each is the exact minimiser to within a few roundings of the terms of b @ U
+    scale = np.abs(XYZ) @ np.abs(prob.unconstrained)
+    assert np.all(np.abs(rho_fast - rho_plain) <= 64 * EPS * scale)
+    scale_mu = np.abs(XYZ) @ np.abs(prob.multipliers)
+    assert np.all(np.abs(mu_fast - mu_plain) <= 64 * EPS * scale_mu)
+
+
+@pytest.mark.parametrize(("lower", "upper"), [(0.0, 1.0), (0.0, np.inf), (None, None)])
+def test_certificate_measures_agree_with_the_numpy_path(lower, upper, monkeypatch):
+    grid = (400.0, 700.0, 10.0)
+    prob = setup_for(grid, "1931", "D65")[0].problem
+    XYZ = _colours(grid)
+    rho, mu = qp.solve_unconstrained(prob, XYZ)
+    if lower is not None:
+        rho = np.clip(rho, lower, upper)
+    # perturbations far above rounding, so the measures do not depend on the summation order
+    rng = np.random.default_rng(5)
+    rho = np.where((rho == 0.0) | (rho == 1.0), rho, rho + 1e-7 * rng.normal(size=rho.shape))
+    mu = mu + 1e-6 * rng.normal(size=mu.shape)
+    rho[3, 4] = np.nan  # measured again by the NumPy path: its NaN semantics
+    mu[5, 1] = np.inf
+    settled = np.ones(len(XYZ), dtype=bool)
+    fast = certificate.certify(prob.W, prob.step_nm, XYZ, rho, mu, lower, upper, settled)
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "0")
+    plain = certificate.certify(prob.W, prob.step_nm, XYZ, rho, mu, lower, upper, settled)
+    for name in ("primal_residual", "multiplier_sign_violation", "stationarity", "rounding_ratio"):
+        a, b = getattr(fast, name), getattr(plain, name)
+        np.testing.assert_allclose(a, b, rtol=1e-6, atol=0, equal_nan=True, err_msg=name)
+    np.testing.assert_array_equal(fast.bound_violation, plain.bound_violation)
+    np.testing.assert_array_equal(fast.converged, plain.converged)
+    assert not fast.converged[3] and not fast.converged[5]
+
+
+def test_the_kernels_run_from_worker_threads(monkeypatch):
+    """dask calls from its worker threads: the compiled path must give the main thread's answer."""
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "1")
+    grid = (380.0, 780.0, 10.0)
+    XYZ = _colours(grid)
+    expected = sc.smoothest_reflectance(XYZ, wavelengths=grid)
+    results = [None, None]
+
+    def work(slot):
+        results[slot] = sc.smoothest_reflectance(XYZ, wavelengths=grid)
+
+    threads = [threading.Thread(target=work, args=(slot,)) for slot in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for got in results:
+        np.testing.assert_array_equal(got.spectrum.values, expected.spectrum.values)
+        np.testing.assert_array_equal(got.certificate.converged, expected.certificate.converged)
+
+
+def test_the_switch_selects_the_numpy_path(monkeypatch):
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "off")
+    assert compiled.kernels() is None
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "1")
+    assert compiled.kernels() is not None
