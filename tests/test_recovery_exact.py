@@ -138,10 +138,11 @@ def test_random_exact_boundary_and_vertex_sums_are_certified(grid, illuminant, d
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("illuminant", ["D65", "A"])
+@pytest.mark.parametrize("illuminant", ["A"])
 def test_every_red_end_block_is_certified(illuminant):
-    """All 1 640 two-transition blocks on 380–780/10 nm: none flagged (82 under D65 and 57
-    under A were before the exact fallback), every one passes the independent check."""
+    """All 1 640 two-transition blocks on 380–780/10 nm: none flagged (57 under A were before
+    the exact fallback; D65, 82 before, is guarded in test_smoothest.py), every one passes the
+    independent check."""
     W = _weights(RED_END, illuminant)
     K = W.shape[0]
     R = []

@@ -352,6 +352,7 @@ def exact_solution(W: np.ndarray, step_nm: float, b: np.ndarray, lower: float, u
     >>> rho.tolist(), mu.tolist()
     ([0.5, 0.5, 0.5], [0.0, 0.0, 0.0])
     """
+    half = PRIMAL_FACTOR / 2 * gamma(W.shape[0] + 1)
     prog = _Programme(W, lower, upper)
     target = [Fraction(float(v)) for v in b]
     vertex = prog.nearest_vertex(target)
@@ -359,10 +360,12 @@ def exact_solution(W: np.ndarray, step_nm: float, b: np.ndarray, lower: float, u
         return None
     rho, basic = vertex
     reached = prog.colour(rho)
-    free = [False] * prog.K
-    for k in basic:
-        free[k] = True
-    free = prog.with_rank(free)
+    if prog.upper is not None and any(  # farther than half the largest primal tolerance
+            abs(reached[j] - target[j]) > Fraction(half) * (
+                sum(abs(prog.W[k][j]) for k in range(prog.K)) * max(abs(prog.lower), abs(prog.upper))
+                + abs(target[j])) for j in range(prog.m)):
+        return None
+    free = prog.with_rank([k in basic for k in range(prog.K)])
     if free is None:
         return None
     got = prog.active_set(rho, free, reached)
@@ -370,7 +373,6 @@ def exact_solution(W: np.ndarray, step_nm: float, b: np.ndarray, lower: float, u
         return None
     rho, nu = got
     # b' may replace b only within half the certificate's primal tolerance
-    half = PRIMAL_FACTOR / 2 * gamma(prog.K + 1)
     for j in range(prog.m):
         size = sum(abs(rho[k] * prog.W[k][j]) for k in range(prog.K)) + abs(target[j])
         if abs(reached[j] - target[j]) > Fraction(half) * size:

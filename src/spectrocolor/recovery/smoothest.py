@@ -369,7 +369,7 @@ def _solve_bounded(setup: Setup, b: np.ndarray, lower: float, upper: float):
     """
     prob = setup.problem
     N = len(b)
-    rho, mu = qp.solve_unconstrained(prob, b)
+    rho, mu = qp.solve_unconstrained(prob, b, within=(lower, upper))
     converged = np.ones(N, dtype=bool)
     distance = np.zeros(N)
     method = np.full(N, "unconstrained", dtype=_METHOD_DTYPE)
