@@ -25,7 +25,7 @@ import numpy as np
 from ..numba_support import numba_enabled
 from . import certificate
 
-__all__ = ["closed_form", "kernels", "measures", "pdas"]
+__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas"]
 
 
 @lru_cache(maxsize=1)
@@ -34,7 +34,8 @@ def _compiled():
         from . import numba_kernels as nk
     except ImportError:  # numba is not installed (the extra "fast")
         return None
-    return SimpleNamespace(closed_form=nk.closed_form, pdas=nk.pdas, measures=nk.measures)
+    return SimpleNamespace(closed_form=nk.closed_form, pdas=nk.pdas, measures=nk.measures,
+                           facet_maxima=nk.facet_maxima)
 
 
 def kernels():
@@ -43,7 +44,7 @@ def kernels():
     Returns
     -------
     types.SimpleNamespace or None
-        ``closed_form``, ``pdas`` and ``measures``: numba dispatchers.
+        ``closed_form``, ``pdas``, ``measures`` and ``facet_maxima``: numba dispatchers.
 
     Examples
     --------
@@ -68,11 +69,12 @@ def _layouts(W):
     return WT, np.abs(WT)
 
 
-def closed_form(found, prob, b, refine_steps):
+def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
     """Unconstrained minimisers and multipliers ``(rho (N, K), mu (N, m))`` of colours ``b``.
 
     Each is refined once (by :class:`.qp.PinnedKKT`) and again, at most ``refine_steps`` times
-    in all, while a residual exceeds a quarter of the certificate's tolerance.
+    in all, while a residual exceeds a quarter of the certificate's tolerance; colours with a
+    value below ``lowest`` or above ``highest`` are left unrefined.
     """
     b = np.ascontiguousarray(b, dtype=np.float64)
     K, m = prob.W.shape
@@ -81,7 +83,8 @@ def closed_form(found, prob, b, refine_steps):
     pin = prob.pinned
     stacked = np.vstack([pin.sub, pin.sup_factor, pin.inverse_denominator, pin.P.T])
     found.closed_form(*_layouts(prob.W), b, prob.unconstrained, prob.multipliers, t, stacked,
-                      pin.S_lu, pin.S_piv, refine_steps, primal, dual, rho, mu)
+                      pin.S_lu, pin.S_piv, refine_steps, primal, dual, float(lowest),
+                      float(highest), rho, mu)
     return rho, mu
 
 
@@ -109,3 +112,14 @@ def measures(found, W, step_nm, b, rho, mu, lower, upper):
     found.measures(*_layouts(W), t, b, rho, mu, float(lower) if bounded else 0.0,
                    float(upper) if bounded else 0.0, bounded, primal, dual, out)
     return out
+
+
+def facet_maxima(found, b, centre, normals, absolute):
+    """Per colour, ``(top, index)``: the largest ``normals · (b − centre)`` (of its absolute value
+    with ``absolute``) and the facet attaining it, first on ties (:func:`.zonotope.gauge`)."""
+    b = np.ascontiguousarray(b, dtype=np.float64)
+    top, index = np.empty(len(b)), np.empty(len(b), dtype=np.int64)
+    found.facet_maxima(b, np.asarray(centre, dtype=np.float64),
+                       np.ascontiguousarray(np.asarray(normals, dtype=np.float64).T), absolute,
+                       top, index)
+    return top, index

@@ -3,14 +3,15 @@
 One colour at a time, with its ``K`` samples in the processor's cache, each kernel does what
 the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch arrays:
 
-* ``closed_form_*``: the unconstrained minimiser ``b @ U`` and its multipliers, refined by the
+* ``closed_form``: the unconstrained minimiser ``b @ U`` and its multipliers, refined by the
   O(K) KKT solve of :class:`.qp.PinnedKKT` until the residuals are within a quarter of the
   certificate's tolerances (:func:`.qp.solve_unconstrained`);
-* ``pdas_*``: the primal-dual active-set iterations of :func:`.qp._pdas` (the same reduced
+* ``pdas``: the primal-dual active-set iterations of :func:`.qp._pdas` (the same reduced
   solve, refinement and rule for keeping a bound; the tridiagonal systems are solved by the
   Thomas algorithm, stable here because every run of free samples is a positive definite path
   Laplacian);
-* ``measures_*``: the certificate's five measures (:func:`.certificate.certify`).
+* ``measures``: the certificate's five measures (:func:`.certificate.certify`);
+* ``facet_maxima``: the facet each colour is farthest beyond (:func:`.zonotope.gauge`).
 
 The kernels run on one thread: a batch is a loop over colours that allocates its work arrays
 once, and parallelism belongs to the caller (dask runs chunks in parallel threads, which numba's
@@ -30,7 +31,7 @@ import numpy as np
 
 from ..numba_support import jit
 
-__all__ = ["closed_form", "measures", "pdas"]
+__all__ = ["closed_form", "facet_maxima", "measures", "pdas"]
 
 EPS = float(np.finfo(np.float64).eps)
 TINY = float(np.finfo(np.float64).tiny)
@@ -199,11 +200,14 @@ def _linear_map(b, U, out):
 
 @_inline
 def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                     dual_factor, rho, mu, work, small):
+                     dual_factor, lowest, highest, rho, mu, work, small):
     K, m = WT.shape[1], WT.shape[0]
     sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
     _linear_map(b, U, rho)
     _linear_map(b, Mu, mu)
+    for k in range(K):
+        if rho[k] < lowest or rho[k] > highest:
+            return
     free, y = work[4], work[5]
     for k in range(K):
         free[k] = 1.0
@@ -234,19 +238,20 @@ def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, pri
 
 @_compiled
 def closed_form(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                dual_factor, rho, mu):
+                dual_factor, lowest, highest, rho, mu):
     """Unconstrained minimisers ``rho`` (N, K) and multipliers ``mu`` (N, m) of colours ``b``.
 
     ``t = 2/h``; ``primal_factor`` is ``PRIMAL_FACTOR γ_{K+1}`` and ``dual_factor``
     ``DUAL_FACTOR`` of :mod:`.certificate`; ``pin`` stacks the sub-diagonal, the forward-sweep
-    factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`.
+    factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`. Colours with a
+    value below ``lowest`` or above ``highest`` are left unrefined.
     """
     K, m = WT.shape[1], WT.shape[0]
     work = np.empty((6, K))
     small = np.empty((3, m + 1))
     for n in range(b.shape[0]):
         _closed_form_one(WT, absWT, b[n], U, Mu, t, pin, S_lu, S_piv, refine_steps,
-                         primal_factor, dual_factor, rho[n], mu[n], work, small)
+                         primal_factor, dual_factor, lowest, highest, rho[n], mu[n], work, small)
 
 
 # --- the active-set iterations --------------------------------------------------------------
@@ -476,3 +481,28 @@ def measures(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor, dua
     for n in range(b.shape[0]):
         _measures_one(WT, absWT, t, b[n], rho[n], mu[n], lower, upper, bounded, primal_factor,
                       dual_factor, out, n, work, small)
+
+
+# --- membership --------------------------------------------------------------------------------
+
+
+@_compiled
+def facet_maxima(b, centre, NT, absolute, top, index):
+    """Per colour ``b[n]`` (N, 3), the facet ``f`` of the normals ``NT`` (3, F) with the largest
+    ``v_f = NT[:, f] · (b[n] − centre)`` (or ``|v_f|`` with ``absolute``; the first on ties,
+    as ``numpy.argmax``): ``index[n] = f`` and ``top[n] = v_f`` (:func:`.zonotope.gauge`)."""
+    F = NT.shape[1]
+    values = np.empty(F)
+    for n in range(b.shape[0]):
+        d0, d1, d2 = b[n, 0] - centre[0], b[n, 1] - centre[1], b[n, 2] - centre[2]
+        for f in range(F):
+            values[f] = d0 * NT[0, f] + d1 * NT[1, f] + d2 * NT[2, f]
+        if absolute:
+            for f in range(F):
+                values[f] = abs(values[f])
+        best, k = -np.inf, 0
+        for f in range(F):
+            if values[f] > best:
+                best, k = values[f], f
+        index[n] = k
+        top[n] = d0 * NT[0, k] + d1 * NT[1, k] + d2 * NT[2, k]

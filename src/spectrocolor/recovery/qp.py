@@ -200,24 +200,35 @@ def make_problem(W: np.ndarray, step_nm: float) -> Problem:
     return Problem(W, float(step_nm), unconstrained, multipliers, inverse, _pinned_kkt(prob))
 
 
-def solve_unconstrained(prob: Problem, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+#: Closed-form values this far beyond a bound are outside it whatever the refinement does (it
+#: moves them by a few roundings): :func:`solve_unconstrained` leaves such colours unrefined.
+WITHIN_MARGIN = 1e-9
+
+
+def solve_unconstrained(prob: Problem, b: np.ndarray, within=None) -> tuple[np.ndarray, np.ndarray]:
     """The minimiser without bounds and its multipliers for colours ``b`` (N, m).
 
     The closed form ``b @ unconstrained`` loses accuracy to cancellation among the terms of
-    the product; one step of iterative refinement with the inverse KKT matrix (residuals of
-    both KKT equations, one matrix product) brings it to the certificate's rounding level.
-    Blocks of colours keep the work in cache.
+    the product; iterative refinement (one step of the KKT solve, compiled: the O(K)
+    :class:`PinnedKKT`, else the inverse KKT matrix) brings it to the certificate's rounding
+    level. With ``within = (lower, upper)``, colours whose closed form leaves
+    ``[lower, upper]`` by more than :data:`WITHIN_MARGIN` are returned unrefined: for the
+    bounded programme their closed form only says which bounds to start from.
     """
+    lower, upper = (-np.inf, np.inf) if within is None else within
     found = compiled.kernels()
     if found is not None and prob.pinned is not None:
-        return compiled.closed_form(found, prob, b, _REFINE_STEPS)
+        return compiled.closed_form(found, prob, b, _REFINE_STEPS, lower - WITHIN_MARGIN,
+                                    upper + WITHIN_MARGIN)
     N, K = len(b), prob.size
     rho = np.empty((N, K))
     mu = np.empty((N, prob.W.shape[1]))
     for start in range(0, N, _BLOCK):
         part = slice(start, start + _BLOCK)
-        rho[part], mu[part] = refine_unconstrained(prob, b[part], b[part] @ prob.unconstrained,
-                                                   b[part] @ prob.multipliers)
+        rho[part], mu[part] = b[part] @ prob.unconstrained, b[part] @ prob.multipliers
+        inside = np.flatnonzero(np.all((rho[part] >= lower - WITHIN_MARGIN)
+                                       & (rho[part] <= upper + WITHIN_MARGIN), axis=1)) + start
+        rho[inside], mu[inside] = refine_unconstrained(prob, b[inside], rho[inside], mu[inside])
     return rho, mu
 
 

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import compiled
+
 #: Elements (colours × facets) of one block of the membership test: bounds its memory (32 MiB
 #: per array) whatever the grid (the solid has K (K − 1) facets) and the batch.
 BLOCK = 1 << 22
@@ -150,17 +152,24 @@ def gauge(facets: Facets, b: np.ndarray, cone: bool) -> tuple[np.ndarray, np.nda
     scaled = facets.normals if cone else facets.normals / facets.support[:, None]
     half = len(scaled) // 2
     chunk = max(1, BLOCK // max(len(scaled), 1))
+    found = compiled.kernels()
     for start in range(0, N, chunk):
         d = b[start:start + chunk] - facets.centre
         rows = np.arange(len(d))
         if cone:
-            rel = d @ scaled.T
-            k = np.argmax(rel, axis=1)
-            top = rel[rows, k]
+            if found is not None:
+                top, k = compiled.facet_maxima(found, d, np.zeros(3), scaled, False)
+            else:
+                rel = d @ scaled.T
+                k = np.argmax(rel, axis=1)
+                top = rel[rows, k]
         else:  # the solid's facets come in opposite pairs (n, -n) with equal support
-            rel = d @ scaled[:half].T
-            k = np.argmax(np.abs(rel), axis=1)
-            top = rel[rows, k]
+            if found is not None:
+                top, k = compiled.facet_maxima(found, d, np.zeros(3), scaled[:half], True)
+            else:
+                rel = d @ scaled[:half].T
+                k = np.argmax(np.abs(rel), axis=1)
+                top = rel[rows, k]
             k = np.where(top >= 0, k, k + half)
             top = np.abs(top)
         if cone:
