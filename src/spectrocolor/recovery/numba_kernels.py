@@ -275,16 +275,17 @@ def _thomas_solve_rows(sub, sup_factor, inverse_denominator, rhs, out):
 
 
 @_inline
-def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_steps,
-                   primal_factor, dual_factor, rho, mu, work, R, X, M, piv, small):
-    """One reduced solve of :func:`.qp._reduced_solve` for one colour; returns ``ok``.
+def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu, work, R, X, M,
+                   piv, small):
+    """One reduced solve of :func:`.qp._reduced_solve` for one colour, without its refinement
+    (:func:`_refine_reduced`); returns 0 where the reduced matrix is singular, 2 where no
+    bound is active (the closed form), else 1.
 
     ``R`` and ``X`` (m + 1, K) hold the right-hand sides (bounds; free weights) and their
     solutions ``p`` and ``P``."""
     K, m = WT.shape[1], WT.shape[0]
     free, sub, sup_factor, inverse_denominator = work[4], work[5], work[6], work[7]
-    y = work[9]
-    r, size, dmu = small[0], small[1], small[2]
+    r, size = small[0], small[1]
     active_count = 0
     for k in range(K):
         free[k] = 0.0 if (lo[k] or up[k]) else 1.0
@@ -292,7 +293,7 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_s
     if active_count == 0:
         _linear_map(b, U, rho)
         _linear_map(b, Mu, mu)
-        return True
+        return 2
     # The tridiagonal matrix with identity rows on the active samples. Its Thomas pivots are
     # known in closed form (so no chain of divisions): in units of 2/h, a run of free samples
     # from the first sample has pivots 1; a run after an active sample is a path Laplacian
@@ -332,7 +333,7 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_s
             scale += value * value
     det = _lu_small(M, piv)
     if not abs(det) > 1e-13 * scale ** (0.5 * m):
-        return False
+        return 0
     for i in range(m):
         mu[i] = r[i]
     _lu_solve_small(M, piv, mu)
@@ -346,6 +347,20 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_s
             rho[k] = lower
         elif up[k]:
             rho[k] = upper
+    return 1
+
+
+@_inline
+def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work, X,
+                    M, piv, small):
+    """Iterative refinement of the last :func:`_reduced_solve` (its factors are still in
+    ``work``, ``X``, ``M`` and ``piv``), while a residual exceeds a quarter of the certificate's
+    tolerance; the active values stay exact."""
+    K, m = WT.shape[1], WT.shape[0]
+    free, sub, sup_factor, inverse_denominator = work[4], work[5], work[6], work[7]
+    y = work[9]
+    r, size, dmu = small[0], small[1], small[2]
+    P = X[1:]
     for _ in range(refine_steps):
         if not _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, True,
                           work, r, size):
@@ -363,45 +378,70 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_s
                 y[k] += P[j, k] * dmu[j]
         for k in range(K):
             rho[k] += y[k] * free[k]
-    return True
+
+
+@_inline
+def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, work):
+    """The bound multipliers ``lam`` and the next active sets (in place, :func:`.qp._pdas`'s
+    rule); returns whether the sets stayed the same."""
+    K = WT.shape[1]
+    q_rho, w_mu, tol = work[1], work[2], work[3]
+    _hess_times(rho, t, q_rho)
+    _weighted(WT, mu, w_mu)
+    for k in range(K):
+        lam[k] = q_rho[k] - w_mu[k]
+    _abs_hess_times(rho, t, q_rho)
+    _dual_tolerance(absWT, mu, q_rho, dual_factor, tol)
+    same = True
+    for k in range(K):
+        if lo[k] or up[k]:
+            # a bound stays while its multiplier has the right sign to within half the
+            # certificate's tolerance
+            new_lo = lo[k] and lam[k] > -0.5 * tol[k]
+            new_up = up[k] and lam[k] < 0.5 * tol[k]
+        else:
+            lam[k] = 0.0
+            new_lo = rho[k] < lower
+            new_up = rho[k] > upper
+        if new_lo != lo[k] or new_up != up[k]:
+            same = False
+        lo[k], up[k] = new_lo, new_up
+    return same
 
 
 @_inline
 def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_steps,
               primal_factor, dual_factor, rho, mu, lam, work, R, X, M, piv, small):
     """:func:`.qp._pdas` for one colour from the active sets ``lo``/``up`` (updated in place).
-    Returns (iterations, converged); on failure the outputs are NaN."""
+    Returns (iterations, converged); on failure the outputs are NaN.
+
+    The NumPy path refines every reduced solve; here the iterations run unrefined until the
+    active sets settle, the settled solution is refined, and the rule is applied once more
+    to the refined values (from then on every solve is refined). The sets of the last
+    iteration are those a refined solve keeps, as on the NumPy path."""
     K, m = WT.shape[1], WT.shape[0]
-    q_rho, w_mu, tol = work[1], work[2], work[3]
-    ok = True
+    status = 1
     it = 0
+    precise = False
     for it in range(1, max_iter + 1):
-        ok = _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, refine_steps,
-                            primal_factor, dual_factor, rho, mu, work, R, X, M, piv, small)
-        if not ok:
+        status = _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
+                                work, R, X, M, piv, small)
+        if status == 0:
             break
-        _hess_times(rho, t, q_rho)
-        _weighted(WT, mu, w_mu)
-        for k in range(K):
-            lam[k] = q_rho[k] - w_mu[k]
-        _abs_hess_times(rho, t, q_rho)
-        _dual_tolerance(absWT, mu, q_rho, dual_factor, tol)
-        same = True
-        for k in range(K):
-            if lo[k] or up[k]:
-                # a bound stays while its multiplier has the right sign to within half the
-                # certificate's tolerance
-                new_lo = lo[k] and lam[k] > -0.5 * tol[k]
-                new_up = up[k] and lam[k] < 0.5 * tol[k]
-            else:
-                lam[k] = 0.0
-                new_lo = rho[k] < lower
-                new_up = rho[k] > upper
-            if new_lo != lo[k] or new_up != up[k]:
-                same = False
-            lo[k], up[k] = new_lo, new_up
-        if same:
+        if precise and status == 1:
+            _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu,
+                            work, X, M, piv, small)
+        if not _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
+                                   up, work):
+            continue
+        if precise or status == 2:
             return it, True
+        _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work,
+                        X, M, piv, small)
+        if _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
+                               work):
+            return it, True
+        precise = True
     for k in range(K):
         rho[k] = np.nan
         lam[k] = np.nan
