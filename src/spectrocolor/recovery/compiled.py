@@ -89,16 +89,26 @@ def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
 
 
 def pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, refine_steps):
-    """:func:`.qp._pdas` compiled: returns rho, mu, lam, iterations, converged."""
+    """:func:`.qp._pdas` compiled: returns rho, mu, lam, iterations, converged.
+
+    With ``lo_act = up_act = None`` each colour starts from the bounds its (unrefined) closed
+    form violates, as :func:`.qp.solve_bounded` does; a colour that violates none is returned
+    as its closed form, converged after 0 iterations.
+    """
     b = np.ascontiguousarray(b, dtype=np.float64)
     N, (K, m) = len(b), prob.W.shape
-    lo, up = np.array(lo_act, dtype=np.bool_, order="C"), np.array(up_act, dtype=np.bool_, order="C")
+    from_closed_form = lo_act is None
+    if from_closed_form:
+        lo, up = np.empty((N, K), dtype=np.bool_), np.empty((N, K), dtype=np.bool_)
+    else:
+        lo = np.array(lo_act, dtype=np.bool_, order="C")
+        up = np.array(up_act, dtype=np.bool_, order="C")
     rho, mu, lam = np.empty((N, K)), np.empty((N, m)), np.empty((N, K))
     iterations, converged = np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.bool_)
     t, primal, dual = _factors(prob.step_nm, K)
     found.pdas(*_layouts(prob.W), b, prob.unconstrained, prob.multipliers, -t, t, float(lower),
-               float(upper), lo, up, max_iter, refine_steps, primal, dual, rho, mu, lam,
-               iterations, converged)
+               float(upper), lo, up, from_closed_form, max_iter, refine_steps, primal, dual, rho,
+               mu, lam, iterations, converged)
     return rho, mu, lam, iterations, converged
 
 

@@ -285,7 +285,7 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
     solutions ``p`` and ``P``."""
     K, m = WT.shape[1], WT.shape[0]
     free, sub, sup_factor, inverse_denominator = work[4], work[5], work[6], work[7]
-    r, size = small[0], small[1]
+    r = small[0]
     active_count = 0
     for k in range(K):
         free[k] = 0.0 if (lo[k] or up[k]) else 1.0
@@ -322,15 +322,20 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
             R[1 + j, k] = WT[j, k] * free[k]
     _thomas_solve_rows(sub, sup_factor, inverse_denominator, R, X)
     p, P = X[0], X[1:]
-    _colour_residual(WT, absWT, b, p, r, size)
+    for i in range(m):
+        total = 0.0
+        for k in range(K):
+            total += p[k] * WT[i, k]
+        r[i] = b[i] - total
+    # M = Wᵀ P = W_Fᵀ Q_FF⁻¹ W_F is symmetric: one triangle is summed
     scale = 0.0
     for i in range(m):
-        for j in range(m):
+        for j in range(i, m):
             value = 0.0
             for k in range(K):
                 value += WT[i, k] * P[j, k]
-            M[i, j] = value
-            scale += value * value
+            M[i, j] = M[j, i] = value
+            scale += value * value if i == j else 2.0 * value * value
     det = _lu_small(M, piv)
     if not abs(det) > 1e-13 * scale ** (0.5 * m):
         return 0
@@ -381,24 +386,32 @@ def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, r
 
 
 @_inline
-def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, work):
+def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
     """The bound multipliers ``lam`` and the next active sets (in place, :func:`.qp._pdas`'s
     rule); returns whether the sets stayed the same."""
-    K = WT.shape[1]
-    q_rho, w_mu, tol = work[1], work[2], work[3]
-    _hess_times(rho, t, q_rho)
-    _weighted(WT, mu, w_mu)
-    for k in range(K):
-        lam[k] = q_rho[k] - w_mu[k]
-    _abs_hess_times(rho, t, q_rho)
-    _dual_tolerance(absWT, mu, q_rho, dual_factor, tol)
+    K, m = WT.shape[1], WT.shape[0]
     same = True
     for k in range(K):
         if lo[k] or up[k]:
+            # λ_k and its tolerance, as in _hess_times, _abs_hess_times and _dual_tolerance
+            if k == 0:
+                q = (rho[0] - rho[1]) * t
+                size = (abs(rho[0]) + abs(rho[1])) * t
+            elif k == K - 1:
+                q = (rho[k] - rho[k - 1]) * t
+                size = (abs(rho[k - 1]) + abs(rho[k])) * t
+            else:
+                q = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
+                size = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+            for j in range(m):
+                q -= mu[j] * WT[j, k]
+                size += abs(mu[j]) * absWT[j, k]
+            lam[k] = q
+            tol = dual_factor * EPS * size
             # a bound stays while its multiplier has the right sign to within half the
             # certificate's tolerance
-            new_lo = lo[k] and lam[k] > -0.5 * tol[k]
-            new_up = up[k] and lam[k] < 0.5 * tol[k]
+            new_lo = lo[k] and q > -0.5 * tol
+            new_up = up[k] and q < 0.5 * tol
         else:
             lam[k] = 0.0
             new_lo = rho[k] < lower
@@ -432,14 +445,13 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
             _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu,
                             work, X, M, piv, small)
         if not _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                                   up, work):
+                                   up):
             continue
         if precise or status == 2:
             return it, True
         _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work,
                         X, M, piv, small)
-        if _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
-                               work):
+        if _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
             return it, True
         precise = True
     for k in range(K):
@@ -451,10 +463,12 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
 
 
 @_compiled
-def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_steps,
-         primal_factor, dual_factor, rho, mu, lam, iterations, converged):
+def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, max_iter,
+         refine_steps, primal_factor, dual_factor, rho, mu, lam, iterations, converged):
     """:func:`.qp._pdas` for colours ``b`` (N, m) from the active sets ``lo``/``up`` (N, K),
-    which are updated in place."""
+    which are updated in place; with ``from_closed_form`` the sets are first made from the
+    bounds that the closed form violates (a colour violating none keeps its closed form,
+    converged after 0 iterations)."""
     K, m = WT.shape[1], WT.shape[0]
     work = np.empty((10, K))
     R, X = np.empty((m + 1, K)), np.empty((m + 1, K))
@@ -462,6 +476,19 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_s
     piv = np.empty(m, dtype=np.int64)
     small = np.empty((3, m))
     for n in range(b.shape[0]):
+        if from_closed_form:
+            _linear_map(b[n], U, rho[n])
+            violated = False
+            for k in range(K):
+                lo[n, k] = rho[n, k] < lower
+                up[n, k] = rho[n, k] > upper
+                violated = violated or lo[n, k] or up[n, k]
+            if not violated:
+                _linear_map(b[n], Mu, mu[n])
+                for k in range(K):
+                    lam[n, k] = 0.0
+                iterations[n], converged[n] = 0, True
+                continue
         iterations[n], converged[n] = _pdas_one(
             WT, absWT, b[n], U, Mu, off_q, t, lower, upper, lo[n], up[n], max_iter, refine_steps,
             primal_factor, dual_factor, rho[n], mu[n], lam[n], work, R, X, M, piv, small)

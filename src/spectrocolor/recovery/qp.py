@@ -471,23 +471,30 @@ def solve_bounded(prob: Problem, b: np.ndarray, lower: float, upper: float) -> S
     the active set predicted by an interior-point method.
     """
     N, K = b.shape[0], prob.size
-    rho = b @ prob.unconstrained
-    mu = b @ prob.multipliers
-    lam = np.zeros((N, K))
-    iterations = np.zeros(N, dtype=np.int64)
-    converged = np.ones(N, dtype=bool)
-    method = np.zeros(N, dtype=np.int8)
-    lo_act = rho < lower
-    up_act = rho > upper
-    pending = np.flatnonzero(lo_act.any(axis=1) | up_act.any(axis=1))
-    method[pending] = 1
-    if pending.size:
-        r, mu_i, lm, it, ok = _pdas(prob, b[pending], lower, upper,
-                                 lo_act[pending], up_act[pending], _MAX_PDAS_ITER)
-        rho[pending], mu[pending], lam[pending] = r, mu_i, lm
-        iterations[pending] = it
-        converged[pending] = ok
-        pending = pending[~ok]
+    found = compiled.kernels()
+    if found is not None:  # the kernel forms the closed form and its violated bounds itself
+        rho, mu, lam, iterations, converged = compiled.pdas(
+            found, prob, b, lower, upper, None, None, _MAX_PDAS_ITER, _REFINE_STEPS)
+        method = (iterations > 0).astype(np.int8)
+        pending = np.flatnonzero(~converged)
+    else:
+        rho = b @ prob.unconstrained
+        mu = b @ prob.multipliers
+        lam = np.zeros((N, K))
+        iterations = np.zeros(N, dtype=np.int64)
+        converged = np.ones(N, dtype=bool)
+        method = np.zeros(N, dtype=np.int8)
+        lo_act = rho < lower
+        up_act = rho > upper
+        pending = np.flatnonzero(lo_act.any(axis=1) | up_act.any(axis=1))
+        method[pending] = 1
+        if pending.size:
+            r, mu_i, lm, it, ok = _pdas(prob, b[pending], lower, upper,
+                                     lo_act[pending], up_act[pending], _MAX_PDAS_ITER)
+            rho[pending], mu[pending], lam[pending] = r, mu_i, lm
+            iterations[pending] = it
+            converged[pending] = ok
+            pending = pending[~ok]
     method[pending] = 2
     if pending.size:
         rho_ip, ratio, at_upper = _interior_point(prob, b[pending], lower, upper)
