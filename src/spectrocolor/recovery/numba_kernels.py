@@ -423,35 +423,101 @@ def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, l
 
 
 @_inline
+def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
+    """The safeguarded step of :func:`_pdas_one`: ``lam`` as in :func:`_update_active_sets`, and
+    at most one change of the active sets (in place): the free value farthest beyond a bound
+    joins it, or, with none beyond, the bound whose multiplier has the most wrong sign
+    (relative to the rule's tolerance) is released. Returns whether nothing had to change."""
+    K, m = WT.shape[1], WT.shape[0]
+    add, add_score, release, release_score = -1, 0.0, -1, 1.0
+    for k in range(K):
+        if lo[k] or up[k]:
+            if k == 0:
+                q = (rho[0] - rho[1]) * t
+                size = (abs(rho[0]) + abs(rho[1])) * t
+            elif k == K - 1:
+                q = (rho[k] - rho[k - 1]) * t
+                size = (abs(rho[k - 1]) + abs(rho[k])) * t
+            else:
+                q = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
+                size = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+            for j in range(m):
+                q -= mu[j] * WT[j, k]
+                size += abs(mu[j]) * absWT[j, k]
+            lam[k] = q
+            wrong = (-q if lo[k] else q) / max(0.5 * dual_factor * EPS * size, TINY)
+            if wrong > release_score:
+                release, release_score = k, wrong
+        else:
+            lam[k] = 0.0
+            beyond = max(lower - rho[k], rho[k] - upper)
+            if beyond > add_score:
+                add, add_score = k, beyond
+    if add >= 0:
+        lo[add], up[add] = rho[add] < lower, rho[add] > upper
+        return False
+    if release >= 0:
+        lo[release], up[release] = False, False
+        return False
+    return True
+
+
+@_inline
 def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_steps,
-              primal_factor, dual_factor, rho, mu, lam, work, R, X, M, piv, small):
+              primal_factor, dual_factor, rho, mu, lam, work, R, X, M, piv, small, saved):
     """:func:`.qp._pdas` for one colour from the active sets ``lo``/``up`` (updated in place).
     Returns (iterations, converged); on failure the outputs are NaN.
 
     The NumPy path refines every reduced solve; here the iterations run unrefined until the
     active sets settle, the settled solution is refined, and the rule is applied once more
     to the refined values (from then on every solve is refined). The sets of the last
-    iteration are those a refined solve keeps, as on the NumPy path."""
+    iteration are those a refined solve keeps, as on the NumPy path.
+
+    A safeguard the NumPy path lacks: where an update leaves free weights that cannot
+    reproduce the colour (a singular reduced matrix; typical of colours within 1e-9 of the
+    boundary, where all but a few samples sit at a bound), the sets go back to those of the
+    last solve and change one index at a time from then on (:func:`_single_change`)."""
     K, m = WT.shape[1], WT.shape[0]
     status = 1
     it = 0
     precise = False
+    single = False
     for it in range(1, max_iter + 1):
         status = _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
                                 work, R, X, M, piv, small)
         if status == 0:
-            break
+            if single or it == 1:
+                break
+            # back to the sets of the last solve (rho, mu and lam are still its), one change
+            for k in range(K):
+                lo[k], up[k] = saved[0, k], saved[1, k]
+            single = True
+            _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up)
+            continue
         if precise and status == 1:
             _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu,
                             work, X, M, piv, small)
-        if not _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                                   up):
+        for k in range(K):
+            saved[0, k], saved[1, k] = lo[k], up[k]
+        if single:
+            settled = _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
+                                     up)
+        else:
+            settled = _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam,
+                                          lo, up)
+        if not settled:
             continue
         if precise or status == 2:
             return it, True
         _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work,
                         X, M, piv, small)
-        if _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
+        if single:
+            settled = _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
+                                     up)
+        else:
+            settled = _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam,
+                                          lo, up)
+        if settled:
             return it, True
         precise = True
     for k in range(K):
@@ -475,6 +541,7 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, 
     M = np.empty((m, m))
     piv = np.empty(m, dtype=np.int64)
     small = np.empty((3, m))
+    saved = np.empty((2, K), dtype=np.bool_)
     for n in range(b.shape[0]):
         if from_closed_form:
             _linear_map(b[n], U, rho[n])
@@ -491,7 +558,7 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, 
                 continue
         iterations[n], converged[n] = _pdas_one(
             WT, absWT, b[n], U, Mu, off_q, t, lower, upper, lo[n], up[n], max_iter, refine_steps,
-            primal_factor, dual_factor, rho[n], mu[n], lam[n], work, R, X, M, piv, small)
+            primal_factor, dual_factor, rho[n], mu[n], lam[n], work, R, X, M, piv, small, saved)
 
 
 # --- the certificate's measures --------------------------------------------------------------
