@@ -57,7 +57,10 @@ def test_previously_flagged_red_end_blocks_are_certified_by_smoothest_reflectanc
     W, R = _flagged_colours()
     r = smoothest_reflectance(R @ W, wavelengths=RED_END)
     assert np.all(r.feasible) and np.all(r.certificate.converged)
-    assert set(r.method) <= {"boundary face", "boundary face, exact rational arithmetic"}
+    # the compiled active-set iterations (with their safeguard) settle some of the colours
+    # inside the solid before any face solve; the certificate and the KKT check decide
+    assert set(r.method) <= {"boundary face", "boundary face, exact rational arithmetic",
+                             "active set"}
     for rho, mu in zip(r.spectrum.values, r.multipliers, strict=True):
         assert_kkt(W, RED_END[2], rho, 1.0, mu_hint=mu)
 

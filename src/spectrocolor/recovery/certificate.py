@@ -152,7 +152,15 @@ def certify(W, step_nm, b, rho, mu, lower, upper, settled) -> Certificate:
         for start in range(0, N, _BLOCK):
             part = slice(start, start + _BLOCK)
             out[:, part] = _measures(W, step_nm, b[part], rho[part], mu[part], lower, upper)
-    primal, violation, sign, station, ratio = out
+    return from_measures(out, settled)
+
+
+def from_measures(measures, settled) -> Certificate:
+    """The certificate of measures (5, N) — primal residual, bound violation, sign violation,
+    stationarity and rounding ratio, as :func:`certify` computes them — for results that
+    ``settled`` (N,): converged where every entry was finite, the bounds hold exactly and the
+    ratio is at most 1."""
+    primal, violation, sign, station, ratio = measures
     passed = np.isfinite(ratio) & (violation == 0.0) & (ratio <= 1.0)
     return Certificate(primal, violation, sign, station, ratio,
                        np.asarray(settled, dtype=bool) & passed)

@@ -70,22 +70,23 @@ def _layouts(W):
 
 
 def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
-    """Unconstrained minimisers and multipliers ``(rho (N, K), mu (N, m))`` of colours ``b``.
+    """Unconstrained minimisers, multipliers and certificate measures of colours ``b``:
+    ``rho`` (N, K), ``mu`` (N, m) and the measures (5, N) of :func:`.certificate.certify`.
 
-    Each is refined once (by :class:`.qp.PinnedKKT`) and again, at most ``refine_steps`` times
-    in all, while a residual exceeds a quarter of the certificate's tolerance; colours with a
-    value below ``lowest`` or above ``highest`` are left unrefined.
+    Each closed form is refined (by :class:`.qp.PinnedKKT`, at most ``refine_steps`` times)
+    while its ratio exceeds a quarter; colours with a value below ``lowest`` or above
+    ``highest`` are left unrefined and unmeasured (ratio ∞).
     """
     b = np.ascontiguousarray(b, dtype=np.float64)
     K, m = prob.W.shape
-    rho, mu = np.empty((len(b), K)), np.empty((len(b), m))
+    rho, mu, out = np.empty((len(b), K)), np.empty((len(b), m)), np.empty((5, len(b)))
     t, primal, dual = _factors(prob.step_nm, K)
     pin = prob.pinned
     stacked = np.vstack([pin.sub, pin.sup_factor, pin.inverse_denominator, pin.P.T])
     found.closed_form(*_layouts(prob.W), b, prob.unconstrained, prob.multipliers, t, stacked,
                       pin.S_lu, pin.S_piv, refine_steps, primal, dual, float(lowest),
-                      float(highest), rho, mu)
-    return rho, mu
+                      float(highest), rho, mu, out)
+    return rho, mu, out
 
 
 def pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, refine_steps):

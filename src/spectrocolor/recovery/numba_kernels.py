@@ -3,9 +3,9 @@
 One colour at a time, with its ``K`` samples in the processor's cache, each kernel does what
 the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch arrays:
 
-* ``closed_form``: the unconstrained minimiser ``b @ U`` and its multipliers, refined by the
-  O(K) KKT solve of :class:`.qp.PinnedKKT` until the residuals are within a quarter of the
-  certificate's tolerances (:func:`.qp.solve_unconstrained`);
+* ``closed_form``: the unconstrained minimiser ``b @ U``, its multipliers and its certificate's
+  measures, refined by the O(K) KKT solve of :class:`.qp.PinnedKKT` where the ratio exceeds a
+  quarter (:func:`.qp.solve_unconstrained`);
 * ``pdas``: the primal-dual active-set iterations of :func:`.qp._pdas` (the same reduced
   solve, refinement and rule for keeping a bound; the tridiagonal systems are solved by the
   Thomas algorithm, stable here because every run of free samples is a positive definite path
@@ -198,26 +198,37 @@ def _linear_map(b, U, out):
 # --- the closed form ----------------------------------------------------------------------
 
 
+#: A closed form is refined while its certificate ratio exceeds this (a quarter of the
+#: tolerance: the verdict then holds for any order of summation).
+REFINE_ABOVE = 0.25
+
+
 @_inline
 def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                     dual_factor, lowest, highest, rho, mu, work, small):
+                     dual_factor, lowest, highest, rho, mu, work, small, out, n):
     K, m = WT.shape[1], WT.shape[0]
     sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
     _linear_map(b, U, rho)
     _linear_map(b, Mu, mu)
     for k in range(K):
         if rho[k] < lowest or rho[k] > highest:
+            for i in range(4):
+                out[i, n] = 0.0
+            out[4, n] = np.inf  # not measured: the bounded solver takes it over
             return
     free, y = work[4], work[5]
     for k in range(K):
         free[k] = 1.0
     r, size, rhs = small[0], small[1], small[2]
     for step in range(refine_steps + 1):
-        # every closed form needs one step (cancellation in b @ U); later ones only if checked
-        bad = _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, step > 0,
-                         work, r, size)
-        if (step > 0 and not bad) or step == refine_steps:
+        # the map U is accurate to rounding (qp.make_problem), so most closed forms pass as
+        # they are; the others are refined
+        _measures_one(WT, absWT, t, b, rho, mu, 0.0, 0.0, False, primal_factor, dual_factor,
+                      out, n, work, small)
+        if out[4, n] <= REFINE_ABOVE or step == refine_steps:
             break
+        _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, False, work, r,
+                   size)
         # [[Q, −W], [Wᵀ, 0]] [δρ; δμ] = [s; r]: δρ = y + P [δμ; τ], y = Q̂⁻¹ s (qp.PinnedKKT)
         _thomas_solve(sub, sup_factor, inverse_denominator, work[0], y)
         for j in range(m):
@@ -238,20 +249,24 @@ def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, pri
 
 @_compiled
 def closed_form(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                dual_factor, lowest, highest, rho, mu):
-    """Unconstrained minimisers ``rho`` (N, K) and multipliers ``mu`` (N, m) of colours ``b``.
+                dual_factor, lowest, highest, rho, mu, out):
+    """Unconstrained minimisers ``rho`` (N, K) and multipliers ``mu`` (N, m) of colours ``b``,
+    and their certificate's measures ``out`` (5, N) (:func:`measures`).
 
     ``t = 2/h``; ``primal_factor`` is ``PRIMAL_FACTOR γ_{K+1}`` and ``dual_factor``
     ``DUAL_FACTOR`` of :mod:`.certificate`; ``pin`` stacks the sub-diagonal, the forward-sweep
-    factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`. Colours with a
-    value below ``lowest`` or above ``highest`` are left unrefined.
+    factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`. Each closed form
+    is refined while its ratio exceeds :data:`REFINE_ABOVE` (at most ``refine_steps`` times).
+    Colours with a value below ``lowest`` or above ``highest`` are neither refined nor
+    measured (ratio ∞).
     """
     K, m = WT.shape[1], WT.shape[0]
     work = np.empty((6, K))
     small = np.empty((3, m + 1))
     for n in range(b.shape[0]):
         _closed_form_one(WT, absWT, b[n], U, Mu, t, pin, S_lu, S_piv, refine_steps,
-                         primal_factor, dual_factor, lowest, highest, rho[n], mu[n], work, small)
+                         primal_factor, dual_factor, lowest, highest, rho[n], mu[n], work, small,
+                         out, n)
 
 
 # --- the active-set iterations --------------------------------------------------------------

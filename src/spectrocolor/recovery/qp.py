@@ -192,8 +192,18 @@ def make_problem(W: np.ndarray, step_nm: float) -> Problem:
     kkt[:K, K:] = -W
     kkt[K:, :K] = W.T
     inverse = np.linalg.inv(kkt)
-    unconstrained = np.ascontiguousarray(inverse[:K, K:].T)  # rows: response to b = e_j
-    multipliers = np.ascontiguousarray(inverse[K:, K:].T)
+    # the solution map, refined with residuals in extended precision: the explicit inverse
+    # is only normwise accurate, and its error, not the rounding of b @ U, is what keeps the
+    # closed form off the certificate's rounding level
+    solution = inverse[:, K:].copy()  # (K + m, m): [ρ; μ] for b = e_j
+    exact = np.zeros((K + m, m), dtype=np.longdouble)
+    exact[K:] = np.eye(m)
+    kkt_long = kkt.astype(np.longdouble)
+    for _ in range(_REFINE_STEPS):
+        residual = exact - kkt_long @ solution.astype(np.longdouble)
+        solution = solution + inverse @ residual.astype(float)
+    unconstrained = np.ascontiguousarray(solution[:K].T)  # rows: response to b = e_j
+    multipliers = np.ascontiguousarray(solution[K:].T)
     for a in (inverse, unconstrained, multipliers):
         a.setflags(write=False)
     prob = Problem(W, float(step_nm), unconstrained, multipliers, inverse)
@@ -218,8 +228,9 @@ def solve_unconstrained(prob: Problem, b: np.ndarray, within=None) -> tuple[np.n
     lower, upper = (-np.inf, np.inf) if within is None else within
     found = compiled.kernels()
     if found is not None and prob.pinned is not None:
-        return compiled.closed_form(found, prob, b, _REFINE_STEPS, lower - WITHIN_MARGIN,
-                                    upper + WITHIN_MARGIN)
+        rho, mu, _ = compiled.closed_form(found, prob, b, _REFINE_STEPS, lower - WITHIN_MARGIN,
+                                          upper + WITHIN_MARGIN)
+        return rho, mu
     N, K = len(b), prob.size
     rho = np.empty((N, K))
     mu = np.empty((N, prob.W.shape[1]))
@@ -230,6 +241,21 @@ def solve_unconstrained(prob: Problem, b: np.ndarray, within=None) -> tuple[np.n
                                        & (rho[part] <= upper + WITHIN_MARGIN), axis=1)) + start
         rho[inside], mu[inside] = refine_unconstrained(prob, b[inside], rho[inside], mu[inside])
     return rho, mu
+
+
+def solve_unconstrained_certified(prob: Problem, b: np.ndarray):
+    """:func:`solve_unconstrained` with the certificate of each result: rho, mu, Certificate.
+
+    Compiled, the certificate's measures come from the same pass over each colour that forms
+    and refines it; otherwise :func:`.certificate.certify` measures the results afterwards.
+    """
+    settled = np.ones(len(b), dtype=bool)
+    found = compiled.kernels()
+    if found is not None and prob.pinned is not None:
+        rho, mu, measures = compiled.closed_form(found, prob, b, _REFINE_STEPS)
+        return rho, mu, certificate.from_measures(measures, settled)
+    rho, mu = solve_unconstrained(prob, b)
+    return rho, mu, certificate.certify(prob.W, prob.step_nm, b, rho, mu, None, None, settled)
 
 
 def refine_unconstrained(prob: Problem, b, rho, mu):

@@ -229,11 +229,10 @@ def smoothest_reflectance(
     b = b_in.reshape(-1, 3)
     K = prob.size
     if bounds is None:
-        rho, mu = qp.solve_unconstrained(prob, b)
+        rho, mu, certificate = qp.solve_unconstrained_certified(prob, b)
         feasible = np.ones(len(b), dtype=bool)
         distance = np.zeros(len(b))
         method = np.full(len(b), "unconstrained", dtype=_METHOD_DTYPE)
-        certificate = certify(prob.W, prob.step_nm, b, rho, mu, None, None, feasible)
     elif bounds == "nonnegative":
         rho, mu, feasible, distance, method, certificate = _solve_scaled(setup, b)
     else:
