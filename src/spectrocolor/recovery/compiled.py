@@ -25,7 +25,7 @@ import numpy as np
 from ..numba_support import numba_enabled
 from . import certificate
 
-__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas"]
+__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas", "roughness"]
 
 
 @lru_cache(maxsize=1)
@@ -35,7 +35,7 @@ def _compiled():
     except ImportError:  # numba is not installed (the extra "fast")
         return None
     return SimpleNamespace(closed_form=nk.closed_form, pdas=nk.pdas, measures=nk.measures,
-                           facet_maxima=nk.facet_maxima)
+                           facet_maxima=nk.facet_maxima, roughness=nk.roughness)
 
 
 def kernels():
@@ -44,7 +44,8 @@ def kernels():
     Returns
     -------
     types.SimpleNamespace or None
-        ``closed_form``, ``pdas``, ``measures`` and ``facet_maxima``: numba dispatchers.
+        ``closed_form``, ``pdas``, ``measures``, ``facet_maxima`` and ``roughness``: numba
+        dispatchers.
 
     Examples
     --------
@@ -134,3 +135,11 @@ def facet_maxima(found, b, centre, normals, absolute):
                        np.ascontiguousarray(np.asarray(normals, dtype=np.float64).T), absolute,
                        top, index)
     return top, index
+
+
+def roughness(found, rho, step_nm):
+    """``Σ (Δρ)² / h`` of each row of ``rho`` (N, K) (:meth:`.qp.Problem.objective`)."""
+    rho = np.ascontiguousarray(rho, dtype=np.float64)
+    out = np.empty(len(rho))
+    found.roughness(rho, float(step_nm), out)
+    return out

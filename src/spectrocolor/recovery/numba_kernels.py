@@ -11,7 +11,8 @@ the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch array
   Thomas algorithm, stable here because every run of free samples is a positive definite path
   Laplacian);
 * ``measures``: the certificate's five measures (:func:`.certificate.certify`);
-* ``facet_maxima``: the facet each colour is farthest beyond (:func:`.zonotope.gauge`).
+* ``facet_maxima``: the facet each colour is farthest beyond (:func:`.zonotope.gauge`);
+* ``roughness``: the objective of each result (:meth:`.qp.Problem.objective`).
 
 The kernels run on one thread: a batch is a loop over colours that allocates its work arrays
 once, and parallelism belongs to the caller (dask runs chunks in parallel threads, which numba's
@@ -31,7 +32,7 @@ import numpy as np
 
 from ..numba_support import jit
 
-__all__ = ["closed_form", "facet_maxima", "measures", "pdas"]
+__all__ = ["closed_form", "facet_maxima", "measures", "pdas", "roughness"]
 
 EPS = float(np.finfo(np.float64).eps)
 TINY = float(np.finfo(np.float64).tiny)
@@ -655,3 +656,15 @@ def facet_maxima(b, centre, NT, absolute, top, index):
                 best, k = values[f], f
         index[n] = k
         top[n] = d0 * NT[0, k] + d1 * NT[1, k] + d2 * NT[2, k]
+
+
+@_compiled
+def roughness(rho, step_nm, out):
+    """``Σ (ρ_{k+1} − ρ_k)² / h`` of each row of ``rho`` (N, K) into ``out`` (N,)
+    (:meth:`.qp.Problem.objective`)."""
+    for n in range(rho.shape[0]):
+        total = 0.0
+        for k in range(rho.shape[1] - 1):
+            d = rho[n, k + 1] - rho[n, k]
+            total += d * d
+        out[n] = total / step_nm

@@ -232,7 +232,8 @@ def smoothest_reflectance(
         rho, mu, certificate = qp.solve_unconstrained_certified(prob, b)
         feasible = np.ones(len(b), dtype=bool)
         distance = np.zeros(len(b))
-        method = np.full(len(b), "unconstrained", dtype=_METHOD_DTYPE)
+        # np.repeat copies the name; np.full would convert it once per colour
+        method = np.repeat(np.array(["unconstrained"], dtype=_METHOD_DTYPE), len(b))
     elif bounds == "nonnegative":
         rho, mu, feasible, distance, method, certificate = _solve_scaled(setup, b)
     else:
