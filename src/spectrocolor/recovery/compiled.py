@@ -84,8 +84,9 @@ def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
     t, primal, dual = _factors(prob.step_nm, K)
     pin = prob.pinned
     stacked = np.vstack([pin.sub, pin.sup_factor, pin.inverse_denominator, pin.P.T])
-    found.closed_form(*_layouts(prob.W), b, prob.unconstrained, prob.multipliers, t, stacked,
-                      pin.S_lu, pin.S_piv, refine_steps, primal, dual, float(lowest),
+    basis = prob.basis
+    found.closed_form(*_layouts(prob.W), b, basis.inverse, basis.solutions, basis.multipliers, t,
+                      stacked, pin.S_lu, pin.S_piv, refine_steps, primal, dual, float(lowest),
                       float(highest), rho, mu, out)
     return rho, mu, out
 

@@ -205,12 +205,14 @@ REFINE_ABOVE = 0.25
 
 
 @_inline
-def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
+def _closed_form_one(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
                      dual_factor, lowest, highest, rho, mu, work, small, out, n):
     K, m = WT.shape[1], WT.shape[0]
     sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
-    _linear_map(b, U, rho)
-    _linear_map(b, Mu, mu)
+    c = small[2]
+    _linear_map(b, A, c)  # the colour in the basis colours (qp.ClosedFormBasis)
+    _linear_map(c, V, rho)
+    _linear_map(c, Mv, mu)
     for k in range(K):
         if rho[k] < lowest or rho[k] > highest:
             for i in range(4):
@@ -249,12 +251,13 @@ def _closed_form_one(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, pri
 
 
 @_compiled
-def closed_form(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_factor,
+def closed_form(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
                 dual_factor, lowest, highest, rho, mu, out):
     """Unconstrained minimisers ``rho`` (N, K) and multipliers ``mu`` (N, m) of colours ``b``,
     and their certificate's measures ``out`` (5, N) (:func:`measures`).
 
-    ``t = 2/h``; ``primal_factor`` is ``PRIMAL_FACTOR γ_{K+1}`` and ``dual_factor``
+    ``A``, ``V`` and ``Mv`` are the inverse, solutions and multipliers of
+    :class:`.qp.ClosedFormBasis`; ``t = 2/h``; ``primal_factor`` is ``PRIMAL_FACTOR γ_{K+1}`` and ``dual_factor``
     ``DUAL_FACTOR`` of :mod:`.certificate`; ``pin`` stacks the sub-diagonal, the forward-sweep
     factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`. Each closed form
     is refined while its ratio exceeds :data:`REFINE_ABOVE` (at most ``refine_steps`` times).
@@ -265,7 +268,7 @@ def closed_form(WT, absWT, b, U, Mu, t, pin, S_lu, S_piv, refine_steps, primal_f
     work = np.empty((6, K))
     small = np.empty((3, m + 1))
     for n in range(b.shape[0]):
-        _closed_form_one(WT, absWT, b[n], U, Mu, t, pin, S_lu, S_piv, refine_steps,
+        _closed_form_one(WT, absWT, b[n], A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
                          primal_factor, dual_factor, lowest, highest, rho[n], mu[n], work, small,
                          out, n)
 

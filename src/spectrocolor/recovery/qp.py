@@ -70,6 +70,8 @@ class Problem:
         Inverse of the KKT matrix ``[[Q, -W], [W.T, 0]]`` (for iterative refinement).
     pinned : PinnedKKT or None
         The same KKT system solved in O(K) (the compiled refinement; see :class:`PinnedKKT`).
+    basis : ClosedFormBasis or None
+        The closed form in a basis where its terms rarely cancel (the compiled closed form).
     """
 
     W: np.ndarray
@@ -78,6 +80,7 @@ class Problem:
     multipliers: np.ndarray
     kkt_inverse: np.ndarray
     pinned: PinnedKKT | None = None
+    basis: ClosedFormBasis | None = None
 
     @property
     def size(self) -> int:
@@ -195,22 +198,74 @@ def make_problem(W: np.ndarray, step_nm: float) -> Problem:
     kkt[:K, K:] = -W
     kkt[K:, :K] = W.T
     inverse = np.linalg.inv(kkt)
-    # the solution map, refined with residuals in extended precision: the explicit inverse
-    # is only normwise accurate, and its error, not the rounding of b @ U, is what keeps the
-    # closed form off the certificate's rounding level
-    solution = inverse[:, K:].copy()  # (K + m, m): [ρ; μ] for b = e_j
-    exact = np.zeros((K + m, m), dtype=np.longdouble)
-    exact[K:] = np.eye(m)
+    solution = _refined_solutions(kkt, inverse, np.eye(m))  # [ρ; μ] for b = e_j
+    unconstrained = np.ascontiguousarray(solution[:K].T)  # rows: response to b = e_j
+    multipliers = np.ascontiguousarray(solution[K:].T)
+    basis = _block_basis(W, kkt, inverse)
+    for a in (inverse, unconstrained, multipliers, *vars(basis).values()):
+        a.setflags(write=False)
+    prob = Problem(W, float(step_nm), unconstrained, multipliers, inverse)
+    return Problem(W, float(step_nm), unconstrained, multipliers, inverse, _pinned_kkt(prob),
+                   basis)
+
+
+def _refined_solutions(kkt, inverse, colours):
+    """``[ρ; μ]`` (K + m, n) solving the KKT system for the colours (n, m), refined with
+    residuals in extended precision: the explicit inverse is only normwise accurate, and its
+    error, not the rounding of the product, is what keeps a closed form off the certificate's
+    rounding level."""
+    K = kkt.shape[0] - colours.shape[1]
+    exact = np.zeros((kkt.shape[0], len(colours)), dtype=np.longdouble)
+    exact[K:] = colours.T
+    solution = inverse @ exact.astype(float)
     kkt_long = kkt.astype(np.longdouble)
     for _ in range(_REFINE_STEPS):
         residual = exact - kkt_long @ solution.astype(np.longdouble)
         solution = solution + inverse @ residual.astype(float)
-    unconstrained = np.ascontiguousarray(solution[:K].T)  # rows: response to b = e_j
-    multipliers = np.ascontiguousarray(solution[K:].T)
-    for a in (inverse, unconstrained, multipliers):
-        a.setflags(write=False)
-    prob = Problem(W, float(step_nm), unconstrained, multipliers, inverse)
-    return Problem(W, float(step_nm), unconstrained, multipliers, inverse, _pinned_kkt(prob))
+    return solution
+
+
+@dataclass(frozen=True)
+class ClosedFormBasis:
+    """The closed form in a basis of block colours: ``ρ = (b @ inverse) @ solutions``.
+
+    ``b @ U`` sums three terms per sample whose signs differ for most colours (the rows of
+    ``U`` are the solutions for ``X``, ``Y`` and ``Z`` alone, which no reflectance produces),
+    and the cancellation leaves about one colour in ten off the certificate's rounding level.
+    In the basis of the colours of three block reflectances — 1 on the first quarter of the
+    grid, on the next 30 % and on the rest (short, middle and long wavelengths) — real colours
+    have mostly positive coefficients and the basis solutions are smooth, so the terms rarely
+    cancel: the fraction of sRGB-cube colours that need a refinement step falls from 9 % to
+    2 % at 10 nm (17 % to 4 % at 5 nm). With ``m ≠ 3`` (metamers) the basis is the identity.
+
+    Attributes
+    ----------
+    inverse : ndarray (m, m)
+        Coefficients ``c = b @ inverse`` of a colour in the basis colours.
+    solutions : ndarray (m, K)
+        The unconstrained minimisers for the basis colours (reflectance factors).
+    multipliers : ndarray (m, m)
+        Their multipliers.
+    """
+
+    inverse: np.ndarray
+    solutions: np.ndarray
+    multipliers: np.ndarray
+
+
+def _block_basis(W, kkt, inverse) -> ClosedFormBasis:
+    K, m = W.shape
+    if m == 3:
+        index = np.arange(K) / max(K - 1, 1)
+        blocks = np.stack([index <= 0.25, (index > 0.25) & (index <= 0.55), index > 0.55])
+        colours = blocks.astype(float) @ W
+        if np.linalg.cond(colours) > 1e6:  # an illuminant dark in a band
+            colours = np.eye(m)
+    else:
+        colours = np.eye(m)
+    solution = _refined_solutions(kkt, inverse, colours)
+    return ClosedFormBasis(np.linalg.inv(colours), np.ascontiguousarray(solution[:K].T),
+                           np.ascontiguousarray(solution[K:].T))
 
 
 #: Closed-form values this far beyond a bound are outside it whatever the refinement does (it
@@ -230,7 +285,7 @@ def solve_unconstrained(prob: Problem, b: np.ndarray, within=None) -> tuple[np.n
     """
     lower, upper = (-np.inf, np.inf) if within is None else within
     found = compiled.kernels()
-    if found is not None and prob.pinned is not None:
+    if found is not None and prob.basis is not None:
         rho, mu, _ = compiled.closed_form(found, prob, b, _REFINE_STEPS, lower - WITHIN_MARGIN,
                                           upper + WITHIN_MARGIN)
         return rho, mu
@@ -254,7 +309,7 @@ def solve_unconstrained_certified(prob: Problem, b: np.ndarray):
     """
     settled = np.ones(len(b), dtype=bool)
     found = compiled.kernels()
-    if found is not None and prob.pinned is not None:
+    if found is not None and prob.basis is not None:
         rho, mu, measures = compiled.closed_form(found, prob, b, _REFINE_STEPS)
         return rho, mu, certificate.from_measures(measures, settled)
     rho, mu = solve_unconstrained(prob, b)
