@@ -374,7 +374,7 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
     return 1
 
 
-@_inline
+@_compiled
 def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work, X,
                     M, piv, small):
     """Iterative refinement of the last :func:`_reduced_solve` (its factors are still in
@@ -404,7 +404,7 @@ def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, r
             rho[k] += y[k] * free[k]
 
 
-@_inline
+@_compiled
 def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
     """The bound multipliers ``lam`` and the next active sets (in place, :func:`.qp._pdas`'s
     rule); returns whether the sets stayed the same."""
@@ -441,7 +441,7 @@ def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, l
     return same
 
 
-@_inline
+@_compiled
 def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
     """The safeguarded step of :func:`_pdas_one`: ``lam`` as in :func:`_update_active_sets`, and
     at most one change of the active sets (in place): the free value farthest beyond a bound
