@@ -11,13 +11,16 @@ to the rounding of the closed form's own product, not bit for bit.
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 import threading
 
 import numpy as np
 import pytest
-from kkt_check import kkt_violation
 
 import spectrocolor as sc
+from kkt_check import kkt_violation
 from spectrocolor.recovery import certificate, compiled, qp
 from spectrocolor.recovery.inputs import setup_for
 
@@ -140,3 +143,24 @@ def test_the_switch_selects_the_numpy_path(monkeypatch):
     assert compiled.kernels() is None
     monkeypatch.setenv("SPECTROCOLOR_NUMBA", "1")
     assert compiled.kernels() is not None
+
+
+def test_without_numba_the_numpy_path_runs(tmp_path):
+    """numba made unimportable in a fresh interpreter: kernels() is None and every path solves."""
+    script = (
+        "import sys; sys.modules['numba'] = None\n"
+        "import numpy as np\n"
+        "import spectrocolor as sc\n"
+        "from spectrocolor.recovery.compiled import kernels\n"
+        "assert kernels() is None\n"
+        "XYZ = [[40.0, 40.0, 40.0], [35.0, 30.0, 20.0], [30.0, 20.0, 3.0]]\n"
+        "got = [sc.smoothest_reflectance(XYZ, wavelengths=(400, 700, 10), bounds=b)"
+        " for b in ('unit', 'nonnegative', None)]\n"
+        "print([bool(r.certificate.converged.all()) for r in got], got[0].method.tolist())\n"
+    )
+    environment = {k: v for k, v in os.environ.items() if k != "SPECTROCOLOR_NUMBA"}
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300, env=environment, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == ("[True, True, True] ['unconstrained', 'unconstrained', "
+                                   "'active set']")
