@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 import spectrocolor as sc
 from kkt_check import assert_kkt
 from spectrocolor.recovery.certificate import certify
-from spectrocolor.recovery.exact import exact_solution
+from spectrocolor.recovery.exact import MAX_SAMPLES, exact_solution
 from spectrocolor.recovery.smoothest import smoothest_reflectance
 
 RED_END = (380.0, 780.0, 10.0)
@@ -79,6 +79,32 @@ def test_a_colour_outside_by_more_than_rounding_is_refused():
     tolerance (~1e-14) within which the nearest feasible colour may replace it."""
     W, R = _flagged_colours()
     assert exact_solution(W, RED_END[2], (R[2] @ W) * (1.0 + 1e-9), 0.0, 1.0) is None
+
+
+def test_a_colour_with_no_z_keeps_z_exactly_zero():
+    """Found by the hypothesis case below: the block 660–780 nm on 380–780/40 nm under E has
+    Z = 0 (z̄ is zero there) and its rounded colour is 4e-16 outside the exact solid in Y. The
+    nearest feasible colour in plain L1 buys that ulp back with 2e-20 of Z from 620 nm, which
+    no tolerance relative to Z = 0 accepts; the relative L1 keeps Z = 0 exactly."""
+    grid = (380.0, 780.0, 40.0)
+    W = _weights(grid, "E")
+    rho0 = np.zeros(W.shape[0])
+    rho0[7:] = 1.0
+    b = rho0 @ W
+    assert b[2] == 0.0
+    rho, mu = exact_solution(W, grid[2], b, 0.0, 1.0)
+    assert _certified(W, grid[2], b, rho, mu, 1.0)
+    assert rho @ W[:, 2] == 0.0
+    assert_kkt(W, grid[2], rho, 1.0, mu_hint=mu)
+
+
+def test_grids_finer_than_the_limit_are_left_to_the_flag():
+    """Above MAX_SAMPLES samples a solve would take minutes: no answer (the colour stays
+    flagged), even for a colour the method solves (the constant half on W = [I; 0]; 30 s at
+    MAX_SAMPLES samples, so that side is not run here)."""
+    W = np.zeros((MAX_SAMPLES + 1, 3))
+    W[:3] = np.eye(3)
+    assert exact_solution(W, 1.0, np.array([0.5, 0.5, 0.5]), 0.0, 1.0) is None
 
 
 def test_interior_colours_agree_with_the_floating_point_solver():

@@ -45,6 +45,10 @@ from .certificate import PRIMAL_FACTOR, gamma
 #: Iterations of each exact method, per sample of the grid, before giving up (the active-set
 #: method took at most 2.8 K steps on 140 random two-transition blocks at 10 and 5 nm).
 ITERATIONS_PER_SAMPLE = 8
+#: Largest grid solved exactly (1 nm over 360–840 nm). A step costs O(K) rational operations
+#: and a solve about K steps: 4 s for a red-end block at 1 nm over 380–780 nm (K = 401), so
+#: finer grids would take minutes per colour; their colours stay flagged instead.
+MAX_SAMPLES = 481
 
 _ZERO = Fraction(0)
 
@@ -110,10 +114,15 @@ class _Programme:
     # -- phase one: a vertex of the feasible set of the nearest feasible colour ----------------
 
     def nearest_vertex(self, b: list[Fraction]):
-        """A vertex ``ρ₀`` minimising ``‖W.T ρ − b‖₁`` and the basic samples, or None.
+        """A vertex ``ρ₀`` nearest to ``b`` in the relative L1 norm ``Σ_j |W.T ρ − b|_j / |b_j|``
+        and the basic samples, or None.
 
         Columns: ρ_k (bounds ``[lower, upper]``), then for each row j a surplus ``s⁺_j`` and a
-        slack ``s⁻_j`` (≥ 0, cost 1) with ``Σ_k W_kj ρ_k − s⁺_j + s⁻_j = b_j``.
+        slack ``s⁻_j`` (≥ 0, cost ``1 / |b_j|``) with ``Σ_k W_kj ρ_k − s⁺_j + s⁻_j = b_j``.
+        Relative, because the certificate's primal tolerance is relative per component: a
+        colour with ``Z = 0`` (all its power where z̄ = 0) must keep ``Z = 0`` exactly, however
+        cheaply a little Z would buy back an ulp of Y; so where ``b_j = 0`` (and ρ = lower
+        meets it) both are held at 0.
         """
         K, m = self.K, self.m
         n = K + 2 * m
@@ -122,11 +131,13 @@ class _Programme:
             column.append([Fraction(-1 if i == j else 0) for i in range(m)])
         for j in range(m):
             column.append([Fraction(1 if i == j else 0) for i in range(m)])
-        cost = [_ZERO] * K + [Fraction(1)] * (2 * m)
-        low = [self.lower] * K + [_ZERO] * (2 * m)
-        high = [self.upper] * K + [None] * (2 * m)
-        x = low[:]
         residual = [b[j] - sum(self.W[k][j] * self.lower for k in range(K)) for j in range(m)]
+        weight = [1 / abs(b[j]) if b[j] else 1 / abs(residual[j]) if residual[j] else _ZERO
+                  for j in range(m)]
+        cost = [_ZERO] * K + weight + weight
+        low = [self.lower] * K + [_ZERO] * (2 * m)
+        high = [self.upper] * K + [None if w else _ZERO for w in weight] * 2
+        x = low[:]
         basis = []
         for j in range(m):
             if residual[j] >= 0:
@@ -337,8 +348,9 @@ def exact_solution(W: np.ndarray, step_nm: float, b: np.ndarray, lower: float, u
     tuple or None
         ``(rho (K,), mu (m,))`` rounded to the nearest doubles from the exact optimum for a
         colour ``b'`` within half the certificate's primal tolerance of ``b`` (``b`` itself
-        when it is in the exact feasible set); None where the colour is farther outside, or
-        where the method gives up (see the module docstring).
+        when it is in the exact feasible set); None where the colour is farther outside, where
+        the grid has more than :data:`MAX_SAMPLES` samples, or where the method gives up
+        (:data:`ITERATIONS_PER_SAMPLE`).
 
     References
     ----------
@@ -353,6 +365,8 @@ def exact_solution(W: np.ndarray, step_nm: float, b: np.ndarray, lower: float, u
     >>> rho.tolist(), mu.tolist()
     ([0.5, 0.5, 0.5], [0.0, 0.0, 0.0])
     """
+    if W.shape[0] > MAX_SAMPLES:
+        return None
     half = PRIMAL_FACTOR / 2 * gamma(W.shape[0] + 1)
     prog = _Programme(W, lower, upper)
     target = [Fraction(float(v)) for v in b]
