@@ -17,6 +17,7 @@ $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
 	$(BIN)/pip install --quiet -c constraints.txt -e ".[$(EXTRAS)]"
+	$(BIN)/python -m spectrocolor.recovery.compiled
 	touch $(STAMP)
 
 run: $(STAMP)
@@ -24,6 +25,7 @@ run: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/ruff check src tests bench docs tools
+	$(BIN)/python -m spectrocolor.recovery.compiled
 	$(BIN)/python -m pytest -q --doctest-modules src tests
 	$(MAKE) --no-print-directory docs
 

@@ -25,7 +25,7 @@ import numpy as np
 from ..numba_support import numba_enabled
 from . import certificate
 
-__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas", "roughness"]
+__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas", "roughness", "warm_up"]
 
 
 @lru_cache(maxsize=1)
@@ -64,6 +64,12 @@ def _factors(step_nm: float, size: int):
             certificate.DUAL_FACTOR)
 
 
+def _operand(a):
+    """``a`` as a writable, C-ordered float64 array: the one array type the kernels are
+    compiled for (a read-only or Fortran-ordered input would otherwise compile them again)."""
+    return np.require(a, dtype=np.float64, requirements=("C", "W"))
+
+
 def _layouts(W):
     """``Wᵀ`` and ``|W|ᵀ`` (m, K), contiguous: the kernels' layout of the weights."""
     WT = np.ascontiguousarray(np.asarray(W, dtype=np.float64).T)
@@ -78,7 +84,7 @@ def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
     while its ratio exceeds a quarter; colours with a value below ``lowest`` or above
     ``highest`` are left unrefined and unmeasured (ratio ∞).
     """
-    b = np.ascontiguousarray(b, dtype=np.float64)
+    b = _operand(b)
     K, m = prob.W.shape
     rho, mu, out = np.empty((len(b), K)), np.empty((len(b), m)), np.empty((5, len(b)))
     t, primal, dual = _factors(prob.step_nm, K)
@@ -98,7 +104,7 @@ def pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, refine_steps):
     form violates, as :func:`.qp.solve_bounded` does; a colour that violates none is returned
     as its closed form, converged after 0 iterations.
     """
-    b = np.ascontiguousarray(b, dtype=np.float64)
+    b = _operand(b)
     N, (K, m) = len(b), prob.W.shape
     from_closed_form = lo_act is None
     if from_closed_form:
@@ -118,7 +124,7 @@ def pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, refine_steps):
 def measures(found, W, step_nm, b, rho, mu, lower, upper):
     """The certificate's five measures (5, N) (:func:`.certificate.certify`); rows holding a
     NaN or an infinity come back with an infinite ratio, for the caller to measure again."""
-    b, rho, mu = (np.ascontiguousarray(a, dtype=np.float64) for a in (b, rho, mu))
+    b, rho, mu = _operand(b), _operand(rho), _operand(mu)
     out = np.empty((5, len(b)))
     t, primal, dual = _factors(step_nm, W.shape[0])
     bounded = lower is not None
@@ -130,17 +136,50 @@ def measures(found, W, step_nm, b, rho, mu, lower, upper):
 def facet_maxima(found, b, centre, normals, absolute):
     """Per colour, ``(top, index)``: the largest ``normals · (b − centre)`` (of its absolute value
     with ``absolute``) and the facet attaining it, first on ties (:func:`.zonotope.gauge`)."""
-    b = np.ascontiguousarray(b, dtype=np.float64)
+    b = _operand(b)
     top, index = np.empty(len(b)), np.empty(len(b), dtype=np.int64)
     found.facet_maxima(b, np.asarray(centre, dtype=np.float64),
-                       np.ascontiguousarray(np.asarray(normals, dtype=np.float64).T), absolute,
+                       _operand(np.asarray(normals).T), absolute,
                        top, index)
     return top, index
 
 
 def roughness(found, rho, step_nm):
     """``Σ (Δρ)² / h`` of each row of ``rho`` (N, K) (:meth:`.qp.Problem.objective`)."""
-    rho = np.ascontiguousarray(rho, dtype=np.float64)
+    rho = _operand(rho)
     out = np.empty(len(rho))
     found.roughness(rho, float(step_nm), out)
     return out
+
+
+def warm_up() -> bool:
+    """Compile (or load from the cache) every kernel now rather than on first use.
+
+    The first use on a machine compiles the kernels, about 25 s on a 2-core machine (longer
+    under load), and caches them beside this module; later processes load them in well under
+    a second. ``make`` calls this after installing, and ``make test`` before the tests (whose
+    servers must not spend their time limits compiling); ``python -m
+    spectrocolor.recovery.compiled`` does the same.
+
+    Returns
+    -------
+    bool
+        Whether the kernels are in use (False without numba or with ``SPECTROCOLOR_NUMBA=0``).
+
+    Examples
+    --------
+    >>> isinstance(warm_up(), bool)
+    True
+    """
+    if kernels() is None:
+        return False
+    from .smoothest import smoothest_reflectance
+
+    colours = np.array([[40.0, 40.0, 40.0], [30.0, 20.0, 3.0], [60.0, 30.0, 5.0]])
+    for bounds in ("unit", "nonnegative", None):
+        smoothest_reflectance(colours, wavelengths=(400.0, 700.0, 20.0), bounds=bounds)
+    return True
+
+
+if __name__ == "__main__":  # python -m spectrocolor.recovery.compiled
+    print("recovery kernels", "compiled and cached" if warm_up() else "not in use (NumPy path)")
