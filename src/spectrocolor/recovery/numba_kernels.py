@@ -584,31 +584,14 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, 
 
 
 @_inline
-def _largest_nonnegative(values):
-    """The largest of non-negative values: their bit patterns, read as integers, are in the
-    same order, and an integer maximum vectorises where a floating-point one does not (a NaN,
-    whose pattern is larger than any number's, comes out as itself)."""
-    bits = values.view(np.int64)
-    best = bits[0]
-    for k in range(1, bits.shape[0]):
-        best = max(best, bits[k])
-    for k in range(bits.shape[0]):
-        if bits[k] == best:
-            return values[k]
-    return values[0]
-
-
-@_inline
 def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor, dual_factor,
                   out, n, work, small):
     K, m = WT.shape[1], WT.shape[0]
-    # 0 · x is 0 for every finite x and NaN for NaN and ±∞: one sum tells (and vectorises)
-    probe = 0.0
+    finite = True
     for k in range(K):
-        probe += 0.0 * rho[k]
+        finite = finite and np.isfinite(rho[k])
     for j in range(m):
-        probe += 0.0 * mu[j]
-    finite = probe == 0.0
+        finite = finite and np.isfinite(mu[j])
     r, size = small[0], small[1]
     _colour_residual(WT, absWT, b, rho, r, size)
     residual_max, ratio = 0.0, 0.0
@@ -623,13 +606,7 @@ def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor
     _abs_hess_times(rho, t, w_mu)
     _dual_tolerance(absWT, mu, w_mu, dual_factor, tol)
     violation, wrong_max, off_max = 0.0, 0.0, 0.0
-    if not bounded:  # every |λ_k| counts: two vectorised passes
-        for k in range(K):
-            lam[k] = abs(lam[k])
-            tol[k] = lam[k] / max(tol[k], TINY)
-        off_max = _largest_nonnegative(lam)
-        ratio = max(ratio, _largest_nonnegative(tol))
-    for k in range(K if bounded else 0):
+    for k in range(K):
         wrong, off = 0.0, abs(lam[k])
         if bounded:
             violation = max(violation, lower - rho[k], rho[k] - upper)
