@@ -15,8 +15,8 @@ the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch array
 * ``roughness``: the objective of each result (:meth:`.qp.Problem.objective`).
 
 The kernels run on one thread: a batch is a loop over colours that allocates its work arrays
-once, and parallelism belongs to the caller (dask runs chunks in parallel threads, which numba's
-default threading layer must not be entered from at once). The per-sample helpers are inlined
+once, and parallelism belongs to the caller: the kernels release the GIL, so dask's worker
+threads run chunks side by side. The per-sample helpers are inlined
 into the per-colour functions (``inline="always"``); the per-colour functions are not inlined
 into the loops, which keeps compilation to a few tens of seconds, once per machine (cached).
 The weights are passed transposed (``WT``, ``m × K``) so that the loops over samples are
@@ -45,7 +45,8 @@ def _inline(function):
 
 
 def _compiled(function):
-    return jit(fastmath=_FAST)(function)
+    # nogil: threads (dask's workers) run the kernels side by side
+    return jit(fastmath=_FAST, nogil=True)(function)
 
 
 @_inline
