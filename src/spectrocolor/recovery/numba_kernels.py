@@ -588,36 +588,52 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, 
 def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor, dual_factor,
                   out, n, work, small):
     K, m = WT.shape[1], WT.shape[0]
-    finite = True
+    # 0 · x is 0 for every finite x and NaN for NaN and ±∞: one sum tells (and vectorises)
+    probe = 0.0
     for k in range(K):
-        finite = finite and np.isfinite(rho[k])
+        probe += 0.0 * rho[k]
     for j in range(m):
-        finite = finite and np.isfinite(mu[j])
+        probe += 0.0 * mu[j]
+    finite = probe == 0.0
     r, size = small[0], small[1]
     _colour_residual(WT, absWT, b, rho, r, size)
     residual_max, ratio = 0.0, 0.0
     for j in range(m):
         residual_max = max(residual_max, abs(r[j]))
         ratio = max(ratio, abs(r[j]) / max(primal_factor * size[j], TINY))
-    lam, w_mu, tol = work[0], work[1], work[2]
-    _hess_times(rho, t, lam)
-    _weighted(WT, mu, w_mu)
-    for k in range(K):
-        lam[k] -= w_mu[k]
-    _abs_hess_times(rho, t, w_mu)
-    _dual_tolerance(absWT, mu, w_mu, dual_factor, tol)
+    # λ = Q ρ − W μ and the sizes of its terms, |Q||ρ| + |W||μ|, in one pass per weight
+    lam, size_lam = work[0], work[2]
+    for k in range(1, K - 1):
+        lam[k] = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
+        size_lam[k] = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+    lam[0] = (rho[0] - rho[1]) * t
+    size_lam[0] = (abs(rho[0]) + abs(rho[1])) * t
+    lam[K - 1] = (rho[K - 1] - rho[K - 2]) * t
+    size_lam[K - 1] = (abs(rho[K - 2]) + abs(rho[K - 1])) * t
+    for j in range(m):
+        weight, size_weight = mu[j], abs(mu[j])
+        for k in range(K):
+            lam[k] -= weight * WT[j, k]
+            size_lam[k] += size_weight * absWT[j, k]
+    scale = dual_factor * EPS
     violation, wrong_max, off_max = 0.0, 0.0, 0.0
-    for k in range(K):
-        wrong, off = 0.0, abs(lam[k])
-        if bounded:
+    if not bounded:  # every |λ_k| must vanish
+        for k in range(K):
+            off = abs(lam[k])
+            q = off / max(scale * size_lam[k], TINY)
+            off_max = off if off > off_max else off_max
+            ratio = q if q > ratio else ratio
+    else:
+        for k in range(K):
+            wrong, off = 0.0, abs(lam[k])
             violation = max(violation, lower - rho[k], rho[k] - upper)
             if rho[k] == lower:
                 wrong, off = max(-lam[k], 0.0), 0.0
             elif rho[k] == upper:
                 wrong, off = max(lam[k], 0.0), 0.0
-        wrong_max = max(wrong_max, wrong)
-        off_max = max(off_max, off)
-        ratio = max(ratio, max(off, wrong) / max(tol[k], TINY))
+            wrong_max = max(wrong_max, wrong)
+            off_max = max(off_max, off)
+            ratio = max(ratio, max(off, wrong) / max(scale * size_lam[k], TINY))
     out[0, n] = residual_max
     out[1, n] = violation
     out[2, n] = wrong_max
