@@ -77,24 +77,26 @@ def _layouts(W):
 
 
 def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
-    """Unconstrained minimisers, multipliers and certificate measures of colours ``b``:
-    ``rho`` (N, K), ``mu`` (N, m) and the measures (5, N) of :func:`.certificate.certify`.
+    """Unconstrained minimisers, multipliers, certificate measures and roughness of colours
+    ``b``: ``rho`` (N, K), ``mu`` (N, m), the measures (5, N) of :func:`.certificate.certify`
+    and ``Σ (Δρ)² / h`` (N,).
 
     Each closed form is refined (by :class:`.qp.PinnedKKT`, at most ``refine_steps`` times)
     while its ratio exceeds a quarter; colours with a value below ``lowest`` or above
-    ``highest`` are left unrefined and unmeasured (ratio ∞).
+    ``highest`` are left unrefined and unmeasured (ratio ∞, roughness NaN).
     """
     b = _operand(b)
     K, m = prob.W.shape
     rho, mu, out = np.empty((len(b), K)), np.empty((len(b), m)), np.empty((5, len(b)))
+    rough = np.empty(len(b))
     t, primal, dual = _factors(prob.step_nm, K)
     pin = prob.pinned
     stacked = np.vstack([pin.sub, pin.sup_factor, pin.inverse_denominator, pin.P.T])
     basis = prob.basis
     found.closed_form(*_layouts(prob.W), b, basis.inverse, basis.solutions, basis.multipliers, t,
                       stacked, pin.S_lu, pin.S_piv, refine_steps, primal, dual, float(lowest),
-                      float(highest), rho, mu, out)
-    return rho, mu, out
+                      float(highest), rho, mu, out, rough)
+    return rho, mu, out, rough
 
 
 def pdas(found, prob, b, lower, upper, lo_act, up_act, max_iter, refine_steps):

@@ -207,7 +207,7 @@ REFINE_ABOVE = 0.25
 
 @_inline
 def _closed_form_one(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                     dual_factor, lowest, highest, rho, mu, work, small, out, n):
+                     dual_factor, lowest, highest, rho, mu, work, small, out, rough, n):
     K, m = WT.shape[1], WT.shape[0]
     sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
     c = small[2]
@@ -219,6 +219,7 @@ def _closed_form_one(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, 
             for i in range(4):
                 out[i, n] = 0.0
             out[4, n] = np.inf  # not measured: the bounded solver takes it over
+            rough[n] = np.nan
             return
     free, y = work[4], work[5]
     for k in range(K):
@@ -249,13 +250,19 @@ def _closed_form_one(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, 
             rho[k] += y[k]
         for j in range(m):
             mu[j] += rhs[j]
+    total = 0.0
+    for k in range(K - 1):
+        d = rho[k + 1] - rho[k]
+        total += d * d
+    rough[n] = total * (0.5 * t)  # Σ (Δρ)² / h
 
 
 @_compiled
 def closed_form(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                dual_factor, lowest, highest, rho, mu, out):
+                dual_factor, lowest, highest, rho, mu, out, rough):
     """Unconstrained minimisers ``rho`` (N, K) and multipliers ``mu`` (N, m) of colours ``b``,
-    and their certificate's measures ``out`` (5, N) (:func:`measures`).
+    their certificate's measures ``out`` (5, N) (:func:`measures`) and roughness ``rough``
+    (N,) (:func:`roughness`).
 
     ``A``, ``V`` and ``Mv`` are the inverse, solutions and multipliers of
     :class:`.qp.ClosedFormBasis`; ``t = 2/h``; ``primal_factor`` is ``PRIMAL_FACTOR γ_{K+1}`` and ``dual_factor``
@@ -263,7 +270,7 @@ def closed_form(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, prima
     factors, the inverse denominators and ``Pᵀ`` of :class:`.qp.PinnedKKT`. Each closed form
     is refined while its ratio exceeds :data:`REFINE_ABOVE` (at most ``refine_steps`` times).
     Colours with a value below ``lowest`` or above ``highest`` are neither refined nor
-    measured (ratio ∞).
+    measured (ratio ∞, roughness NaN).
     """
     K, m = WT.shape[1], WT.shape[0]
     work = np.empty((6, K))
@@ -271,7 +278,7 @@ def closed_form(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, prima
     for n in range(b.shape[0]):
         _closed_form_one(WT, absWT, b[n], A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
                          primal_factor, dual_factor, lowest, highest, rho[n], mu[n], work, small,
-                         out, n)
+                         out, rough, n)
 
 
 # --- the active-set iterations --------------------------------------------------------------

@@ -286,8 +286,8 @@ def solve_unconstrained(prob: Problem, b: np.ndarray, within=None) -> tuple[np.n
     lower, upper = (-np.inf, np.inf) if within is None else within
     found = compiled.kernels()
     if found is not None and prob.basis is not None:
-        rho, mu, _ = compiled.closed_form(found, prob, b, _REFINE_STEPS, lower - WITHIN_MARGIN,
-                                          upper + WITHIN_MARGIN)
+        rho, mu, _, _ = compiled.closed_form(found, prob, b, _REFINE_STEPS,
+                                             lower - WITHIN_MARGIN, upper + WITHIN_MARGIN)
         return rho, mu
     N, K = len(b), prob.size
     rho = np.empty((N, K))
@@ -302,18 +302,23 @@ def solve_unconstrained(prob: Problem, b: np.ndarray, within=None) -> tuple[np.n
 
 
 def solve_unconstrained_certified(prob: Problem, b: np.ndarray):
-    """:func:`solve_unconstrained` with the certificate of each result: rho, mu, Certificate.
+    """:func:`solve_unconstrained` with each result's certificate and roughness: rho, mu,
+    Certificate, ``Σ (Δρ)² / h``.
 
-    Compiled, the certificate's measures come from the same pass over each colour that forms
-    and refines it; otherwise :func:`.certificate.certify` measures the results afterwards.
+    Compiled, the certificate's measures and the roughness come from the same pass over each
+    colour that forms and refines it; otherwise :func:`.certificate.certify` and
+    :meth:`Problem.objective` measure the results afterwards.
     """
     settled = np.ones(len(b), dtype=bool)
     found = compiled.kernels()
     if found is not None and prob.basis is not None:
-        rho, mu, measures = compiled.closed_form(found, prob, b, _REFINE_STEPS)
-        return rho, mu, certificate.from_measures(measures, settled)
+        rho, mu, measures, roughness = compiled.closed_form(found, prob, b, _REFINE_STEPS)
+        return rho, mu, certificate.from_measures(measures, settled), roughness
     rho, mu = solve_unconstrained(prob, b)
-    return rho, mu, certificate.certify(prob.W, prob.step_nm, b, rho, mu, None, None, settled)
+    with np.errstate(over="ignore"):
+        roughness = prob.objective(rho)
+    return (rho, mu, certificate.certify(prob.W, prob.step_nm, b, rho, mu, None, None, settled),
+            roughness)
 
 
 def refine_unconstrained(prob: Problem, b, rho, mu):

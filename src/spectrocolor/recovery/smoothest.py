@@ -229,11 +229,11 @@ def smoothest_reflectance(
     b = b_in.reshape(-1, 3)
     K = prob.size
     if bounds is None:
-        rho, mu, certificate = qp.solve_unconstrained_certified(prob, b)
+        rho, mu, certificate, roughness = qp.solve_unconstrained_certified(prob, b)
         feasible = np.ones(len(b), dtype=bool)
         distance = np.zeros(len(b))
-        # np.repeat copies the name; np.full would convert it once per colour
-        method = np.repeat(np.array(["unconstrained"], dtype=_METHOD_DTYPE), len(b))
+        # one name for all: its own width, copied (np.full would convert it once per colour)
+        method = np.repeat(np.array(["unconstrained"]), len(b))
     elif bounds == "nonnegative":
         rho, mu, feasible, distance, method, certificate = _solve_scaled(setup, b)
     else:
@@ -248,8 +248,9 @@ def smoothest_reflectance(
             f"produces it. XYZ must be on this grid's scale: here the perfect white is "
             f"XYZ = ({white_text}), which can differ slightly from tabulated white points"
         )
-    with np.errstate(over="ignore"):
-        roughness = prob.objective(rho)
+    if bounds is not None:
+        with np.errstate(over="ignore"):
+            roughness = prob.objective(rho)
     return SmoothestResult(
         spectrum=Spectrum(setup.grid, rho.reshape(*shape, K)),
         XYZ100=b_in,
