@@ -65,6 +65,19 @@ def test_previously_flagged_red_end_blocks_are_certified_by_smoothest_reflectanc
         assert_kkt(W, RED_END[2], rho, 1.0, mu_hint=mu)
 
 
+def test_a_red_notch_within_a_thousandth_of_the_white_is_certified():
+    """380–780/1 nm, D65, the white with a notch at 712–765 nm: within 2⁻¹⁰ of the white, so
+    first tried as ``white − XYZ`` in the cone, where ``Z`` (equal to the white's: z̄ = 0 in
+    the notch) rounds to −1.4e-14 and the cone's answer cannot be certified. It was flagged
+    (5 of 200 such blocks at 1 nm); the solid's own face solution now replaces the cone's."""
+    grid = (380.0, 780.0, 1.0)
+    W = _weights(grid)
+    rho0 = np.where((sc.wavelength_grid(*grid) >= 712) & (sc.wavelength_grid(*grid) <= 765), 0.0, 1.0)
+    r = smoothest_reflectance(rho0 @ W, wavelengths=grid)
+    assert r.feasible and r.certificate.converged
+    assert_kkt(W, grid[2], r.spectrum.values, 1.0, mu_hint=r.multipliers)
+
+
 def test_a_vertex_of_a_three_sample_grid_has_the_multipliers_of_its_gradient():
     """W = I on three samples: b = (1, 0, 0) admits only ρ = (1, 0, 0); every sample's
     constraint is then its own, so μ = Q ρ = (2/h)(1, −1, 0) exactly (h = 10 nm: ±0.2 rounded)."""

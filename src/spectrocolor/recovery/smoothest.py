@@ -352,11 +352,21 @@ def _solve_unit(setup: Setup, b: np.ndarray):
         # settled; the certificate below, on the values returned, is the verdict
         converged[idx] = f[take] & np.all(np.isfinite(r[take]), axis=1)
         done[idx] = True
-    rest = np.flatnonzero(~done)
+    # a feasible vertex colour whose cone answer fails the certificate is solved on the solid
+    # too (near the white, ``white − b`` rounds a zero component to ±ε of the white, which
+    # can put it outside the cone), and the solid's answer replaces the cone's where certified
+    retry = np.zeros(N, dtype=bool)
+    vertex = np.flatnonzero(done & feasible)
+    if vertex.size:
+        retry[vertex] = ~certify(prob.W, prob.step_nm, b[vertex], rho[vertex], mu[vertex], 0.0, 1.0,
+                                 converged[vertex]).converged
+    rest = np.flatnonzero(~done | retry)
     if rest.size:
         got = _solve_bounded(setup, b[rest], 0.0, 1.0)
+        better = ~retry[rest] | certify(prob.W, prob.step_nm, b[rest], got[0], got[1], 0.0, 1.0,
+                                        got[5]).converged
         for out, value in zip((rho, mu, feasible, distance, method, converged), got, strict=True):
-            out[rest] = value
+            out[rest[better]] = value[better]
     certificate = certify(prob.W, prob.step_nm, b, rho, mu, 0.0, 1.0, converged)
     return rho, mu, feasible, distance, method, certificate
 
