@@ -1,12 +1,14 @@
 """Count the exact boundary colours that the smoothest-reflectance solver leaves flagged.
 
-Usage: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python tools/recovery_flagged.py``
+Usage: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python tools/recovery_flagged.py [--sample-1nm]``
 
 The sets are those of issue 10: every reflectance with at most two 0/1 transitions (blocks and
 their complements: colours on the boundary of the object-colour solid, many on degenerate
 facets) on 380–780 nm at 10 nm under D65 and A and at 5 nm under D65; the single-sample spike
 and notch at either end on 380–780/20 nm under E and D65; and, with ``bounds="nonnegative"``
-on 380–780/5 nm, every single-wavelength line and every reflectance zero below a cut.
+on 380–780/5 nm, every single-wavelength line and every reflectance zero below a cut; with
+``--sample-1nm`` also 200 random blocks with an edge at 530–780 nm on 380–780/1 nm under D65
+(about 5 more minutes).
 
 The last columns count the colours that only the exact rational solver settled (method
 ``"boundary face, exact rational arithmetic"``) and the time of each call of that solver
@@ -15,6 +17,7 @@ The last columns count the colours that only the exact rational solver settled (
 
 from __future__ import annotations
 
+import sys
 import time
 
 import numpy as np
@@ -63,6 +66,23 @@ def lines_and_cuts(K: int) -> np.ndarray:
     return np.concatenate([eye, cuts[:, ::-1]])
 
 
+def red_edge_sample(K: int, n: int = 200, seed: int = 3) -> np.ndarray:
+    """``n`` random blocks (half of them complemented) with their first edge in the last 250
+    samples: on 380–780/1 nm, an edge at 530–780 nm (all 160 000 blocks would take hours)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        i = rng.integers(K - 251, K)
+        j = rng.integers(i, K)
+        r = np.zeros(K)
+        r[i:j + 1] = 1.0
+        if rng.random() < 0.5:
+            r = 1.0 - r
+        if 0 < r.sum() < K:
+            out.append(r)
+    return np.array(out)
+
+
 def count(name, grid, illuminant, R, bounds="unit"):
     W = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant=illuminant))
     CALLS.clear()
@@ -92,6 +112,8 @@ def main():
         count(f"end spikes/notches 380–780/20 {ill}", (380.0, 780.0, 20.0), ill, ends(21))
     count("lines and cuts 380–780/5 D65, nonnegative", (380.0, 780.0, 5.0), "D65",
           lines_and_cuts(81), bounds="nonnegative")
+    if "--sample-1nm" in sys.argv[1:]:
+        count("200 red-edge blocks 380–780/1 D65", (380.0, 780.0, 1.0), "D65", red_edge_sample(401))
 
 
 if __name__ == "__main__":
