@@ -363,8 +363,11 @@ def _solve_unit(setup: Setup, b: np.ndarray):
     rest = np.flatnonzero(~done | retry)
     if rest.size:
         got = _solve_bounded(setup, b[rest], 0.0, 1.0)
-        better = ~retry[rest] | certify(prob.W, prob.step_nm, b[rest], got[0], got[1], 0.0, 1.0,
-                                        got[5]).converged
+        better = ~retry[rest]
+        again = np.flatnonzero(retry[rest])  # only the retried colours need a verdict here
+        if again.size:
+            better[again] = certify(prob.W, prob.step_nm, b[rest[again]], got[0][again],
+                                    got[1][again], 0.0, 1.0, got[5][again]).converged
         for out, value in zip((rho, mu, feasible, distance, method, converged), got, strict=True):
             out[rest[better]] = value[better]
     certificate = certify(prob.W, prob.step_nm, b, rho, mu, 0.0, 1.0, converged)
