@@ -412,27 +412,35 @@ def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, r
             rho[k] += y[k] * free[k]
 
 
+@_inline
+def _bound_multiplier(WT, absWT, t, rho, mu, k):
+    """``λ_k = (Q ρ − W μ)_k`` and the size of its terms ``(|Q||ρ| + |W||μ|)_k``, as
+    :func:`_hess_times`, :func:`_abs_hess_times` and :func:`_dual_tolerance` form them."""
+    K, m = WT.shape[1], WT.shape[0]
+    if k == 0:
+        q = (rho[0] - rho[1]) * t
+        size = (abs(rho[0]) + abs(rho[1])) * t
+    elif k == K - 1:
+        q = (rho[k] - rho[k - 1]) * t
+        size = (abs(rho[k - 1]) + abs(rho[k])) * t
+    else:
+        q = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
+        size = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+    for j in range(m):
+        q -= mu[j] * WT[j, k]
+        size += abs(mu[j]) * absWT[j, k]
+    return q, size
+
+
 @_compiled
 def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
     """The bound multipliers ``lam`` and the next active sets (in place, :func:`.qp._pdas`'s
     rule); returns whether the sets stayed the same."""
-    K, m = WT.shape[1], WT.shape[0]
+    K = WT.shape[1]
     same = True
     for k in range(K):
         if lo[k] or up[k]:
-            # λ_k and its tolerance, as in _hess_times, _abs_hess_times and _dual_tolerance
-            if k == 0:
-                q = (rho[0] - rho[1]) * t
-                size = (abs(rho[0]) + abs(rho[1])) * t
-            elif k == K - 1:
-                q = (rho[k] - rho[k - 1]) * t
-                size = (abs(rho[k - 1]) + abs(rho[k])) * t
-            else:
-                q = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
-                size = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
-            for j in range(m):
-                q -= mu[j] * WT[j, k]
-                size += abs(mu[j]) * absWT[j, k]
+            q, size = _bound_multiplier(WT, absWT, t, rho, mu, k)
             lam[k] = q
             tol = dual_factor * EPS * size
             # a bound stays while its multiplier has the right sign to within half the
@@ -455,22 +463,11 @@ def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up
     at most one change of the active sets (in place): the free value farthest beyond a bound
     joins it, or, with none beyond, the bound whose multiplier has the most wrong sign
     (relative to the rule's tolerance) is released. Returns whether nothing had to change."""
-    K, m = WT.shape[1], WT.shape[0]
+    K = WT.shape[1]
     add, add_score, release, release_score = -1, 0.0, -1, 1.0
     for k in range(K):
         if lo[k] or up[k]:
-            if k == 0:
-                q = (rho[0] - rho[1]) * t
-                size = (abs(rho[0]) + abs(rho[1])) * t
-            elif k == K - 1:
-                q = (rho[k] - rho[k - 1]) * t
-                size = (abs(rho[k - 1]) + abs(rho[k])) * t
-            else:
-                q = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
-                size = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
-            for j in range(m):
-                q -= mu[j] * WT[j, k]
-                size += abs(mu[j]) * absWT[j, k]
+            q, size = _bound_multiplier(WT, absWT, t, rho, mu, k)
             lam[k] = q
             wrong = (-q if lo[k] else q) / max(0.5 * dual_factor * EPS * size, TINY)
             if wrong > release_score:
@@ -487,6 +484,15 @@ def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up
         lo[release], up[release] = False, False
         return False
     return True
+
+
+@_inline
+def _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
+    """The next active sets by the full rule, or by one change where ``single``; returns
+    whether they stayed the same."""
+    if single:
+        return _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up)
+    return _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up)
 
 
 @_inline
@@ -526,24 +532,16 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
                             work, X, M, piv, small)
         for k in range(K):
             saved[0, k], saved[1, k] = lo[k], up[k]
-        if single:
-            settled = _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                                     up)
-        else:
-            settled = _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam,
-                                          lo, up)
+        settled = _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
+                              up)
         if not settled:
             continue
         if precise or status == 2:
             return it, True
         _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work,
                         X, M, piv, small)
-        if single:
-            settled = _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                                     up)
-        else:
-            settled = _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam,
-                                          lo, up)
+        settled = _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
+                              up)
         if settled:
             return it, True
         precise = True
