@@ -68,9 +68,12 @@ def main():
               f"certified closed form is {len(XYZ) / dt / rates[(step, None)]:.1f}x slower, "
               f"unit-bounded {len(XYZ) / dt / rates[(step, 'unit')]:.1f}x slower")
         near = near_boundary(grid, 20000, 1e-9)
-        t = time.perf_counter()
-        r = sc.smoothest_reflectance(near, wavelengths=grid)
-        dt = time.perf_counter() - t
+        sc.smoothest_reflectance(near[:100], wavelengths=grid)
+        dt = np.inf
+        for _ in range(3):
+            t = time.perf_counter()
+            r = sc.smoothest_reflectance(near, wavelengths=grid)
+            dt = min(dt, time.perf_counter() - t)
         print(f"{step:>4g} nm  bounds=unit  {len(near)} colours at relative depth 1e-9: "
               f"{len(near) / dt:,.0f} colours/s, converged {r.certificate.converged.mean():.4%}, "
               f"max residual {r.certificate.primal_residual.max():.1e}")

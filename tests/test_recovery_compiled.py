@@ -117,6 +117,41 @@ def test_certificate_measures_agree_with_the_numpy_path(lower, upper, monkeypatc
     assert not fast.converged[3] and not fast.converged[5]
 
 
+@pytest.mark.parametrize("illuminants", [("D65",), ("D65", "A")])
+def test_closed_form_kernel_measures_what_the_certificate_measures(illuminants, monkeypatch):
+    """The closed-form kernel forms ρ and μ and measures them in the same passes (unrolled for
+    three weights, general for more, as for metamers under two illuminants). Given a basis
+    perturbed far above rounding (so that the measures do not depend on the summation order),
+    its measures and roughness are those :func:`.certificate.certify` and
+    :meth:`.qp.Problem.objective` give for the ρ and μ it returns."""
+    grid = (400.0, 700.0, 10.0)
+    W = np.concatenate([setup_for(grid, "1931", name)[0].W for name in illuminants], axis=1)
+    prob = qp.make_problem(W, grid[2])
+    m = W.shape[1]
+    rng = np.random.default_rng(3)
+    b = rng.uniform(0.05, 0.95, size=(200, W.shape[0])) @ W
+    basis = prob.basis
+    solutions = basis.solutions * (1 + 1e-7 * rng.normal(size=basis.solutions.shape))
+    multipliers = basis.multipliers * (1 + 1e-6 * rng.normal(size=basis.multipliers.shape))
+    t, primal, dual = compiled._factors(grid[2], W.shape[0])
+    pin = prob.pinned
+    stacked = np.vstack([pin.sub, pin.sup_factor, pin.inverse_denominator, pin.P.T])
+    rho, mu = np.empty((len(b), W.shape[0])), np.empty((len(b), m))
+    out, rough = np.empty((5, len(b))), np.empty(len(b))
+    compiled._compiled().closed_form(*compiled._layouts(W), b, basis.inverse, solutions,
+                                     multipliers, t, stacked, pin.S_lu, pin.S_piv, 0, primal,
+                                     dual, -np.inf, np.inf, rho, mu, out, rough)
+    np.testing.assert_allclose(rho, (b @ basis.inverse) @ solutions, rtol=1e-12, atol=1e-14)
+    monkeypatch.setenv("SPECTROCOLOR_NUMBA", "0")
+    plain = certificate.certify(W, grid[2], b, rho, mu, None, None, np.ones(len(b), dtype=bool))
+    assert plain.rounding_ratio.min() > 1e3  # far from rounding, as intended
+    for row, name in enumerate(("primal_residual", "bound_violation",
+                                "multiplier_sign_violation", "stationarity", "rounding_ratio")):
+        np.testing.assert_allclose(out[row], getattr(plain, name), rtol=1e-6, atol=0,
+                                   err_msg=name)
+    np.testing.assert_allclose(rough, prob.objective(rho), rtol=1e-12)
+
+
 def test_the_kernels_run_from_worker_threads(monkeypatch):
     """dask calls from its worker threads: the compiled path must give the main thread's answer."""
     monkeypatch.setenv("SPECTROCOLOR_NUMBA", "1")

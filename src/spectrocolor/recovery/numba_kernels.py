@@ -41,12 +41,12 @@ _FAST = {"reassoc"}
 
 
 def _inline(function):
-    return jit(inline="always", fastmath=_FAST)(function)
+    return jit(inline="always", fastmath=_FAST, error_model="numpy")(function)
 
 
 def _compiled(function):
     # nogil: threads (dask's workers) run the kernels side by side
-    return jit(fastmath=_FAST, nogil=True)(function)
+    return jit(fastmath=_FAST, nogil=True, error_model="numpy")(function)
 
 
 @_inline
@@ -206,32 +206,141 @@ REFINE_ABOVE = 0.25
 
 
 @_inline
-def _closed_form_one(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                     dual_factor, lowest, highest, rho, mu, work, small, out, rough, n):
-    K, m = WT.shape[1], WT.shape[0]
-    sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
+def _closed_form_three(WT, absWT, b, A, V, Mv, t, primal_factor, dual_factor, lowest, highest,
+                       rho, mu, out, rough, n, work):
+    """The closed form of one colour for three weights (tristimulus values), with its
+    certificate's measures and roughness, in two passes over the samples; returns the number
+    of values below ``lowest`` or above ``highest``.
+
+    The same arithmetic as :func:`_linear_map` and :func:`_measures_one` (unbounded) with
+    the three weights unrolled, so that each pass vectorises: the first forms ``ρ`` and the
+    colour residual with the size of its terms, the second ``λ = Q ρ − W μ`` with the size of
+    its terms, the stationarity ratio and ``Σ (Δρ)²``."""
+    K = WT.shape[1]
+    W0, W1, W2, a0, a1, a2 = WT[0], WT[1], WT[2], absWT[0], absWT[1], absWT[2]
+    V0, V1, V2 = V[0], V[1], V[2]
+    # the colour in the basis colours (qp.ClosedFormBasis), then ρ and μ
+    c0 = b[0] * A[0, 0] + b[1] * A[1, 0] + b[2] * A[2, 0]
+    c1 = b[0] * A[0, 1] + b[1] * A[1, 1] + b[2] * A[2, 1]
+    c2 = b[0] * A[0, 2] + b[1] * A[1, 2] + b[2] * A[2, 2]
+    m0 = c0 * Mv[0, 0] + c1 * Mv[1, 0] + c2 * Mv[2, 0]
+    m1 = c0 * Mv[0, 1] + c1 * Mv[1, 1] + c2 * Mv[2, 1]
+    m2 = c0 * Mv[0, 2] + c1 * Mv[1, 2] + c2 * Mv[2, 2]
+    mu[0], mu[1], mu[2] = m0, m1, m2
+    # 0 · x is 0 for every finite x and NaN for NaN and ±∞ (see _measures_one)
+    probe = 0.0 * m0 + 0.0 * m1 + 0.0 * m2
+    outside = 0
+    x0 = x1 = x2 = s0 = s1 = s2 = 0.0
+    for k in range(K):
+        v = c0 * V0[k] + c1 * V1[k] + c2 * V2[k]
+        rho[k] = v
+        probe += 0.0 * v
+        outside += (v < lowest) | (v > highest)
+        x0 += v * W0[k]
+        x1 += v * W1[k]
+        x2 += v * W2[k]
+        s0 += abs(v) * a0[k]
+        s1 += abs(v) * a1[k]
+        s2 += abs(v) * a2[k]
+    r0, r1, r2 = abs(b[0] - x0), abs(b[1] - x1), abs(b[2] - x2)
+    ratio = max(r0 / max(primal_factor * (abs(b[0]) + s0), TINY),
+                r1 / max(primal_factor * (abs(b[1]) + s1), TINY),
+                r2 / max(primal_factor * (abs(b[2]) + s2), TINY))
+    n0, n1, n2 = abs(m0), abs(m1), abs(m2)
+    scale = dual_factor * EPS
+    # |λ_k| and its ratio to the tolerance into work rows, their maxima after the loop (a
+    # running maximum in the loop would keep it from vectorising)
+    off, quotient = work[0], work[1]
+    L = K - 1
+    d = rho[1] - rho[0]  # the ends: half rows of Q
+    smooth = d * d
+    lam = -d * t - (m0 * W0[0] + m1 * W1[0] + m2 * W2[0])
+    size = (abs(rho[0]) + abs(rho[1])) * t + (n0 * a0[0] + n1 * a1[0] + n2 * a2[0])
+    off[0], quotient[0] = abs(lam), abs(lam) / max(scale * size, TINY)
+    lam = (rho[L] - rho[L - 1]) * t - (m0 * W0[L] + m1 * W1[L] + m2 * W2[L])
+    size = (abs(rho[L - 1]) + abs(rho[L])) * t + (n0 * a0[L] + n1 * a1[L] + n2 * a2[L])
+    off[L], quotient[L] = abs(lam), abs(lam) / max(scale * size, TINY)
+    for k in range(1, L):
+        d = rho[k + 1] - rho[k]
+        smooth += d * d
+        lam = ((rho[k] - rho[k - 1]) - d) * t - (m0 * W0[k] + m1 * W1[k] + m2 * W2[k])
+        size = ((abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+                + (n0 * a0[k] + n1 * a1[k] + n2 * a2[k]))
+        off[k] = abs(lam)
+        quotient[k] = abs(lam) / max(scale * size, TINY)
+    off_max = _maximum(off)
+    ratio = max(ratio, _maximum(quotient))
+    out[0, n] = max(r0, r1, r2)
+    out[1, n] = 0.0
+    out[2, n] = 0.0
+    out[3, n] = off_max
+    # a row holding NaN or infinity is measured again by the NumPy path (its NaN semantics)
+    out[4, n] = ratio if probe == 0.0 else np.inf
+    rough[n] = smooth * (0.5 * t)  # Σ (Δρ)² / h
+    return outside
+
+
+@_inline
+def _maximum(values):
+    """The largest of ``values`` and 0 (NaN entries are skipped), with four running maxima:
+    one running maximum is a chain of dependent comparisons."""
+    n = values.shape[0]
+    m0 = m1 = m2 = m3 = 0.0
+    k = 0
+    while k + 4 <= n:
+        m0 = max(m0, values[k])
+        m1 = max(m1, values[k + 1])
+        m2 = max(m2, values[k + 2])
+        m3 = max(m3, values[k + 3])
+        k += 4
+    while k < n:
+        m0 = max(m0, values[k])
+        k += 1
+    return max(max(m0, m1), max(m2, m3))
+
+
+@_inline
+def _closed_form_general(WT, absWT, b, A, V, Mv, t, primal_factor, dual_factor, lowest,
+                         highest, rho, mu, out, rough, n, work, small):
+    """:func:`_closed_form_three` for any number of weights (metamers under several
+    illuminants), with the general helpers."""
+    K = WT.shape[1]
     c = small[2]
     _linear_map(b, A, c)  # the colour in the basis colours (qp.ClosedFormBasis)
     _linear_map(c, V, rho)
     _linear_map(c, Mv, mu)
+    outside = 0
     for k in range(K):
-        if rho[k] < lowest or rho[k] > highest:
-            for i in range(4):
-                out[i, n] = 0.0
-            out[4, n] = np.inf  # not measured: the bounded solver takes it over
-            rough[n] = np.nan
-            return
+        outside += (rho[k] < lowest) | (rho[k] > highest)
+    _measures_one(WT, absWT, t, b, rho, mu, 0.0, 0.0, False, primal_factor, dual_factor, out,
+                  n, work, small)
+    rough[n] = _smoothness(rho) * (0.5 * t)
+    return outside
+
+
+@_inline
+def _smoothness(rho):
+    """``Σ (Δρ)²``."""
+    total = 0.0
+    for k in range(rho.shape[0] - 1):
+        d = rho[k + 1] - rho[k]
+        total += d * d
+    return total
+
+
+@_compiled
+def _refine_closed_form(WT, absWT, b, t, pin, S_lu, S_piv, refine_steps, primal_factor,
+                        dual_factor, rho, mu, out, rough, n, work, small):
+    """Refine one closed form by the O(K) KKT solve of :class:`.qp.PinnedKKT` while its ratio
+    exceeds :data:`REFINE_ABOVE` (at most ``refine_steps`` times), measuring it again after
+    each step. Compiled apart from the loop over colours: few colours need it."""
+    K, m = WT.shape[1], WT.shape[0]
+    sub, sup_factor, inverse_denominator, P = pin[0], pin[1], pin[2], pin[3:]
     free, y = work[4], work[5]
     for k in range(K):
         free[k] = 1.0
     r, size, rhs = small[0], small[1], small[2]
-    for step in range(refine_steps + 1):
-        # the map U is accurate to rounding (qp.make_problem), so most closed forms pass as
-        # they are; the others are refined
-        _measures_one(WT, absWT, t, b, rho, mu, 0.0, 0.0, False, primal_factor, dual_factor,
-                      out, n, work, small)
-        if out[4, n] <= REFINE_ABOVE or step == refine_steps:
-            break
+    for _ in range(refine_steps):
         _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, False, work, r,
                    size)
         # [[Q, −W], [Wᵀ, 0]] [δρ; δμ] = [s; r]: δρ = y + P [δμ; τ], y = Q̂⁻¹ s (qp.PinnedKKT)
@@ -250,11 +359,11 @@ def _closed_form_one(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, 
             rho[k] += y[k]
         for j in range(m):
             mu[j] += rhs[j]
-    total = 0.0
-    for k in range(K - 1):
-        d = rho[k + 1] - rho[k]
-        total += d * d
-    rough[n] = total * (0.5 * t)  # Σ (Δρ)² / h
+        _measures_one(WT, absWT, t, b, rho, mu, 0.0, 0.0, False, primal_factor, dual_factor,
+                      out, n, work, small)
+        if out[4, n] <= REFINE_ABOVE:
+            break
+    rough[n] = _smoothness(rho) * (0.5 * t)
 
 
 @_compiled
@@ -272,13 +381,63 @@ def closed_form(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, prima
     Colours with a value below ``lowest`` or above ``highest`` are neither refined nor
     measured (ratio ∞, roughness NaN).
     """
+    # one compiled loop per case: with both cases in one loop the unrolled one runs at half
+    # its speed (measured)
+    if WT.shape[0] == 3:
+        _closed_forms_three(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
+                            primal_factor, dual_factor, lowest, highest, rho, mu, out, rough)
+    else:
+        _closed_forms_general(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
+                              primal_factor, dual_factor, lowest, highest, rho, mu, out, rough)
+
+
+@_compiled
+def _closed_forms_three(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
+                        dual_factor, lowest, highest, rho, mu, out, rough):
+    """:func:`closed_form` for three weights."""
     K, m = WT.shape[1], WT.shape[0]
     work = np.empty((6, K))
     small = np.empty((3, m + 1))
     for n in range(b.shape[0]):
-        _closed_form_one(WT, absWT, b[n], A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
-                         primal_factor, dual_factor, lowest, highest, rho[n], mu[n], work, small,
-                         out, rough, n)
+        outside = _closed_form_three(WT, absWT, b[n], A, V, Mv, t, primal_factor, dual_factor,
+                                     lowest, highest, rho[n], mu[n], out, rough, n, work)
+        # written out in each loop: as one inlined helper, these lines cost a third (measured)
+        if outside:
+            _leave_unmeasured(out, rough, n)
+        elif out[4, n] > REFINE_ABOVE and refine_steps > 0:
+            _refine_closed_form(WT, absWT, b[n], t, pin, S_lu, S_piv, refine_steps,
+                                primal_factor, dual_factor, rho[n], mu[n], out, rough, n, work,
+                                small)
+
+
+@_compiled
+def _closed_forms_general(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
+                          primal_factor, dual_factor, lowest, highest, rho, mu, out, rough):
+    """:func:`closed_form` for any number of weights."""
+    K, m = WT.shape[1], WT.shape[0]
+    work = np.empty((6, K))
+    small = np.empty((3, m + 1))
+    for n in range(b.shape[0]):
+        outside = _closed_form_general(WT, absWT, b[n], A, V, Mv, t, primal_factor,
+                                       dual_factor, lowest, highest, rho[n], mu[n], out, rough,
+                                       n, work, small)
+        # written out in each loop: as one inlined helper, these lines cost a third (measured)
+        if outside:
+            _leave_unmeasured(out, rough, n)
+        elif out[4, n] > REFINE_ABOVE and refine_steps > 0:
+            _refine_closed_form(WT, absWT, b[n], t, pin, S_lu, S_piv, refine_steps,
+                                primal_factor, dual_factor, rho[n], mu[n], out, rough, n, work,
+                                small)
+
+
+@_inline
+def _leave_unmeasured(out, rough, n):
+    """Colour ``n`` has values out of range: the bounded solver takes it over (ratio ∞,
+    roughness NaN)."""
+    for i in range(4):
+        out[i, n] = 0.0
+    out[4, n] = np.inf
+    rough[n] = np.nan
 
 
 # --- the active-set iterations --------------------------------------------------------------
@@ -621,24 +780,30 @@ def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor
             lam[k] -= weight * WT[j, k]
             size_lam[k] += size_weight * absWT[j, k]
     scale = dual_factor * EPS
-    violation, wrong_max, off_max = 0.0, 0.0, 0.0
+    # per sample into work rows (each over the λ or size it was formed from), maxima after
+    # the loop: a running maximum in the loop would keep it from vectorising
+    off, quotient, wrong, excess = work[0], work[1], work[2], work[3]
+    violation, wrong_max = 0.0, 0.0
     if not bounded:  # every |λ_k| must vanish
         for k in range(K):
-            off = abs(lam[k])
-            q = off / max(scale * size_lam[k], TINY)
-            off_max = off if off > off_max else off_max
-            ratio = q if q > ratio else ratio
+            a = abs(lam[k])
+            quotient[k] = a / max(scale * size_lam[k], TINY)
+            off[k] = a
     else:
         for k in range(K):
-            wrong, off = 0.0, abs(lam[k])
-            violation = max(violation, lower - rho[k], rho[k] - upper)
+            value, tolerance = lam[k], max(scale * size_lam[k], TINY)
+            excess[k] = max(lower - rho[k], rho[k] - upper)
+            w, o = 0.0, abs(value)
             if rho[k] == lower:
-                wrong, off = max(-lam[k], 0.0), 0.0
+                w, o = max(-value, 0.0), 0.0
             elif rho[k] == upper:
-                wrong, off = max(lam[k], 0.0), 0.0
-            wrong_max = max(wrong_max, wrong)
-            off_max = max(off_max, off)
-            ratio = max(ratio, max(off, wrong) / max(scale * size_lam[k], TINY))
+                w, o = max(value, 0.0), 0.0
+            wrong[k], off[k] = w, o
+            quotient[k] = max(o, w) / tolerance
+        violation = _maximum(excess)
+        wrong_max = _maximum(wrong)
+    off_max = _maximum(off)
+    ratio = max(ratio, _maximum(quotient))
     out[0, n] = residual_max
     out[1, n] = violation
     out[2, n] = wrong_max
@@ -651,7 +816,7 @@ def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor
 def measures(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor, dual_factor, out):
     """The certificate's measures (:func:`.certificate.certify`) into ``out`` (5, N): primal
     residual, bound violation, sign violation, stationarity and rounding ratio."""
-    work = np.empty((3, WT.shape[1]))
+    work = np.empty((4, WT.shape[1]))
     small = np.empty((2, WT.shape[0]))
     for n in range(b.shape[0]):
         _measures_one(WT, absWT, t, b[n], rho[n], mu[n], lower, upper, bounded, primal_factor,
