@@ -572,36 +572,35 @@ def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, r
 
 
 @_inline
-def _bound_multiplier(WT, absWT, t, rho, mu, k):
-    """``λ_k = (Q ρ − W μ)_k`` and the size of its terms ``(|Q||ρ| + |W||μ|)_k``, as
-    :func:`_hess_times`, :func:`_abs_hess_times` and :func:`_dual_tolerance` form them."""
+def _stationarity(WT, absWT, t, rho, mu, lam, size):
+    """``λ = Q ρ − W μ`` and the sizes of its terms ``|Q||ρ| + |W||μ|`` (K,), in one pass for
+    ``Q ρ`` and one per weight (each vectorises), as :func:`_hess_times`,
+    :func:`_abs_hess_times` and :func:`_dual_tolerance` form them."""
     K, m = WT.shape[1], WT.shape[0]
-    if k == 0:
-        q = (rho[0] - rho[1]) * t
-        size = (abs(rho[0]) + abs(rho[1])) * t
-    elif k == K - 1:
-        q = (rho[k] - rho[k - 1]) * t
-        size = (abs(rho[k - 1]) + abs(rho[k])) * t
-    else:
-        q = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
-        size = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+    for k in range(1, K - 1):
+        lam[k] = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
+        size[k] = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
+    lam[0] = (rho[0] - rho[1]) * t
+    size[0] = (abs(rho[0]) + abs(rho[1])) * t
+    lam[K - 1] = (rho[K - 1] - rho[K - 2]) * t
+    size[K - 1] = (abs(rho[K - 2]) + abs(rho[K - 1])) * t
     for j in range(m):
-        q -= mu[j] * WT[j, k]
-        size += abs(mu[j]) * absWT[j, k]
-    return q, size
+        weight, size_weight = mu[j], abs(mu[j])
+        for k in range(K):
+            lam[k] -= weight * WT[j, k]
+            size[k] += size_weight * absWT[j, k]
 
 
 @_compiled
-def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
+def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size):
     """The bound multipliers ``lam`` and the next active sets (in place, :func:`.qp._pdas`'s
-    rule); returns whether the sets stayed the same."""
+    rule); returns whether the sets stayed the same. ``size`` (K,) is scratch."""
     K = WT.shape[1]
+    _stationarity(WT, absWT, t, rho, mu, lam, size)
     same = True
     for k in range(K):
         if lo[k] or up[k]:
-            q, size = _bound_multiplier(WT, absWT, t, rho, mu, k)
-            lam[k] = q
-            tol = dual_factor * EPS * size
+            q, tol = lam[k], dual_factor * EPS * size[k]
             # a bound stays while its multiplier has the right sign to within half the
             # certificate's tolerance
             new_lo = lo[k] and q > -0.5 * tol
@@ -617,18 +616,18 @@ def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, l
 
 
 @_compiled
-def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
+def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size):
     """The safeguarded step of :func:`_pdas_one`: ``lam`` as in :func:`_update_active_sets`, and
     at most one change of the active sets (in place): the free value farthest beyond a bound
     joins it, or, with none beyond, the bound whose multiplier has the most wrong sign
     (relative to the rule's tolerance) is released. Returns whether nothing had to change."""
     K = WT.shape[1]
+    _stationarity(WT, absWT, t, rho, mu, lam, size)
     add, add_score, release, release_score = -1, 0.0, -1, 1.0
     for k in range(K):
         if lo[k] or up[k]:
-            q, size = _bound_multiplier(WT, absWT, t, rho, mu, k)
-            lam[k] = q
-            wrong = (-q if lo[k] else q) / max(0.5 * dual_factor * EPS * size, TINY)
+            q = lam[k]
+            wrong = (-q if lo[k] else q) / max(0.5 * dual_factor * EPS * size[k], TINY)
             if wrong > release_score:
                 release, release_score = k, wrong
         else:
@@ -646,12 +645,14 @@ def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up
 
 
 @_inline
-def _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up):
+def _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size):
     """The next active sets by the full rule, or by one change where ``single``; returns
     whether they stayed the same."""
     if single:
-        return _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up)
-    return _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up)
+        return _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
+                              size)
+    return _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
+                               size)
 
 
 @_inline
@@ -684,7 +685,8 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
             for k in range(K):
                 lo[k], up[k] = saved[0, k], saved[1, k]
             single = True
-            _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up)
+            _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
+                           work[3])
             continue
         if precise and status == 1:
             _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu,
@@ -692,7 +694,7 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
         for k in range(K):
             saved[0, k], saved[1, k] = lo[k], up[k]
         settled = _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                              up)
+                              up, work[3])
         if not settled:
             continue
         if precise or status == 2:
@@ -700,7 +702,7 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
         _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work,
                         X, M, piv, small)
         settled = _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                              up)
+                              up, work[3])
         if settled:
             return it, True
         precise = True
@@ -765,20 +767,8 @@ def _measures_one(WT, absWT, t, b, rho, mu, lower, upper, bounded, primal_factor
     for j in range(m):
         residual_max = max(residual_max, abs(r[j]))
         ratio = max(ratio, abs(r[j]) / max(primal_factor * size[j], TINY))
-    # λ = Q ρ − W μ and the sizes of its terms, |Q||ρ| + |W||μ|, in one pass per weight
     lam, size_lam = work[0], work[2]
-    for k in range(1, K - 1):
-        lam[k] = ((rho[k] - rho[k - 1]) - (rho[k + 1] - rho[k])) * t
-        size_lam[k] = (abs(rho[k - 1]) + 2.0 * abs(rho[k]) + abs(rho[k + 1])) * t
-    lam[0] = (rho[0] - rho[1]) * t
-    size_lam[0] = (abs(rho[0]) + abs(rho[1])) * t
-    lam[K - 1] = (rho[K - 1] - rho[K - 2]) * t
-    size_lam[K - 1] = (abs(rho[K - 2]) + abs(rho[K - 1])) * t
-    for j in range(m):
-        weight, size_weight = mu[j], abs(mu[j])
-        for k in range(K):
-            lam[k] -= weight * WT[j, k]
-            size_lam[k] += size_weight * absWT[j, k]
+    _stationarity(WT, absWT, t, rho, mu, lam, size_lam)
     scale = dual_factor * EPS
     # per sample into work rows (each over the λ or size it was formed from), maxima after
     # the loop: a running maximum in the loop would keep it from vectorising

@@ -300,6 +300,10 @@ class GeneratingFunctions:
     reflectance (Fig. 9–10, solid), and ``Y_M(λ₁)/Y₀`` is the largest luminance factor of any
     object colour of that chromaticity (Fig. 9–10, dashed: the optimal colour).
 
+    The class labels are this discrete reading, not van Trigt's definitions (his Eq. (23) is
+    not in our copy of the paper), and need not match his: his Class 2 functions (Fig. 5)
+    have interior λ₁ (500 and 564 nm), and his a/b split of each class is not made here.
+
     Attributes
     ----------
     wavelengths_nm : ndarray (K,)
