@@ -2,8 +2,9 @@
 (``spectrocolor app --port 0 --no-browser``): upload, relit under D65 (the same) and A (warmer),
 adaptation, keyboard, axe, phone/tablet layout, offline, untrusted file names.
 
-Writes docs/images/app_relight.png (desktop, under A), app_relight_d65.png and
-app_relight_phone.png; they were looked at (docs/app.md says what they show).
+Writes artifacts/app_relight.png (desktop, under A), app_relight_d65.png and
+app_relight_phone.png for a person to look at; the copies in docs/images were looked at
+(docs/app.md says what they show) and are refreshed by copying these over them.
 """
 
 from __future__ import annotations
@@ -27,7 +28,6 @@ from appbrowser import AXE, DESKTOP, PHONE, TABLET, settle
 pytestmark = pytest.mark.browser
 
 CHART = Path(__file__).parent / "data" / "relight_chart.png"
-IMAGES = Path(__file__).parent.parent / "docs" / "images"
 RUN_AXE = """async () => {
   const r = await axe.run(document, {runOnly: {type: "tag",
     values: ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa", "wcag22aa"]}});
@@ -106,7 +106,7 @@ def patches(codes):
                      for r in range(4) for c in range(6)])
 
 
-def test_photo_is_the_same_under_d65_and_warmer_under_a(browser, user_server):
+def test_photo_is_the_same_under_d65_and_warmer_under_a(browser, user_server, artifacts_dir):
     context, page = open_setting4(browser, user_server)
     try:
         page.keyboard.press("2")  # the setting's D65 (whole levels, SPECTRA's rounding)
@@ -117,7 +117,7 @@ def test_photo_is_the_same_under_d65_and_warmer_under_a(browser, user_server):
         # the preset is D65 rounded to whole levels: within 3 codes, 1 on average
         assert np.abs(relit - taken).max() <= 3 and np.abs(relit - taken).mean() < 1
         assert "0 outside the object-colour solid (toward-grey)" in photo["status"]
-        page.locator("#photo").screenshot(path=str(IMAGES / "app_relight_d65.png"))
+        page.locator("#photo").screenshot(path=str(artifacts_dir / "app_relight_d65.png"))
 
         photo = key(page, "4")  # A
         taken, relit = pictures(photo)
@@ -127,7 +127,7 @@ def test_photo_is_the_same_under_d65_and_warmer_under_a(browser, user_server):
         assert white[0] > 240 and white[2] < 0.6 * white[0], white  # an orange white (245 in the photo)
         assert "Under A" == page.inner_text("#photo-relit-caption")
         assert "Exposure ×0.5" in photo["status"]
-        page.screenshot(path=str(IMAGES / "app_relight.png"), full_page=True)
+        page.screenshot(path=str(artifacts_dir / "app_relight.png"), full_page=True)
 
         before = photo["answer"]["relit_png"]
         page.select_option("#photo-adaptation", "bradford")
@@ -208,7 +208,8 @@ def test_a_file_over_the_upload_limit_is_reduced_in_the_browser_first(browser, u
 
 
 @pytest.mark.parametrize("size", [PHONE, TABLET], ids=["phone", "tablet"])
-def test_phone_and_tablet_show_both_pictures_within_the_screen(browser, user_server, size):
+def test_phone_and_tablet_show_both_pictures_within_the_screen(browser, user_server, size,
+                                                              artifacts_dir):
     context, page = open_setting4(browser, user_server, size, touch=True)
     try:
         upload(page)
@@ -226,6 +227,6 @@ def test_phone_and_tablet_show_both_pictures_within_the_screen(browser, user_ser
             page.wait_for_function("window.__spectra.photo.request.illuminant[0] < 10")
             page.wait_for_function("!document.querySelector('#photo').hasAttribute('aria-busy')")
             page.locator("#photo-relit").scroll_into_view_if_needed()
-            page.screenshot(path=str(IMAGES / "app_relight_phone.png"))  # as seen: header, patch, photos
+            page.screenshot(path=str(artifacts_dir / "app_relight_phone.png"))  # as seen: header, patch, photos
     finally:
         context.close()
