@@ -381,53 +381,47 @@ def closed_form(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, prima
     Colours with a value below ``lowest`` or above ``highest`` are neither refined nor
     measured (ratio ∞, roughness NaN).
     """
-    # one compiled loop per case: with both cases in one loop the unrolled one runs at half
-    # its speed (measured)
+    # one compiled loop per case (with both cases in one loop the unrolled one runs at half
+    # its speed), then the few colours that need it are refined
     if WT.shape[0] == 3:
-        _closed_forms_three(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
-                            primal_factor, dual_factor, lowest, highest, rho, mu, out, rough)
+        _closed_forms_three(WT, absWT, b, A, V, Mv, t, primal_factor, dual_factor, lowest,
+                            highest, rho, mu, out, rough)
     else:
-        _closed_forms_general(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
-                              primal_factor, dual_factor, lowest, highest, rho, mu, out, rough)
+        _closed_forms_general(WT, absWT, b, A, V, Mv, t, primal_factor, dual_factor, lowest,
+                              highest, rho, mu, out, rough)
+    if refine_steps > 0:
+        work = np.empty((6, WT.shape[1]))
+        small = np.empty((3, WT.shape[0] + 1))
+        for n in range(b.shape[0]):
+            # ∞: unmeasured (out of range) or not finite; neither is refined
+            if REFINE_ABOVE < out[4, n] < np.inf:
+                _refine_closed_form(WT, absWT, b[n], t, pin, S_lu, S_piv, refine_steps,
+                                    primal_factor, dual_factor, rho[n], mu[n], out, rough, n,
+                                    work, small)
 
 
 @_compiled
-def _closed_forms_three(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps, primal_factor,
-                        dual_factor, lowest, highest, rho, mu, out, rough):
-    """:func:`closed_form` for three weights."""
-    K, m = WT.shape[1], WT.shape[0]
-    work = np.empty((6, K))
-    small = np.empty((3, m + 1))
+def _closed_forms_three(WT, absWT, b, A, V, Mv, t, primal_factor, dual_factor, lowest, highest,
+                        rho, mu, out, rough):
+    """The closed forms and measures of :func:`closed_form` for three weights, unrefined."""
+    work = np.empty((2, WT.shape[1]))
     for n in range(b.shape[0]):
-        outside = _closed_form_three(WT, absWT, b[n], A, V, Mv, t, primal_factor, dual_factor,
-                                     lowest, highest, rho[n], mu[n], out, rough, n, work)
-        # written out in each loop: as one inlined helper, these lines cost a third (measured)
-        if outside:
+        if _closed_form_three(WT, absWT, b[n], A, V, Mv, t, primal_factor, dual_factor, lowest,
+                              highest, rho[n], mu[n], out, rough, n, work):
             _leave_unmeasured(out, rough, n)
-        elif out[4, n] > REFINE_ABOVE and refine_steps > 0:
-            _refine_closed_form(WT, absWT, b[n], t, pin, S_lu, S_piv, refine_steps,
-                                primal_factor, dual_factor, rho[n], mu[n], out, rough, n, work,
-                                small)
 
 
 @_compiled
-def _closed_forms_general(WT, absWT, b, A, V, Mv, t, pin, S_lu, S_piv, refine_steps,
-                          primal_factor, dual_factor, lowest, highest, rho, mu, out, rough):
-    """:func:`closed_form` for any number of weights."""
-    K, m = WT.shape[1], WT.shape[0]
-    work = np.empty((6, K))
-    small = np.empty((3, m + 1))
+def _closed_forms_general(WT, absWT, b, A, V, Mv, t, primal_factor, dual_factor, lowest,
+                          highest, rho, mu, out, rough):
+    """The closed forms and measures of :func:`closed_form` for any number of weights,
+    unrefined."""
+    work = np.empty((4, WT.shape[1]))
+    small = np.empty((3, WT.shape[0] + 1))
     for n in range(b.shape[0]):
-        outside = _closed_form_general(WT, absWT, b[n], A, V, Mv, t, primal_factor,
-                                       dual_factor, lowest, highest, rho[n], mu[n], out, rough,
-                                       n, work, small)
-        # written out in each loop: as one inlined helper, these lines cost a third (measured)
-        if outside:
+        if _closed_form_general(WT, absWT, b[n], A, V, Mv, t, primal_factor, dual_factor,
+                                lowest, highest, rho[n], mu[n], out, rough, n, work, small):
             _leave_unmeasured(out, rough, n)
-        elif out[4, n] > REFINE_ABOVE and refine_steps > 0:
-            _refine_closed_form(WT, absWT, b[n], t, pin, S_lu, S_piv, refine_steps,
-                                primal_factor, dual_factor, rho[n], mu[n], out, rough, n, work,
-                                small)
 
 
 @_inline
