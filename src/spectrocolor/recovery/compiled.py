@@ -157,7 +157,7 @@ def roughness(found, rho, step_nm):
 def warm_up() -> bool:
     """Compile (or load from the cache) every kernel now rather than on first use.
 
-    The first use on a machine compiles the kernels, about 25 s on a 2-core machine (longer
+    The first use on a machine compiles the kernels, about 35 s on a 2-core machine (longer
     under load), and caches them beside this module; later processes load them in well under
     a second. ``make`` calls this after installing, and ``make test`` before the tests (whose
     servers must not spend their time limits compiling); ``python -m
