@@ -163,6 +163,7 @@ def test_a_file_declaring_a_bandwidth_equal_to_the_interval_is_corrected():
     assert "bandpass_correction" in bandpass_correction(spectrum).metadata
 
 
+@pytest.mark.filterwarnings("error::RuntimeWarning")  # no inf − inf on the way to an answer
 @settings(max_examples=60, deadline=None)
 @given(
     values=st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1, max_size=12),
@@ -181,6 +182,16 @@ def test_fuzz_any_input_gives_a_result_or_one_spectrum_error(values, step, bandp
     except SpectrumError:
         return
     assert out.values.shape == spectrum.values.shape
+
+
+@pytest.mark.parametrize("reading", [np.inf, -np.inf])
+def test_an_infinite_reading_is_one_error_naming_its_wavelength(reading):
+    grid = 400.0 + 10.0 * np.arange(5)
+    with pytest.raises(SpectrumError, match=r"spectrum: infinite values at 420 nm;"):
+        bandpass_correction(Spectrum(grid, [0.2, 0.3, reading, 0.4, 0.5]))
+    rows = np.array([[0.2, 0.3, 0.3, 0.4, 0.5], [0.2, reading, 0.3, reading, 0.5]])
+    with pytest.raises(SpectrumError, match=r"infinite values at 410 nm and elsewhere"):
+        bandpass_correction(Spectrum(grid, rows))
 
 
 def test_values_that_would_overflow_are_one_error_not_inf():

@@ -128,6 +128,12 @@ def _stearns_stearns(spectrum: Spectrum, bandpass_nm) -> Spectrum:
                 f"interval (within {BANDPASS_TOLERANCE:.0%}), so the data are not corrected"
             )
     measured = spectrum.values
+    if np.isinf(measured).any():
+        where = spectrum.wavelengths_nm[np.isinf(measured).reshape(-1, count).any(axis=0)]
+        raise SpectrumError(  # ∞ − ∞ in the correction would be NaN: no reading to correct
+            f"spectrum: infinite values at {where[0]:g} nm{' and elsewhere' if where.size > 1 else ''}; "
+            "the correction accepts finite readings, or NaN for a masked one"
+        )
     finite = np.abs(measured[np.isfinite(measured)])
     if finite.size and finite.max() > np.finfo(float).max / (1.0 + 4.0 * STEARNS_ALPHA):
         raise SpectrumError(  # |corrected| ≤ (1 + 4α) max |measured|: beyond, float64 overflows
