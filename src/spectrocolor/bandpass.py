@@ -128,8 +128,9 @@ def _stearns_stearns(spectrum: Spectrum, bandpass_nm) -> Spectrum:
                 f"interval (within {BANDPASS_TOLERANCE:.0%}), so the data are not corrected"
             )
     measured = spectrum.values
-    if np.isinf(measured).any():
-        where = spectrum.wavelengths_nm[np.isinf(measured).reshape(-1, count).any(axis=0)]
+    infinite = np.isinf(measured).reshape(-1, count).any(axis=0)
+    if infinite.any():
+        where = spectrum.wavelengths_nm[infinite]
         raise SpectrumError(  # ∞ − ∞ in the correction would be NaN: no reading to correct
             f"spectrum: infinite values at {where[0]:g} nm{' and elsewhere' if where.size > 1 else ''}; "
             "the correction accepts finite readings, or NaN for a masked one"

@@ -846,8 +846,4 @@ def roughness(rho, step_nm, out):
     """``Σ (ρ_{k+1} − ρ_k)² / h`` of each row of ``rho`` (N, K) into ``out`` (N,)
     (:meth:`.qp.Problem.objective`)."""
     for n in range(rho.shape[0]):
-        total = 0.0
-        for k in range(rho.shape[1] - 1):
-            d = rho[n, k + 1] - rho[n, k]
-            total += d * d
-        out[n] = total / step_nm
+        out[n] = _smoothness(rho[n]) / step_nm
