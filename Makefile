@@ -5,13 +5,14 @@
 #   make docs         builds the API reference and guides offline (warnings are errors)
 #   make lock         regenerates constraints.txt from the newest versions the registry serves
 #   make test-latest  runs every test against the newest versions, in .venv-latest
+#   make test-portable runs the numerical tests again under other BLAS kernels and SIMD choices
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 EXTRAS := all,test,docs
 
-.PHONY: run test lint docs lock test-latest bench clean
+.PHONY: run test test-portable lint docs lock test-latest bench clean
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -28,6 +29,12 @@ test: $(STAMP)
 	$(BIN)/python -m spectrocolor.recovery.compiled
 	$(BIN)/python -m pytest -q --doctest-modules src tests
 	$(MAKE) --no-print-directory docs
+
+# The numerical tests again under OpenBLAS's Prescott and Haswell kernels and NumPy's baseline
+# loops, one BLAS thread each (tools/portable_tests.py says what is left out and why). Run it
+# before stopping: a float compared bit for bit fails here, not on the next user's CPU.
+test-portable: $(STAMP)
+	$(BIN)/python tools/portable_tests.py --python $(BIN)/python
 
 docs: $(STAMP)
 	$(BIN)/sphinx-build -q -W --keep-going -b html docs/api docs/api/_build/html
