@@ -19,3 +19,19 @@ def test_every_non_python_file_is_package_data():
     assert files, "no data files found"
     undeclared = sorted(p.relative_to(PACKAGE).as_posix() for p in files - declared)
     assert not undeclared, f"not in [tool.setuptools.package-data]: {undeclared}"
+
+
+def test_the_license_file_matches_the_metadata_and_ships_with_the_package():
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    assert project["license"] == "MIT"
+    assert project["license-files"] == ["LICENSE"]
+    assert (ROOT / "LICENSE").read_text().splitlines()[0] == "MIT License"
+
+
+def test_the_package_says_it_is_typed():
+    """PEP 561: editors and mypy read the package's own annotations only where py.typed ships."""
+    setuptools = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    assert (PACKAGE / "py.typed").is_file()
+    assert "py.typed" in setuptools["package-data"]["spectrocolor"]
+    classifiers = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["classifiers"]
+    assert "Typing :: Typed" in classifiers
