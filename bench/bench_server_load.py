@@ -10,6 +10,13 @@ Phases (each bounded by a request count, so the script stops by itself):
    parallel imports beyond MAX_PARSERS (answered 429 when the parsers stay busy);
 5. malformed HTTP: MALFORMED_ROUNDS requests that are not HTTP/1.1 (garbage request line, bad
    chunk size), each on its own connection; every answer must be a JSON 400;
+6. hostile requests of issue 31, each while a second client times GET /api/options: a body of
+   ``"`` then ``\\"`` x 20 000 (40 kB) and x 900 000 (1.8 MB), a 1 MB import of blank lines
+   (then the workers' CPU over 2 s: a job that outlives its answer would show here), a ``.ti3``
+   with ``SPECTRAL_NORM "1e-320"``, single-LED lights to /api/lab/light (status counts);
+7. IDLE_CONNECTIONS idle connections (fewer if this process may not open that many), then the
+   time a new client waits for an answer and the server's open descriptors;
+8. ``kill -9`` of the server: how many of its worker processes are still alive 2 s later;
 
 and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
 memory (VmRSS) before and after, with its peak (VmHWM).
@@ -38,6 +45,7 @@ CLIENTS = 4
 HOSTILE_MIB = 50
 PARALLEL_IMPORTS = 6
 MALFORMED_ROUNDS = 500
+IDLE_CONNECTIONS = 1100
 MALFORMED = (b"HELLO\r\n\r\n",
              b"POST /api/evaluate HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\nZZ\r\n")
 
@@ -150,6 +158,141 @@ def malformed(port: int, data: bytes) -> tuple[float, int, str]:
     return time.perf_counter() - t0, status, match.group(1) if match else "none"
 
 
+def probe_during(port: int, action) -> tuple[list, collections.Counter, object, float]:
+    """GET /api/options on a kept-alive connection while ``action()`` runs in a thread.
+
+    Returns the probe's latencies and statuses, what ``action`` returned and its seconds.
+    """
+    outcome: list = []
+
+    def run():
+        t0 = time.perf_counter()
+        outcome.append(action())
+        outcome.append(time.perf_counter() - t0)
+
+    thread = threading.Thread(target=run)
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=120)
+    lat, st = [], collections.Counter()
+    thread.start()
+    while thread.is_alive() and len(lat) < 20000:
+        seconds, status = timed(conn, *BODIES["options"])
+        lat.append(seconds)
+        st[status] += 1
+        time.sleep(0.005)
+    thread.join()
+    conn.close()
+    return lat, st, outcome[0], outcome[1]
+
+
+def raw_request(port: int, method: str, path: str, body: bytes) -> tuple[int, bytes]:
+    """One request on a fresh connection (closed after the answer): status and body."""
+    with socket.create_connection(("127.0.0.1", port), timeout=300) as sock:
+        sock.sendall(f"{method} {path} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nContent-Type: "
+                     f"application/json\r\nContent-Length: {len(body)}\r\nConnection: close\r\n"
+                     "\r\n".encode() + body)
+        answer = b""
+        while chunk := sock.recv(65536):
+            answer += chunk
+    head, _, rest = answer.partition(b"\r\n\r\n")
+    return (int(head.split()[1]) if head else 0), rest
+
+
+def worker_pids(pid: int) -> list[int]:
+    found = []
+    for entry in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{entry}/stat") as fh:
+                parent = int(fh.read().rsplit(")", 1)[1].split()[1])
+            with open(f"/proc/{entry}/cmdline", "rb") as fh:
+                if parent == pid and b"spawn_main" in fh.read():
+                    found.append(int(entry))
+        except (OSError, ValueError, IndexError):
+            continue
+    return found
+
+
+def cpu_ticks(pids: list[int]) -> int:
+    total = 0
+    for pid in pids:
+        try:
+            with open(f"/proc/{pid}/stat") as fh:
+                fields = fh.read().rsplit(")", 1)[1].split()
+            total += int(fields[11]) + int(fields[12])
+        except OSError:
+            pass
+    return total
+
+
+def hostile_phases(proc: subprocess.Popen, port: int) -> None:
+    """Phase 6: the hostile requests of issue 31, each while a second client is timed."""
+    cases = [
+        ("40 kB of escaped quotes", "POST", "/api/evaluate", b'"' + b'\\"' * 20_000),
+        ("1.8 MB of escaped quotes", "POST", "/api/evaluate", b'"' + b'\\"' * 900_000),
+        ("1 MB import of blank lines", "POST", "/api/import",
+         json.dumps({"filename": "blank.csv", "content": "\n" * 900_000}).encode()),
+        ("SPECTRAL_NORM 1e-320", "POST", "/api/import", json.dumps({"filename": "x.ti3", "content": (
+            'CTI3\nSPECTRAL_NORM "1e-320"\nBEGIN_DATA_FORMAT\nSAMPLE_ID SPEC_400 SPEC_500 SPEC_600 '
+            'SPEC_700\nEND_DATA_FORMAT\nBEGIN_DATA\n1 10 20 30 40\nEND_DATA\n')}).encode()),
+    ]
+    for label, method, path, body in cases:
+        lat, st, (status, answer), seconds = probe_during(
+            port, lambda m=method, p=path, b=body: raw_request(port, m, p, b))
+        report(f"options during {label}", lat, st, seconds)
+        print(f"  the hostile request: {status} in {seconds * 1e3:.0f} ms: {answer[:80]!r}")
+        if "blank" in label:
+            pids = worker_pids(proc.pid)
+            before = cpu_ticks(pids)
+            time.sleep(2.0)
+            print(f"  workers' CPU over the next 2 s: {(cpu_ticks(pids) - before) * 10} ms")
+    counts: collections.Counter = collections.Counter()
+    for peak in range(380, 781, 10):
+        for width in (5, 20, 60):
+            body = json.dumps({"source": {"kind": "leds", "peaks_nm": [peak], "widths_nm": [width],
+                                          "powers": [1.0]}}).encode()
+            counts[raw_request(port, "POST", "/api/lab/light", body)[0]] += 1
+    print(f"single-LED lights to /api/lab/light (123): {dict(counts)}")
+
+
+def idle_flood(proc: subprocess.Popen, port: int) -> None:
+    """Phase 7: many idle connections, then a new client."""
+    import resource
+
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    wanted = IDLE_CONNECTIONS + 64
+    if soft < wanted:
+        resource.setrlimit(resource.RLIMIT_NOFILE, (min(wanted, hard), hard))
+    count = min(IDLE_CONNECTIONS, resource.getrlimit(resource.RLIMIT_NOFILE)[0] - 64)
+    idle = []
+    try:
+        for _ in range(count):
+            idle.append(socket.create_connection(("127.0.0.1", port), timeout=30))
+        time.sleep(1.0)
+        t0 = time.perf_counter()
+        status, _ = raw_request(port, "GET", "/api/options", b"")
+        waited = time.perf_counter() - t0
+        files = len(os.listdir(f"/proc/{proc.pid}/fd"))
+        print(f"{count} idle connections: a new client got {status} in {waited * 1e3:.0f} ms; "
+              f"the server holds {files} descriptors")
+    finally:
+        for sock in idle:
+            sock.close()
+
+
+def kill_nine(proc: subprocess.Popen) -> None:
+    """Phase 8: kill -9 of the server; its workers must end with it."""
+    import signal
+
+    pids = worker_pids(proc.pid)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait(10)
+    time.sleep(2.0)
+    alive = [p for p in pids if os.path.exists(f"/proc/{p}")]
+    print(f"kill -9 of the server: {len(alive)} of its {len(pids)} worker processes still alive "
+          "2 s later")
+    for p in alive:  # this script's own leftovers
+        os.kill(p, signal.SIGKILL)
+
+
 def main() -> None:
     proc, port = start_server()
     try:
@@ -243,9 +386,14 @@ def main() -> None:
         print(f"RSS before {before['VmRSS']:.0f} MiB, after {after['VmRSS']:.0f} MiB, "
               f"peak {after['VmHWM']:.0f} MiB; upload workers {after.get('workers_RSS', 0)} MiB "
               f"(peak {after.get('workers_HWM', 0)} MiB); load average {os.getloadavg()[0]:.1f}")
+
+        hostile_phases(proc, port)
+        idle_flood(proc, port)
+        kill_nine(proc)
     finally:
-        proc.terminate()
-        proc.wait(10)
+        if proc.poll() is None:
+            proc.terminate()
+            proc.wait(10)
 
 
 if __name__ == "__main__":

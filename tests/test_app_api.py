@@ -110,8 +110,11 @@ def test_bar_tints_are_the_library_palette_on_the_canvas_scale(client):
 def test_sunset_is_the_seed_formula(client):
     p = client.get("/api/presets", params={"step_nm": 10}).json()
     sunset = p["setting1"][7]
+    # exact: the preset table's own decimal constants, through JSON (shortest repr round-trips)
     assert [c["d"] for c in sunset["cycle"]] == [0.0, 0.15, 0.3, 0.6, 1.0, 1.5, 3.0]
     for c in sunset["cycle"]:  # SPECTRA's levels are integers: the formula, rounded
+        # exact: whole levels; every value of the formula here lies ≥ 2e-4 from a half-integer, far
+        # beyond the few ulps by which two evaluations of exp can differ
         np.testing.assert_array_equal(c["levels"], np.round(30 * np.exp(-((700 / WL) ** 4 - 1)
                                                                          * c["d"])))
     names = [q["name"] for q in p["setting1"]]
@@ -144,6 +147,7 @@ def test_setting2_metameric_pairs(client):
     # 7: D65 (the CIE table) and the three-band light have the same chromaticity
     d65 = np.asarray(left["7"]["levels"])
     table = sc.illuminant("D65", WL).values
+    # exact: whole levels; 30 S/max lies ≥ 5e-3 from a half-integer at every sample, far beyond rounding
     np.testing.assert_array_equal(d65, np.round(table * 30 / table.max()))
     r = evaluate(client, [d65, right["7"]["levels"]], normalise="per-colour", pairs=[[0, 1]])
     assert r["delta_e_2000"][0] > 5  # different lightness without X ...
@@ -431,3 +435,70 @@ def test_a_deep_red_line_illuminant_has_no_cielab_but_still_answers(client):
     assert r["white_XYZ"][2] == 0 and "undefined" in r["lab_note"]
     assert r["delta_e_2000"] == [None] and r["colours"][0]["lab"] == [None, None, None]
     assert max(r["colours"][1]["codes"]) > 0 and r["colours"][1]["XYZ"][1] == pytest.approx(50)
+
+
+# --- no 500 and no non-finite JSON (issue 31) ----------------------------------------------------
+
+
+def test_an_answer_with_nan_is_a_422_naming_where_not_a_500():
+    """The net under every route: an answer that would hold NaN or an infinity is refused (422)
+    with the place named, in the error shape; before, Starlette's ValueError made a 500."""
+    app = create_app()
+
+    @app.get("/api/nan-for-the-test")
+    def nan_answer():
+        return {"colours": [{"xy": [0.3, float("nan")]}]}
+
+    response = TestClient(app, base_url="http://127.0.0.1", raise_server_exceptions=False).get(
+        "/api/nan-for-the-test")
+    assert response.status_code == 422
+    assert "colours[0].xy[1]" in response.json()["error"]
+
+
+def test_a_declared_full_scale_that_overflows_is_refused(client):
+    ti3 = ('CTI3\nSPECTRAL_NORM "1e-320"\nBEGIN_DATA_FORMAT\nSAMPLE_ID SPEC_400 SPEC_500 SPEC_600 '
+           'SPEC_700\nEND_DATA_FORMAT\nBEGIN_DATA\n1 10 20 30 40\nEND_DATA\n')
+    r = client.post("/api/import", json={"filename": "x.ti3", "content": ti3})
+    assert r.status_code == 422 and "SPECTRAL_NORM" in r.json()["error"]
+
+
+def test_values_that_overflow_when_scaled_are_refused(client):
+    content = "wavelength_nm,a\n400,1e308\n550,1.7e308\n700,1e308\n"
+    r = client.post("/api/import", json={"filename": "x.csv", "content": content, "scale": "unit"})
+    assert r.status_code == 422, r.text
+
+
+@pytest.mark.parametrize("peak", [380, 450, 530, 600, 780])
+@pytest.mark.parametrize("width", [5, 200])
+def test_a_single_led_light_is_measured_not_refused(client, peak, width):
+    """94 of 122 single-LED lights got 422 "cannot be adapted": a nearly monochromatic white
+    defeats Bradford's sensors. Its samples are now shown unadapted, and the answer says so."""
+    r = client.post("/api/lab/light", json={"source": {"kind": "leds", "peaks_nm": [peak],
+                                                       "widths_nm": [width], "powers": [1.0]}})
+    assert r.status_code == 200, r.text
+    samples = r.json()["samples"]
+    assert len(samples["under_light"]) == 14
+    assert samples["under_light_note"].startswith(("adapted", "not adapted"))
+
+
+def test_a_light_whose_vector_graphic_has_an_empty_bin_says_why():
+    """This two-LED light has a TM-30 hue bin with no sample: its graphic was NaN (a 500)."""
+    from spectrocolor.app.light_lab import light_lab
+
+    lab = light_lab({"kind": "leds", "peaks_nm": [718.7993482534919, 380.0],
+                     "widths_nm": [148.05013990937218, 5.0], "powers": [0.39249177601258245, 1.0]})
+    assert lab["graphic"] is None and "hue bin" in lab["graphic_note"]
+    json.dumps(lab, allow_nan=False)
+
+
+def test_the_labs_compute_in_worker_processes(client):
+    """A lab's maths (up to a second for a fresh reflectance) runs in a worker, not in the
+    server's threads where it would hold the interpreter lock while other clients wait."""
+    import os
+
+    from spectrocolor.app import lab_routes
+
+    r = client.post("/api/lab/solid/section", json={"Y": 42.0})
+    assert r.status_code == 200, r.text
+    pids = lab_routes._workers.worker_pids()
+    assert pids and os.getpid() not in pids

@@ -190,7 +190,7 @@ def test_kill_9_during_a_tiff_write_keeps_the_previous_file(tmp_path, run):
     # the target is either the complete previous file or a complete new one, never a torn one
     data = tifffile.imread(target)
     if digest(target) == before:
-        np.testing.assert_array_equal(data, previous)
+        np.testing.assert_array_equal(data, previous)  # exact: the file was not touched: the same bytes
     else:
         assert data.shape == (2500, 2500, 3)
 
@@ -372,3 +372,75 @@ def test_new_files_get_the_usual_permissions_and_replaced_files_keep_theirs(tmp_
         os.umask(mask)
     assert fresh.stat().st_mode & 0o777 == 0o666 & ~safe_write._UMASK  # as open(path, "w")
     assert old.stat().st_mode & 0o777 == 0o640 and old.read_bytes() == b"new"
+
+
+# --- two writers of one output without --force (issue 31) ----------------------------------------
+
+
+def test_an_output_created_while_the_command_ran_is_not_replaced(tmp_path):
+    """check_outputs found the file absent; another program wrote it before this one finished:
+    the other file is kept and this writer says so (it used to replace it silently)."""
+    target = tmp_path / "out.csv"
+    safe_write.check_outputs({"--out": target})
+    target.write_text("written by another program")
+    with pytest.raises(OutputError, match="created by another program.*--force"):
+        safe_write.write_text(target, "mine")
+    assert target.read_text() == "written by another program"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv"]  # no temporary file left
+
+
+def test_with_force_the_output_is_replaced_whoever_wrote_it(tmp_path):
+    target = tmp_path / "out.csv"
+    safe_write.check_outputs({"--out": target}, force=True)
+    target.write_text("written by another program")
+    safe_write.write_text(target, "mine")
+    assert target.read_text() == "mine"
+
+
+def test_an_output_still_absent_is_created_and_later_writes_replace(tmp_path):
+    target = tmp_path / "out.csv"
+    safe_write.check_outputs({"--out": target})
+    safe_write.write_text(target, "first")
+    safe_write.write_text(target, "second")  # the same command writing again: its own file
+    assert target.read_text() == "second"
+
+
+RACER = """
+import sys, time
+from pathlib import Path
+from spectrocolor.safe_write import OutputError, check_outputs, write_text
+target, go, me = Path(sys.argv[1]), Path(sys.argv[2]), sys.argv[3]
+check_outputs({"--out": target})  # absent: both runs pass the check
+print("checked", flush=True)
+while not go.exists():
+    time.sleep(0.01)
+try:
+    write_text(target, me)
+except OutputError as exc:
+    print(exc, file=sys.stderr)
+    sys.exit(2)
+"""
+
+
+def test_two_runs_writing_one_output_cannot_both_succeed(tmp_path):
+    """Two ``spectrocolor`` runs without --force, both past the existence check: exactly one
+    writes the file, the other stops with one line and the winner's file stays whole."""
+    script, target, go = tmp_path / "racer.py", tmp_path / "out.csv", tmp_path / "go"
+    script.write_text(RACER)
+    runs = [subprocess.Popen([sys.executable, str(script), str(target), str(go), name],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            for name in ("run A", "run B")]
+    try:
+        for run in runs:
+            assert run.stdout.readline().strip() == "checked"
+        go.touch()
+        results = [(run.wait(60), run.stderr.read()) for run in runs]
+    finally:
+        for run in runs:
+            run.kill()
+    codes = sorted(code for code, _ in results)
+    assert codes == [0, 2], results
+    loser = next(err for code, err in results if code == 2)
+    assert "created by another program" in loser and loser.count("\n") == 1
+    assert target.read_text() in ("run A", "run B")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["go", "out.csv", "racer.py"]

@@ -239,3 +239,144 @@ def test_command_line_on_damaged_files_exits_0_or_2_with_one_line(capsys, name, 
     err = capsys.readouterr().err
     assert status in (0, 2) and "Traceback" not in err
     assert (status == 0) == (err == "") and err.count("\n") <= 1
+
+
+# --- strict XML and numbers, writers that keep files whole (issue 31) ----------------------------
+
+TM27_BODY = ('<IESTM2714 version="1.0"><Header><Description>&e;</Description></Header>'
+             '<SpectralDistribution><SpectralData wavelength="400">0.5</SpectralData>'
+             '<SpectralData wavelength="410">1</SpectralData></SpectralDistribution></IESTM2714>')
+
+
+@pytest.mark.parametrize("comment_bytes", [0, 70_000, 1_000_000])
+@pytest.mark.parametrize("declaration", [
+    '<!DOCTYPE IESTM2714 [<!ENTITY e "EXPANDED">]>',
+    '<!DOCTYPE x [<!ENTITY e "EXPANDED">]>',
+    '<!DOCTYPE IESTM2714 SYSTEM "file:///etc/passwd">',
+])
+def test_a_doctype_anywhere_is_refused_and_no_entity_expanded(comment_bytes, declaration):
+    """The DOCTYPE check looked at the first 64 KiB only: after 70 kB of comment the entity was
+    expanded. expat now reports any DOCTYPE or entity declaration wherever it is."""
+    text = '<?xml version="1.0"?><!--' + "x" * comment_bytes + "-->" + declaration + TM27_BODY
+    with pytest.raises(SpectrumError, match="DOCTYPE or ENTITY declaration is not accepted"):
+        parse_spectra(text, "lamp.xml")
+    with pytest.raises(SpectrumError, match="DOCTYPE"):
+        sc.io.tm27.parse_tm27(text, "lamp.xml")
+
+
+def test_a_long_comment_before_the_document_element_is_still_tm27():
+    text = "<!--" + " " * 100_000 + "-->" + TM27_BODY.replace("&e;", "LED")
+    assert parse_spectra(text, "lamp.xml").names == ("LED",)
+
+
+def test_tm27_names_have_no_line_breaks():
+    text = TM27_BODY.replace("&e;", "LED\n   lamp\r\n")
+    assert parse_spectra(text, "lamp.xml").names == ("LED lamp",)
+
+
+NOT_NUMBERS = ["0_5", "1_000", "٣", "５", "nan", "inf", "-Infinity", "0x10", "1e", ".", "+-1"]
+
+
+@pytest.mark.parametrize("cell", NOT_NUMBERS)
+@pytest.mark.parametrize("layout", ["csv-long", "csv-wide", "cgats", "tm27"])
+def test_numbers_follow_the_formats_grammar(cell, layout):
+    """``0_5`` was read as 5.0 (Python's digit separators) and '٣' as 3.0: now refused, naming it."""
+    texts = {
+        "csv-long": f"wavelength_nm,a\n400,{cell}\n500,0.5\n",
+        "csv-wide": f"Sample,400,500,600\nx,0.1,{cell},0.3\n",
+        "cgats": ("CGATS.17\nBEGIN_DATA_FORMAT\nSAMPLE_ID SPECTRAL_NM400 SPECTRAL_NM500\nEND_DATA_FORMAT\n"
+                  f"BEGIN_DATA\n1 {cell} 0.5\nEND_DATA\n"),
+        "tm27": ('<IESTM2714><SpectralDistribution><SpectralData wavelength="400">'
+                 f"{cell}</SpectralData></SpectralDistribution></IESTM2714>"),
+    }
+    with pytest.raises(SpectrumError, match="not a (finite )?number") as info:
+        parse_spectra(texts[layout], "tiles")
+    assert cell.strip() in str(info.value) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("cell", ["0.5", "5.", ".5", "+1", "-0", "1e-3", "2E+2", " 7 "])
+def test_numbers_of_the_grammar_are_read(cell):
+    spectrum = parse_spectra(f"wavelength_nm,a\n400,{cell}\n500,1\n", "tiles.csv")
+    assert spectrum.values[0] == float(cell)  # exact: both parse the same decimal text, correctly rounded
+
+
+def test_a_decimal_comma_file_keeps_its_grammar():
+    # exact: decimal text parsed with correct rounding, as the literals are
+    assert parse_spectra("Sample;400;500;600\nx;0,1;0,2;0,3\n", "x.csv").values.tolist() == [0.1, 0.2, 0.3]
+    with pytest.raises(SpectrumError, match="'0_2' is not a number"):
+        parse_spectra("Sample;400;500;600\nx;0,1;0_2;0,3\n", "x.csv")
+
+
+@pytest.mark.parametrize("value", ['"0_5"', '"0.5"', "true", '"٣"'])
+def test_json_values_must_be_json_numbers(value):
+    with pytest.raises(SpectrumError, match="'spectra' must hold numbers"):
+        parse_spectra('{"wavelengths_nm": [400, 500], "spectra": {"a": [1, ' + value + "]}}", "x.json")
+
+
+@SETTINGS
+@given(digits=st.lists(st.text("0123456789", min_size=1, max_size=4), min_size=2, max_size=4))
+def test_digit_separators_are_never_read(digits):
+    cell = "_".join(digits)
+    with pytest.raises(SpectrumError, match="not a number"):
+        parse_spectra(f"wavelength_nm,a\n400,{cell}\n500,1\n", "x.csv")
+
+
+@pytest.mark.parametrize("norm", ["1e-320", "1e-310", "0", "-1", "nan", "inf"])
+def test_a_declared_full_scale_must_keep_the_values_finite(norm):
+    text = (f'CTI3\nSPECTRAL_NORM "{norm}"\nBEGIN_DATA_FORMAT\nSAMPLE_ID SPEC_400 SPEC_500\n'
+            "END_DATA_FORMAT\nBEGIN_DATA\n1 10 20\nEND_DATA\n")
+    with pytest.raises(SpectrumError, match="SPECTRAL_NORM"):
+        parse_spectra(text, "x.ti3")
+
+
+BREAKS = ["\n", "\r", "\r\n", "\x0b", "\x0c", "\x1c", "\x85", "\u2028", "\u2029", "\x00"]
+
+
+@pytest.mark.parametrize("brk", BREAKS, ids=[repr(b) for b in BREAKS])
+@pytest.mark.parametrize("suffix", [".cgats", ".csv"])
+def test_a_name_with_a_line_break_is_refused_by_the_writers(tmp_path, brk, suffix):
+    """A name holding a newline broke the CGATS file written: now refused, and nothing written."""
+    spectrum = Spectrum([400, 500], [[0.1, 0.2], [0.3, 0.4]], ["good", f"bad{brk}name"])
+    target = tmp_path / f"out{suffix}"
+    with pytest.raises(SpectrumError, match=r"names\[1\].*line break"):
+        sc.write_spectra(spectrum, target)
+    assert not target.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_keywords_and_table_cells_with_line_breaks_are_refused():
+    from spectrocolor.io.writers import spectra_to_cgats, table_to_cgats
+
+    spectrum = Spectrum([400, 500], [0.1, 0.2], ["a"])
+    with pytest.raises(SpectrumError, match="keywords"):
+        spectra_to_cgats(spectrum, {"DESCRIPTOR": "two\nlines"})
+    with pytest.raises(SpectrumError, match="not a CGATS keyword"):
+        spectra_to_cgats(spectrum, {"BEGIN_DATA": "x"})
+    with pytest.raises(SpectrumError, match="not a CGATS keyword"):
+        spectra_to_cgats(spectrum, {"MY KEY": "x"})
+    with pytest.raises(SpectrumError, match=r"rows\[0\]\['name'\]"):
+        table_to_cgats([{"name": "a\rb", "X": 1.0}])
+
+
+ONE_LINE_NAMES = st.text(
+    st.characters(blacklist_categories=("Cc", "Cs", "Zl", "Zp"), blacklist_characters='"\u0085'),
+    min_size=1, max_size=20).filter(lambda name: name.strip() == name and not name.startswith("#"))
+
+
+@SETTINGS
+@given(names=st.lists(ONE_LINE_NAMES, min_size=1, max_size=4, unique=True))
+def test_every_one_line_name_round_trips_through_every_text_writer(names):
+    spectrum = Spectrum([400, 500, 600], np.linspace(0.1, 0.9, 3 * len(names)).reshape(len(names), 3), names)
+    with tempfile.TemporaryDirectory() as folder:
+        for suffix in (".cgats", ".csv", ".json"):
+            back = sc.read_spectra(sc.write_spectra(spectrum, Path(folder) / f"s{suffix}"))
+            assert back.names == spectrum.names, suffix
+            # exact: the writers print the shortest text that reads back as the same double
+            assert np.array_equal(back.values.reshape(spectrum.values.shape), spectrum.values)
+
+
+@SETTINGS
+@given(name=st.text(min_size=1, max_size=20))
+def test_json_keeps_any_name_verbatim(name):
+    spectrum = Spectrum([400, 500], [0.1, 0.2], [name])
+    with tempfile.TemporaryDirectory() as folder:
+        assert sc.read_spectra(sc.write_spectra(spectrum, Path(folder) / "s.json")).names == (name,)

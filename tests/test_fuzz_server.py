@@ -10,10 +10,13 @@ from __future__ import annotations
 import json
 import os
 import re
+import resource
 import select
+import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 
 import pytest
@@ -121,13 +124,22 @@ def post_json(port, path, payload, **kw):
     return request(port, "POST", path, json.dumps(payload).encode(), **kw)
 
 
+def strict_json(body: bytes):
+    """``body`` parsed as JSON proper: NaN, Infinity and -Infinity are refused."""
+    def refuse(constant):
+        raise AssertionError(f"non-finite number {constant} in a JSON answer: {body[:200]!r}")
+    return json.loads(body, parse_constant=refuse)
+
+
 def assert_clean(status: int, headers: dict, body: bytes) -> None:
-    """A 2xx, or a 4xx whose body is {"error": one line}; never a 5xx."""
+    """A 2xx, or a 4xx whose body is {"error": one line}; never a 5xx, never NaN or infinity."""
     assert status < 500, (status, body[:300])
     if status >= 400:
         assert headers.get("content-type", "").startswith("application/json"), (status, body[:200])
-        error = json.loads(body)["error"]
+        error = strict_json(body)["error"]
         assert isinstance(error, str) and error and "\n" not in error and "Traceback" not in error
+    elif headers.get("content-type", "").startswith("application/json"):
+        strict_json(body)
 
 
 def rss_kib(pid: int) -> int:
@@ -419,3 +431,222 @@ def test_generated_request_heads_give_json_or_a_clean_answer(server, line, heade
     port, _ = server
     status, headers, body = raw(port, line + b"\r\n" + header + b"\r\nHost: 127.0.0.1\r\n\r\n")
     assert_clean(status, headers, body)
+
+
+# --- one client never stalls the others (issue 31) -----------------------------------------------
+
+
+def _served_while(port: int, seconds: float, hostile) -> int:
+    """Requests another client completes in ``seconds`` while ``hostile()`` is sent again and again."""
+    stop, done = threading.Event(), []
+
+    def attacker():
+        while not stop.is_set():
+            hostile()
+
+    thread = threading.Thread(target=attacker)
+    thread.start()
+    time.sleep(0.2)
+    deadline = time.monotonic() + seconds
+    try:
+        while time.monotonic() < deadline:
+            status, _, _ = request(port, "GET", "/api/options")
+            done.append(status)
+    finally:
+        stop.set()
+        thread.join(60)
+    assert set(done) <= {200}, done
+    return len(done)
+
+
+@pytest.mark.parametrize("pairs", [20_000, 900_000])
+def test_a_hostile_body_scan_does_not_stall_other_clients(server, pairs):
+    """The 40 kB body of ``"`` then ``\\"`` x 20 000 froze every client for 10 s: the nesting
+    guard's regular expression was quadratic and ran in the event loop. Now another client is
+    served about as often as while an ordinary body of the same size is being sent."""
+    port, _ = server
+    hostile = b'"' + b'\\"' * pairs
+    ordinary = json.dumps({"spectra": [[1.0] * 31], "pad": "x" * (len(hostile) - 60)}).encode()
+    answers = []
+
+    def send(body):
+        def call():
+            status, headers, answer = request(port, "POST", "/api/evaluate", body)
+            answers.append(status)
+            assert_clean(status, headers, answer)
+        return call
+
+    reference = _served_while(port, 2.0, send(ordinary))
+    during = _served_while(port, 2.0, send(hostile))
+    assert 422 in answers
+    assert during >= reference / 4, (during, reference)
+
+
+def test_a_declared_full_scale_that_overflows_is_a_422(server):
+    """Argyll's SPECTRAL_NORM "1e-320" divided the values into infinities: a 500 before."""
+    port, _ = server
+    ti3 = ('CTI3\nSPECTRAL_NORM "1e-320"\nBEGIN_DATA_FORMAT\nSAMPLE_ID SPEC_400 SPEC_500 SPEC_600 '
+           'SPEC_700\nEND_DATA_FORMAT\nBEGIN_DATA\n1 10 20 30 40\nEND_DATA\n')
+    status, headers, body = post_json(port, "/api/import", {"filename": "x.ti3", "content": ti3})
+    assert status == 422 and "SPECTRAL_NORM" in strict_json(body)["error"], body[:300]
+    assert_clean(status, headers, body)
+
+
+def _busy_ticks(pids: list[int]) -> int:
+    """CPU time (clock ticks) used so far by the processes ``pids`` that still exist."""
+    total = 0
+    for pid in pids:
+        try:
+            with open(f"/proc/{pid}/stat") as handle:
+                fields = handle.read().rsplit(")", 1)[1].split()
+            total += int(fields[11]) + int(fields[12])
+        except FileNotFoundError:
+            pass
+    return total
+
+
+def _workers(pid: int) -> list[int]:
+    """The worker processes (multiprocessing's spawned children) of process ``pid``."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as handle:
+                    parent = int(handle.read().rsplit(")", 1)[1].split()[1])
+                with open(f"/proc/{entry}/cmdline", "rb") as handle:
+                    spawned = b"spawn_main" in handle.read()
+            except (FileNotFoundError, ProcessLookupError):
+                continue
+            if parent == pid and spawned:
+                found.append(int(entry))
+    return found
+
+
+@pytest.mark.parametrize("content", ["\n" * 900_000, " \n" * 450_000, "\r\n" * 450_000,
+                                     "# note\n" * 120_000], ids=["newlines", "spaces", "crlf", "comments"])
+def test_an_import_of_blank_lines_is_answered_and_leaves_no_worker_busy(server, content):
+    """A 1 MB import of blank lines took 60 s and kept its worker at 100 % CPU for 270 s more:
+    now it is answered like any other file, and no worker works on after the answer."""
+    port, pid = server
+    reference_body = {"filename": "ok.csv", "content": "wavelength_nm,a\n" + "".join(
+        f"{400 + i * 300 / 50_000:.4f},0.5\n" for i in range(50_001))}  # 1 MB, read at once
+    started = time.monotonic()
+    status, _, _ = post_json(port, "/api/import", reference_body)
+    reference_s = time.monotonic() - started
+    assert status == 200
+    started = time.monotonic()
+    status, headers, body = post_json(port, "/api/import", {"filename": "blank.csv", "content": content})
+    took = time.monotonic() - started
+    assert status == 422 and "no data" in strict_json(body)["error"]
+    assert took <= 10 * reference_s, (took, reference_s)
+    workers = _workers(pid)
+    before = _busy_ticks(workers)
+    time.sleep(1.0)
+    assert _busy_ticks(workers) - before <= 20  # at most 0.2 s of CPU in 1 s: nobody is working
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_kill_9_of_the_server_ends_its_workers():
+    """``kill -9`` of the server left its 4 worker processes running; they now die with it."""
+    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--port", "0",
+                             "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                            text=True)
+    try:
+        port = int(re.search(r"http://127\.0\.0\.1:(\d+)/", proc.stdout.readline()).group(1))
+        for _ in range(200):
+            try:
+                if request(port, "GET", "/api/options")[0] == 200:
+                    break
+            except OSError:
+                time.sleep(0.05)
+        status, _, _ = post_json(port, "/api/import", {"filename": "a.csv",
+                                                       "content": "wavelength_nm,a\n400,1\n700,1\n"})
+        assert status == 200
+        children = _workers(proc.pid)
+        assert children, "no worker process was started"
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait(10)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and any(os.path.exists(f"/proc/{c}") and not _zombie(c)
+                                                  for c in children):
+            time.sleep(0.1)
+        alive = [c for c in children if os.path.exists(f"/proc/{c}") and not _zombie(c)]
+        assert not alive, f"processes {alive} outlived the killed server"
+    finally:
+        proc.kill()
+        proc.wait(10)
+
+
+def _zombie(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as handle:
+            return handle.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except FileNotFoundError:
+        return True
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_flood_of_idle_connections_leaves_the_server_reachable():
+    """1 100 idle connections against ``ulimit -n 1024`` made the server unreachable. Here the
+    server may open 256 files and 400 connections stay idle: it keeps its descriptors below
+    the limit (closing the longest idle) and answers a new client."""
+    def limit():
+        resource.setrlimit(resource.RLIMIT_NOFILE, (256, 256))
+
+    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--port", "0",
+                             "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, preexec_fn=limit)
+    idle = []
+    try:
+        port = int(re.search(r"http://127\.0\.0\.1:(\d+)/", proc.stdout.readline()).group(1))
+        for _ in range(200):
+            try:
+                if request(port, "GET", "/api/options")[0] == 200:
+                    break
+            except OSError:
+                time.sleep(0.05)
+        for _ in range(400):
+            idle.append(socket.create_connection(("127.0.0.1", port), timeout=30))
+        time.sleep(1.0)
+        open_files = len(os.listdir(f"/proc/{proc.pid}/fd"))
+        assert open_files < 256 - 16, open_files
+        status, headers, body = request(port, "GET", "/api/options")
+        assert status == 200 and "steps_nm" in strict_json(body)
+    finally:
+        for sock in idle:
+            sock.close()
+        proc.kill()
+        proc.wait(10)
+
+
+LED = st.fixed_dictionaries({
+    "kind": st.just("leds"),
+    "peaks_nm": st.lists(st.floats(380, 780), min_size=1, max_size=4),
+    "widths_nm": st.lists(st.sampled_from([5.0, 10.0, 30.0, 200.0]) | st.floats(5, 200),
+                          min_size=1, max_size=4),
+    "powers": st.lists(st.sampled_from([0.0, 1.0, 5e-324, 1e-300]) | st.floats(0, 1),
+                       min_size=1, max_size=4),
+}).filter(lambda s: len(s["peaks_nm"]) == len(s["widths_nm"]) == len(s["powers"]))
+
+
+@pytest.mark.parametrize("peak", range(380, 781, 25))
+def test_a_single_led_gets_its_numbers(server, peak):
+    """94 of 122 single-LED lights were refused ("cannot be adapted") and one was a 500."""
+    port, _ = server
+    for width in (5.0, 40.0, 200.0):
+        status, headers, body = post_json(port, "/api/lab/light", {"source": {
+            "kind": "leds", "peaks_nm": [peak], "widths_nm": [width], "powers": [1.0]}})
+        assert status == 200, body[:300]
+        assert_clean(status, headers, body)
+        samples = strict_json(body)["samples"]
+        assert samples["under_light"] is not None and samples["under_light_note"]
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(source=LED)
+def test_generated_led_lights_give_finite_answers(server, source):
+    port, _ = server
+    status, headers, body = post_json(port, "/api/lab/light", {"source": source})
+    assert_clean(status, headers, body)
+    if sum(source["powers"]) > 0:
+        assert status == 200, body[:300]

@@ -107,7 +107,20 @@ def canonical_illuminant_name(name: str) -> str:
 #: the CLI and the app take their default from this constant.
 DEFAULT_ILLUMINANT = "D65"
 
-_TEMPERATURE_KEY = re.compile(r"^\s*(blackbody|planck|bb|d|daylight)\s*:\s*([^\s].*?)\s*(k)?\s*$", re.IGNORECASE)
+#: ``KIND:T``; the temperature text is cut out by :func:`_temperature_key`, not by the pattern (a
+#: lazy ``.*?`` between ``\s*`` runs took cubic time on a name padded with spaces).
+_TEMPERATURE_KEY = re.compile(r"\s*+(blackbody|planck|bb|d|daylight)\s*+:(.*)", re.IGNORECASE)
+
+
+def _temperature_key(name: str) -> tuple[str, str] | None:
+    """``(kind, temperature text)`` of ``"blackbody:6504 K"``-style names, or None (linear time)."""
+    match = _TEMPERATURE_KEY.fullmatch(name)
+    if match is None:
+        return None
+    value = match.group(2).strip()
+    if len(value) > 1 and value[-1] in "kK":
+        value = value[:-1].rstrip()
+    return (match.group(1), value) if value else None
 _ACCEPTED_SOURCES = (
     "a CIE name such as 'D65' or 'A', 'blackbody:T' (a Planckian radiator at T kelvin), 'D:T' "
     "(the CIE daylight of correlated colour temperature T, 4000–25000 K), a temperature in kelvin "
@@ -159,11 +172,11 @@ def canonical_illuminant(illuminant, argument: str = "illuminant"):
     if isinstance(illuminant, int | float | np.integer | np.floating) and not isinstance(illuminant, bool):
         return f"blackbody:{_temperature(illuminant, argument):g}"
     if isinstance(illuminant, str):
-        match = _TEMPERATURE_KEY.match(illuminant)
+        match = _temperature_key(illuminant)
         if match:
-            kind = match.group(1).lower()
+            kind = match[0].lower()
             try:
-                value = float(match.group(2))
+                value = float(match[1])
             except ValueError:
                 raise ColorimetryError(
                     f"{argument}: {illuminant!r} needs a temperature in kelvin after the colon, e.g. 'blackbody:6504'"

@@ -13,7 +13,10 @@ Overwrite policy (the command line; library functions replace their target atomi
 ``open(path, "w")`` would, but never leave it half written):
 
 1. An existing output file is replaced only with ``--force``; without it the command stops with
-   one line naming the option and the file, before computing anything.
+   one line naming the option and the file, before computing anything. An output that was
+   absent then is placed with a create-exclusive link (``os.link``, which fails if the name
+   exists): if another run created it meanwhile, that file is kept and this run stops with one
+   line saying so, so two runs without ``--force`` can never both succeed.
 2. A command never writes over one of its own inputs, not even with ``--force`` (paths are
    compared after resolving links, and with :func:`os.path.samefile` for hard links).
 3. Two outputs of one command must be different files; an output's folder must exist.
@@ -32,6 +35,7 @@ import errno
 import os
 import stat
 import tempfile
+import threading
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
@@ -121,7 +125,10 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
         if verify is not None:
             verify(temporary)
         os.chmod(temporary, _mode_for(target))  # mkstemp made it 0600
-        os.replace(temporary, target)
+        if _claimed_new(target):
+            _place_new(temporary, target)
+        else:
+            os.replace(temporary, target)
     except OSError as exc:
         temporary.unlink(missing_ok=True)
         if isinstance(exc, OutputError):
@@ -132,6 +139,59 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
         temporary.unlink(missing_ok=True)
         raise
     _sync_folder(folder)
+
+
+# --- outputs that must not exist: no-clobber placement ------------------------------------------
+
+#: Outputs that :func:`check_outputs` found absent without ``force``: each is placed with a
+#: create-exclusive link, so another process that wrote it meanwhile is never replaced. A
+#: process-wide registry because the check (command line) and the write (any writer) are far
+#: apart; a path leaves it once written.
+_NEW_OUTPUTS: set[str] = set()
+_NEW_OUTPUTS_LOCK = threading.Lock()
+
+
+def _claim_new(path: Path) -> None:
+    with _NEW_OUTPUTS_LOCK:
+        _NEW_OUTPUTS.add(os.path.realpath(path))
+
+
+def _release_new(path: Path) -> None:
+    with _NEW_OUTPUTS_LOCK:
+        _NEW_OUTPUTS.discard(os.path.realpath(path))
+
+
+def _claimed_new(target: Path) -> bool:
+    with _NEW_OUTPUTS_LOCK:
+        return str(target) in _NEW_OUTPUTS
+
+
+def _place_new(temporary: Path, target: Path) -> None:
+    """Give ``temporary``'s file the name ``target`` only if nothing has that name (atomic).
+
+    ``os.link`` fails with EEXIST if the name exists, whoever created it and when; the file
+    appears whole, as with a rename. Where the file system has no hard links, an exclusive
+    create (``O_EXCL``) reserves the name and the rename then replaces that empty file.
+    """
+    try:
+        os.link(temporary, target)
+    except FileExistsError:
+        raise OutputError(errno.EEXIST, f"{target}: not written: it was created by another "
+                          "program while this one ran (it was absent when checked); it is "
+                          "left as it is; add --force to replace it") from None
+    except OSError as exc:
+        if exc.errno not in (errno.EPERM, errno.EOPNOTSUPP, errno.ENOTSUP, errno.EMLINK,
+                             errno.EXDEV, errno.ENOSYS):
+            raise
+        try:
+            os.close(os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+        except FileExistsError:
+            raise OutputError(errno.EEXIST, f"{target}: not written: it was created by another "
+                              "program while this one ran; add --force to replace it") from None
+        os.replace(temporary, target)
+    else:
+        temporary.unlink()
+    _release_new(target)
 
 
 def _mode_for(target: Path) -> int:
@@ -365,6 +425,12 @@ def check_outputs(outputs: dict[str, object], inputs: Iterable[object] = (), *,
         An output is an input, exists without ``force``, is a folder, repeats another output,
         or lies in a folder that does not exist.
 
+    Notes
+    -----
+    Without ``force``, each output found absent is remembered: :func:`atomic_path` then places
+    it only if it is still absent (a create-exclusive link) and otherwise raises
+    :class:`OutputError`, leaving the file another program wrote meanwhile.
+
     Examples
     --------
     >>> import tempfile, pathlib
@@ -397,3 +463,7 @@ def check_outputs(outputs: dict[str, object], inputs: Iterable[object] = (), *,
             raise OutputError(errno.ENOENT, f"{option} {path}: the folder {path.parent} {what}")
         if path.exists() and not force:
             raise OutputError(errno.EEXIST, f"{option} {path} exists; add --force to replace it")
+        if force:
+            _release_new(path)
+        else:  # absent now: written only if still absent then (another run may write it first)
+            _claim_new(path)

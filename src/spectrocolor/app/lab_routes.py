@@ -5,6 +5,12 @@ registries) and ``POST /api/lab/<lab>`` its numbers: the thin-film table for one
 light (:func:`spectrocolor.app.thinfilm_lab.thinfilm_lab`), the colour rendering of one light
 (:func:`spectrocolor.app.light_lab.light_lab`). Errors use the server's one shape,
 ``{"error": "..."}``, through the library's exceptions.
+
+The numbers are computed in worker processes (:class:`~spectrocolor.app.workers.WorkerPool`,
+:data:`LAB_WORKERS` at a time): a fresh thin-film table or reflectance takes up to about a second
+of maths, which in a request thread would hold the interpreter lock while other clients wait.
+A computation that passes :data:`LAB_TIMEOUT_S` has its worker killed; when the workers stay busy
+for :data:`LAB_WAIT_S` the answer is 429. Opening a lab's options starts a worker.
 """
 
 from __future__ import annotations
@@ -14,13 +20,51 @@ from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
 
-from fastapi import APIRouter
-from fastapi.responses import FileResponse
+from fastapi import APIRouter, Request
+from fastapi.responses import FileResponse, JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 
+from ..errors import ColorimetryError
+from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
+from .responses import FiniteJSONResponse
+from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 router = APIRouter()
+
+#: Lab computations run at the same time, each in a worker process.
+LAB_WORKERS = 2
+#: Longest wait for a free worker, s (then 429), and longest computation, s.
+LAB_WAIT_S, LAB_TIMEOUT_S = 10.0, 60.0
+
+_workers = WorkerPool(LAB_WORKERS, LAB_WAIT_S, LAB_TIMEOUT_S)
+router.on_shutdown.append(_workers.close)
+
+
+def _ready() -> bool:
+    """Worker side: import the labs (run when a lab's options are asked for)."""
+    return True
+
+
+def _computed(request: Request, function, *args):
+    """``function(*args)`` in a lab worker, with the server's answers for a busy or stuck one."""
+    client = request.client.host if request.client else None
+    try:  # the worker says whether it used the NumPy path (kernels still compiling)
+        answer, used_numpy_path = _workers.run(call_noting_numpy_path, function, *args, client=client)
+    except Busy:
+        return JSONResponse({"error": "the server is busy computing for other pages; try again"},
+                            status_code=429)
+    except WorkerTimeout:
+        raise ColorimetryError(f"this computation took more than {LAB_TIMEOUT_S:g} s and was "
+                               "stopped; choose other settings") from None
+    except WorkerDied:
+        raise ColorimetryError("the worker computing this stopped (out of memory?); choose other "
+                               "settings") from None
+    if used_numpy_path:
+        note_numpy_path()
+    # the labs answer plain JSON values: written at once (FastAPI's encoder walked the 1.3 MB
+    # thin-film table for 0.3 s), and never with NaN (FiniteJSONResponse refuses it)
+    return FiniteJSONResponse(answer)
 
 
 class ThinFilmRequest(BaseModel):
@@ -79,22 +123,25 @@ def light_page():
 
 @router.get("/api/lab/light/options")
 def light_options():
+    _workers.warm(_ready)
     return light_lab.light_lab_options()
 
 
 @router.post("/api/lab/light")
-def light(req: LightRequest):
-    return light_lab.light_lab(req.source.model_dump(), req.display)
+def light(req: LightRequest, request: Request):
+    return _computed(request, light_lab.light_lab, req.source.model_dump(), req.display)
 
 
 @router.get("/api/lab/thinfilm/options")
 def thinfilm_options():
+    _workers.warm(_ready)
     return thinfilm_lab.lab_options()
 
 
 @router.post("/api/lab/thinfilm")
-def thinfilm(req: ThinFilmRequest):
-    return _table(req.film, req.model, round(req.angle_deg, 3), req.illuminant, req.observer, req.display)
+def thinfilm(req: ThinFilmRequest, request: Request):
+    return _computed(request, _table, req.film, req.model, round(req.angle_deg, 3), req.illuminant,
+                     req.observer, req.display)
 
 
 class ReflectanceRequest(BaseModel):
@@ -116,17 +163,24 @@ def reflectance_page():
 
 @router.get("/api/lab/reflectance/options")
 def reflectance_options():
+    _workers.warm(_ready)
     return reflectance_lab.reflectance_lab_options()
 
 
 @router.post("/api/lab/reflectance")
-def reflectance(req: ReflectanceRequest):
-    return reflectance_lab.reflectance_lab(req.x, req.y, req.Y, req.illuminant, req.observer, req.step_nm)
+def reflectance(req: ReflectanceRequest, request: Request):
+    return _computed(request, reflectance_lab.reflectance_lab, req.x, req.y, req.Y, req.illuminant,
+                     req.observer, req.step_nm)
 
 
 @router.post("/api/lab/reflectance/macadam")
-def macadam(req: ReflectanceRequest):
-    return {"Y": req.Y, "xy": reflectance_lab.macadam_xy(round(req.Y, 1), req.illuminant, req.observer, req.step_nm)}
+def macadam(req: ReflectanceRequest, request: Request):
+    return _computed(request, _macadam, req.Y, req.illuminant, req.observer, req.step_nm)
+
+
+def _macadam(Y: float, illuminant: str, observer: str, step_nm: str) -> dict:
+    """Worker side: the MacAdam limit at ``Y`` (rounded to 0.1 for the cache), with ``Y``."""
+    return {"Y": Y, "xy": reflectance_lab.macadam_xy(round(Y, 1), illuminant, observer, step_nm)}
 
 
 class SolidRequest(BaseModel):
@@ -142,19 +196,21 @@ class SolidRequest(BaseModel):
 
 @router.get("/labs/solid", include_in_schema=False)
 def solid_page():
+    _workers.warm(_ready)  # the solid lab has no options route: start a worker with the page
     return _page("solid")
 
 
 @router.post("/api/lab/solid")
-def solid(req: SolidRequest):
-    return solid_lab.solid(req.illuminant, req.display)
+def solid(req: SolidRequest, request: Request):
+    return _computed(request, solid_lab.solid, req.illuminant, req.display)
 
 
 @router.post("/api/lab/solid/section")
-def solid_section(req: SolidRequest):
-    return solid_lab.section(round(req.Y, 1), req.illuminant, req.display)
+def solid_section(req: SolidRequest, request: Request):
+    return _computed(request, solid_lab.section, round(req.Y, 1), req.illuminant, req.display)
 
 
 @router.post("/api/lab/solid/mismatch")
-def solid_mismatch(req: SolidRequest):
-    return solid_lab.mismatch(req.sample, req.illuminant, req.second_illuminant, req.display)
+def solid_mismatch(req: SolidRequest, request: Request):
+    return _computed(request, solid_lab.mismatch, req.sample, req.illuminant, req.second_illuminant,
+                     req.display)

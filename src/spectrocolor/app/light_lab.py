@@ -95,8 +95,14 @@ def light_spd(source: dict):
     raise ColorimetryError("source: expected {'kind': 'named', 'name': …} or {'kind': 'leds', 'peaks_nm': …, …}")
 
 
-def _samples_rgb8(spd: np.ndarray, display: str) -> np.ndarray:
-    """The 14 TCS under ``spd`` on ``display``, adapted from the light's white to the display's."""
+def _samples_rgb8(spd: np.ndarray, display: str) -> tuple[np.ndarray | None, str]:
+    """The 14 TCS under ``spd`` on ``display`` as 8-bit codes, and how they were adapted.
+
+    They are adapted (Bradford) from the light's white to the display's. A nearly
+    monochromatic light has a white that Bradford's sensors cannot see positively (a single
+    LED: one sensor response is zero or negative); its samples are then shown unadapted, and
+    the note says so. A light without luminance gives ``None``.
+    """
     from ..colorimetry import weights
     from ..display.adaptation import adapt
     from ..display.render import render
@@ -104,10 +110,19 @@ def _samples_rgb8(spd: np.ndarray, display: str) -> np.ndarray:
     from ..lighting.spectra import tcs_reflectances
     from ..spectrum import Spectrum
 
-    W = weights(WAVELENGTHS_NM, illuminant=Spectrum(WAVELENGTHS_NM, spd))
+    try:
+        W = weights(WAVELENGTHS_NM, illuminant=Spectrum(WAVELENGTHS_NM, spd))
+    except ColorimetryError:
+        return None, "not shown: the light has no luminance over 380-780 nm"
     XYZ = tcs_reflectances(WAVELENGTHS_NM) @ W
     space = rgb_space(display)
-    return render(adapt(XYZ, W.sum(axis=0), space.white_XYZ), space, gamut="desaturate").codes
+    try:
+        adapted, note = adapt(XYZ, W.sum(axis=0), space.white_XYZ), "adapted to the display's white (Bradford)"
+    except ColorimetryError:
+        adapted, note = XYZ, ("not adapted: the light's white is too saturated for chromatic "
+                              "adaptation (Bradford's sensors do not all see it)")
+    codes = render(adapted, space, gamut="desaturate").codes
+    return codes, note
 
 
 def light_lab(source: dict, display: str = "sRGB") -> dict:
@@ -126,7 +141,10 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
         ``label``, ``wavelengths_nm``, ``spd`` (peak 1); ``summary`` (CCT K, Duv, Ra, R9, Rf, Rg,
         LER lm/W, melanopic DER; NaN → None); ``Ri`` (R1-R14); ``hue_bins`` (Rf,hj, Rcs,hj,
         Rhs,hj); ``graphic`` (unit reference circle and test corners of the vector graphic, 16 × 2
-        each) and ``bin_rgb8``; ``samples`` (names, rgb8 under the light and under the reference).
+        each, or None with the reason in ``graphic_note``) and ``bin_rgb8``; ``samples`` (names,
+        rgb8 under the light and under the reference, each None where it cannot be shown, with
+        ``under_light_note`` and ``under_reference_note`` saying how they were adapted or why
+        they are missing). Every number is finite: what has no value is None.
 
     Examples
     --------
@@ -152,6 +170,17 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
 
     reference_spd = np.asarray(cri_reference(float(cri.cct_K), WAVELENGTHS_NM)) if np.isfinite(cri.cct_K) else None
     circle, test = normalised_graphic(fidelity) if np.isfinite(fidelity.Rf) else (None, None)
+    graphic_note = "" if circle is not None else "no colour vector graphic: Rf is not defined for this light"
+    if circle is not None and not (np.all(np.isfinite(circle)) and np.all(np.isfinite(test))):
+        empty = [j + 1 for j in range(len(circle)) if not np.all(np.isfinite([*circle[j], *test[j]]))]
+        circle = test = None
+        graphic_note = (f"no colour vector graphic: hue bin(s) {', '.join(map(str, empty))} hold no "
+                        "sample that this light shows with a hue")
+    under_light, light_note = _samples_rgb8(spd, display)
+    if reference_spd is None:
+        under_reference, reference_note = None, "not shown: the light has no correlated colour temperature"
+    else:
+        under_reference, reference_note = _samples_rgb8(reference_spd, display)
     return {
         "label": label,
         "wavelengths_nm": WAVELENGTHS_NM.tolist(),
@@ -162,11 +191,14 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
         "hue_bins": {"Rf_h": plain(fidelity.Rf_h), "Rcs_h": plain(fidelity.Rcs_h), "Rhs_h": plain(fidelity.Rhs_h)},
         "graphic": None if circle is None else {"reference": np.round(circle, 5).tolist(),
                                                 "test": np.round(test, 5).tolist()},
+        "graphic_note": graphic_note,
         "bin_rgb8": bin_colours_rgb8().tolist(),
         "samples": {
             "names": list(TCS_NAMES),
-            "under_light": _samples_rgb8(spd, display).tolist(),
-            "under_reference": None if reference_spd is None else _samples_rgb8(reference_spd, display).tolist(),
+            "under_light": None if under_light is None else under_light.tolist(),
+            "under_reference": None if under_reference is None else under_reference.tolist(),
+            "under_light_note": light_note,
+            "under_reference_note": reference_note,
         },
     }
 

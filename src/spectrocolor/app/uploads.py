@@ -3,9 +3,12 @@
 Parsing a large CSV is pure-Python work: in a thread it holds the interpreter lock and every
 other request waits (a 1 MB file took the explorer's answers from milliseconds to seconds).
 :class:`UploadParser` hands each file to a :class:`~spectrocolor.app.workers.WorkerPool` (spawned
-processes, at most ``workers`` files at a time, :class:`Busy` when none frees up within
-``wait_s``) and turns everything a hostile file can make a parser raise into one
-:class:`SpectrumError`.
+processes, at most ``workers`` files at a time, one per client address, :class:`Busy` when none
+frees up within ``wait_s``; a parse that runs past ``timeout_s`` has its worker killed) and turns
+everything a hostile file can make a parser raise into one :class:`SpectrumError`.
+
+The text is written to a private temporary folder that the server creates and removes, so a
+worker killed in the middle of a parse leaves nothing behind.
 """
 
 from __future__ import annotations
@@ -13,6 +16,8 @@ from __future__ import annotations
 import csv
 import tempfile
 from pathlib import Path
+
+import numpy as np
 
 from ..errors import SpectrumError
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
@@ -22,24 +27,29 @@ __all__ = ["Busy", "UploadParser"]
 _NAME = "\0upload\0"  # stands for the user's file name in messages made in the worker
 
 
-def _parse(content: str, suffix: str, step_nm: float, method: str, scale: str,
+def _parse(folder: str, content: str, suffix: str, step_nm: float, method: str, scale: str,
            max_spectra: int) -> dict:
-    """Worker side: write the text to a private temporary file and import it."""
+    """Worker side: write the text to a file in the server's temporary ``folder`` and import it."""
     from . import compute
 
-    with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
-        path = Path(folder) / f"upload{suffix}"
-        path.write_text(content, encoding="utf-8")
-        try:
-            return compute.import_spectra(path, step_nm, method, scale, max_spectra=max_spectra)
-        except (ValueError, csv.Error, RecursionError, UnicodeError) as exc:
-            # SpectrumError, and what a reader lets through on a hostile file (a cell over the
-            # csv module's field limit, ...): the file's fault, one line, never a 500
-            message = (str(exc) or exc.__class__.__name__).replace(str(path), _NAME)
-            message = message.splitlines()[0][:300]
-            if not isinstance(exc, SpectrumError):
-                message = f"{_NAME}: cannot be read ({message})"
-            raise SpectrumError(message) from None
+    path = Path(folder) / f"upload{suffix}"
+    path.write_text(content, encoding="utf-8")
+    try:
+        answer = compute.import_spectra(path, step_nm, method, scale, max_spectra=max_spectra)
+        if not np.all(np.isfinite(np.asarray(answer["levels"], dtype=float))):
+            raise SpectrumError(f"{_NAME}: its values are too large to scale and resample (they "
+                                "go beyond the float range); import values such as 0-1 or 0-100")
+        return answer
+    except (ValueError, csv.Error, RecursionError, UnicodeError, MemoryError) as exc:
+        # SpectrumError, and what a reader lets through on a hostile file (a cell over the
+        # csv module's field limit, ...): the file's fault, one line, never a 500
+        message = (str(exc) or exc.__class__.__name__).replace(str(path), _NAME)
+        message = (message.splitlines() or [exc.__class__.__name__])[0][:300]
+        if isinstance(exc, MemoryError):
+            message = f"{_NAME}: too large to read in the memory available"
+        elif not isinstance(exc, SpectrumError):
+            message = f"{_NAME}: cannot be read ({message})"
+        raise SpectrumError(message) from None
 
 
 class UploadParser:
@@ -52,25 +62,38 @@ class UploadParser:
     wait_s : float
         How long an upload waits for a free worker before :class:`Busy`.
     timeout_s : float
-        Longest parse; beyond it the upload is refused (the worker finishes in the background).
+        Longest parse; beyond it the worker is killed and the upload refused.
+    per_client : int, default 1
+        Uploads of one client address parsed at the same time (its others wait their turn).
     """
 
-    def __init__(self, workers: int, wait_s: float, timeout_s: float):
-        self._pool = WorkerPool(workers, wait_s, timeout_s)
+    def __init__(self, workers: int, wait_s: float, timeout_s: float, per_client: int = 1):
+        self._pool = WorkerPool(workers, wait_s, timeout_s, per_client=per_client)
+
+    @property
+    def pool(self) -> WorkerPool:
+        """The worker pool (its processes' ids, for tests and diagnostics)."""
+        return self._pool
 
     def parse(self, filename: str, content: str, suffix: str, step_nm: float, method: str,
-              scale: str, max_spectra: int) -> dict:
-        """The page's import answer for ``content``; raises SpectrumError or :class:`Busy`."""
-        try:
-            return self._pool.run(_parse, content, suffix, step_nm, method, scale, max_spectra)
-        except SpectrumError as exc:
-            raise SpectrumError(str(exc).replace(_NAME, filename)) from None
-        except WorkerTimeout:
-            raise SpectrumError(f"{filename}: reading it took more than {self._pool.timeout_s:g} s; "
-                                "import a smaller file") from None
-        except WorkerDied:
-            raise SpectrumError(f"{filename}: the reader stopped on this file (out of memory?); "
-                                "import a smaller file") from None
+              scale: str, max_spectra: int, client=None) -> dict:
+        """The page's import answer for ``content``; raises SpectrumError or :class:`Busy`.
+
+        ``client`` (the client's address) is the key of the per-client limit.
+        """
+        with tempfile.TemporaryDirectory(prefix="spectrocolor-upload-") as folder:
+            try:
+                return self._pool.run(_parse, folder, content, suffix, step_nm, method, scale,
+                                      max_spectra, client=client)
+            except SpectrumError as exc:
+                raise SpectrumError(str(exc).replace(_NAME, filename)) from None
+            except WorkerTimeout:
+                raise SpectrumError(f"{filename}: reading it took more than "
+                                    f"{self._pool.timeout_s:g} s and was stopped; import a "
+                                    "smaller file") from None
+            except WorkerDied:
+                raise SpectrumError(f"{filename}: the reader stopped on this file (out of "
+                                    "memory?); import a smaller file") from None
 
     def close(self, wait: bool = True) -> None:
         """Stop the worker processes (a later upload starts new ones)."""

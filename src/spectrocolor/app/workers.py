@@ -1,35 +1,187 @@
 """Worker processes for the server's heavy requests (uploaded files, relit photos).
 
 Pure-Python work in a request thread holds the interpreter lock and makes every other client
-wait; a hostile input can also exhaust memory or crash a compiled parser. :class:`WorkerPool`
-runs such work in ``workers`` processes, started on first use with the ``spawn`` method (nothing
-of the server is copied into them) and kept between requests, lets at most ``workers`` jobs run
-at a time, and turns the three ways a job can fail to get an answer into exceptions the caller
-words for its route: :class:`Busy` (no worker freed up within ``wait_s``), :class:`WorkerTimeout`
-(the job ran longer than ``timeout_s``) and :class:`WorkerDied` (a worker process stopped; the
-pool starts afresh on the next job).
+wait; a hostile input can also exhaust memory, crash a compiled parser or run for minutes.
+:class:`WorkerPool` runs such work in at most ``workers`` processes, started with the ``spawn``
+method (nothing of the server is copied into them) and kept between jobs, and turns the ways a
+job can fail to get an answer into exceptions the caller words for its route:
+
+* :class:`Busy`: no worker freed up within ``wait_s``, or too many jobs already wait;
+* :class:`WorkerTimeout`: the job ran longer than ``timeout_s``. Its worker is **killed** at
+  once (``SIGKILL``) and a fresh one is started for the next job, so a job that would run for
+  minutes costs the pool ``timeout_s`` and no more;
+* :class:`WorkerDied`: the worker process stopped (out of memory, a crash in compiled code).
+
+Fairness: jobs wait in one line, first come first served, except that a client (the caller's
+``client`` key, the server gives the client's address) never runs more than ``per_client`` jobs
+at once: its further jobs let other clients' jobs go first. At most ``max_waiting`` jobs wait;
+beyond, :class:`Busy` at once, so a flood of requests cannot tie up the server's threads.
+
+Workers end with the server, however it ends: on Linux each asks the kernel for ``SIGKILL``
+when its parent dies (``prctl(PR_SET_PDEATHSIG)``), and on every system a watchdog thread in
+the worker checks twice a second that its parent is still the process that started it. (The
+kernel ties the parent-death signal to the *thread* that started the process; request threads
+come and go, so every worker is started from one thread that lives as long as the server.)
 """
 
 from __future__ import annotations
 
-import concurrent.futures
+import collections
+import ctypes
 import multiprocessing
+import os
+import pickle
+import queue
+import signal
+import sys
 import threading
-from concurrent.futures.process import BrokenProcessPool
+import time
 
-__all__ = ["Busy", "WorkerDied", "WorkerPool", "WorkerTimeout"]
+__all__ = ["Busy", "WorkerDied", "WorkerPool", "WorkerTimeout", "die_with_parent"]
+
+#: How often a worker's watchdog checks that its parent is alive, s.
+WATCHDOG_INTERVAL_S = 0.5
+#: How long a worker asked to stop may take before it is killed, s.
+STOP_GRACE_S = 2.0
+_PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 
 class Busy(Exception):
-    """Every worker stayed busy for the whole wait."""
+    """Every worker stayed busy for the whole wait, or too many jobs were already waiting."""
 
 
 class WorkerTimeout(Exception):
-    """The job ran longer than the pool's ``timeout_s`` (it finishes in the background)."""
+    """The job ran longer than the pool's ``timeout_s``; its worker was killed."""
 
 
 class WorkerDied(Exception):
     """A worker process stopped during the job (out of memory, a crash in compiled code)."""
+
+
+def die_with_parent(parent_pid: int) -> None:
+    """End this process as soon as the process ``parent_pid`` (its parent) ends, however it ends.
+
+    On Linux the kernel sends ``SIGKILL`` when the parent dies (``PR_SET_PDEATHSIG``); on every
+    system a daemon thread checks every :data:`WATCHDOG_INTERVAL_S` that the parent is still
+    ``parent_pid`` (an orphan is adopted by another process) and exits at once otherwise. The
+    watchdog needs the interpreter lock; the kernel's signal does not, so it also ends a worker
+    stuck in a long compiled call.
+
+    Parameters
+    ----------
+    parent_pid : int
+        The parent's process id, as the parent saw it (``os.getpid()`` there).
+    """
+    if sys.platform.startswith("linux"):
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+        except (OSError, AttributeError):  # no libc symbol: the watchdog alone
+            pass
+    if os.getppid() != parent_pid:  # the parent died before the signal was armed
+        os._exit(1)
+    threading.Thread(target=_watch_parent, args=(parent_pid,), daemon=True,
+                     name="spectrocolor-parent-watchdog").start()
+
+
+def _watch_parent(parent_pid: int) -> None:
+    while True:
+        time.sleep(WATCHDOG_INTERVAL_S)
+        if os.getppid() != parent_pid:
+            os._exit(1)
+
+
+def _serve(connection, parent_pid: int) -> None:
+    """A worker's life: run the jobs that arrive on ``connection`` until told to stop."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C is the server's: it closes the pool
+    die_with_parent(parent_pid)
+    while True:
+        try:
+            message = connection.recv_bytes()
+        except (EOFError, OSError):  # the server closed its end
+            return
+        try:
+            job = pickle.loads(message)
+            if job is None:
+                return
+            function, args = job
+            answer = (True, function(*args))
+        except BaseException as exc:  # noqa: BLE001 - every failure goes back to the caller
+            answer = (False, exc)
+        try:
+            connection.send(answer)
+        except Exception as exc:  # noqa: BLE001 - a result or an exception that cannot be pickled
+            connection.send((False, RuntimeError(
+                f"the worker's answer cannot be sent back ({exc.__class__.__name__})")))
+
+
+# --- one long-lived thread starts every worker (see the module docstring) ----------------------
+
+_starts: queue.SimpleQueue = queue.SimpleQueue()
+_starter_lock = threading.Lock()
+_starter: threading.Thread | None = None
+
+
+def _starter_loop() -> None:
+    while True:
+        process, done, failure = _starts.get()
+        try:
+            process.start()
+        except BaseException as exc:  # noqa: BLE001 - handed to the thread that asked
+            failure.append(exc)
+        finally:
+            done.set()
+
+
+def _start_process(process) -> None:
+    """Start ``process`` from the starter thread (started on first use), and wait for it."""
+    global _starter
+    with _starter_lock:
+        if _starter is None or not _starter.is_alive():
+            _starter = threading.Thread(target=_starter_loop, daemon=True,
+                                        name="spectrocolor-worker-starter")
+            _starter.start()
+    done, failure = threading.Event(), []
+    _starts.put((process, done, failure))
+    done.wait()
+    if failure:
+        raise failure[0]
+
+
+class _Worker:
+    """One worker process and the server's end of its pipe."""
+
+    def __init__(self, context) -> None:
+        self.connection, child = context.Pipe(duplex=True)
+        self.process = context.Process(target=_serve, args=(child, os.getpid()), daemon=True,
+                                       name="spectrocolor-worker")
+        try:
+            _start_process(self.process)
+        finally:
+            child.close()
+
+    def call(self, function, args: tuple, timeout_s: float):
+        """``(True, result)`` or ``(False, exception)``; WorkerTimeout, EOFError or OSError."""
+        self.connection.send((function, args))
+        if not self.connection.poll(timeout_s):
+            raise WorkerTimeout
+        return self.connection.recv()
+
+    def kill(self) -> None:
+        """End the process now (``SIGKILL``) and reap it."""
+        if self.process.is_alive():
+            self.process.kill()
+        self.process.join(STOP_GRACE_S)
+        self.connection.close()
+
+    def stop(self) -> None:
+        """Ask the process to end; kill it if it does not within :data:`STOP_GRACE_S`."""
+        try:
+            self.connection.send(None)
+        except OSError:
+            pass
+        self.process.join(STOP_GRACE_S)
+        self.kill()
 
 
 class WorkerPool:
@@ -42,7 +194,12 @@ class WorkerPool:
     wait_s : float
         How long a job waits for a free worker before :class:`Busy`, s.
     timeout_s : float
-        Longest job before :class:`WorkerTimeout`, s.
+        Longest job, s; beyond, its worker is killed and the job ends in :class:`WorkerTimeout`.
+    per_client : int, optional
+        Most jobs of one client (the ``client`` key of :meth:`run`) running at once; default
+        ``workers``.
+    max_waiting : int, optional
+        Most jobs waiting for a worker; beyond, :class:`Busy` at once. Default ``4 * workers``.
 
     Examples
     --------
@@ -52,49 +209,180 @@ class WorkerPool:
     >>> pool.close()
     """
 
-    def __init__(self, workers: int, wait_s: float, timeout_s: float):
+    def __init__(self, workers: int, wait_s: float, timeout_s: float, *,
+                 per_client: int | None = None, max_waiting: int | None = None):
         self.workers, self.wait_s, self.timeout_s = workers, wait_s, timeout_s
-        self._slots = threading.BoundedSemaphore(workers)
-        self._lock = threading.Lock()
-        self._pool: concurrent.futures.ProcessPoolExecutor | None = None
+        self.per_client = workers if per_client is None else per_client
+        self.max_waiting = 4 * workers if max_waiting is None else max_waiting
+        self._context = multiprocessing.get_context("spawn")
+        self._condition = threading.Condition()
+        self._idle: list[_Worker] = []
+        self._busy: set[_Worker] = set()
+        self._waiting: collections.deque[list] = collections.deque()
+        self._running_by_client: collections.Counter = collections.Counter()
+        self._running = 0
+        self._generation = 0  # close() starts a new one: older workers are stopped on return
+        self._held_turns: list[tuple] = []  # turns taken through _slots (tests)
 
-    def _executor(self) -> concurrent.futures.ProcessPoolExecutor:
-        with self._lock:
-            if self._pool is None:
-                self._pool = concurrent.futures.ProcessPoolExecutor(
-                    self.workers, mp_context=multiprocessing.get_context("spawn"))
-            return self._pool
+    # --- admission -----------------------------------------------------------------------
 
-    def run(self, function, *args):
+    def _first_startable(self):
+        if self._running >= self.workers:
+            return None
+        return next((ticket for ticket in self._waiting
+                     if self._running_by_client[ticket[0]] < self.per_client), None)
+
+    def _admit(self, client, wait_s: float) -> tuple[_Worker | None, int]:
+        with self._condition:
+            if len(self._waiting) >= self.max_waiting:
+                raise Busy
+            ticket = [client]
+            self._waiting.append(ticket)
+            deadline = time.monotonic() + wait_s
+            try:
+                while self._first_startable() is not ticket:
+                    remaining = deadline - time.monotonic()
+                    if remaining <= 0:
+                        raise Busy
+                    self._condition.wait(remaining)
+            finally:
+                self._waiting.remove(ticket)
+                self._condition.notify_all()
+            self._running += 1
+            self._running_by_client[client] += 1
+            worker = self._idle.pop() if self._idle else None
+            if worker is not None:
+                self._busy.add(worker)
+            return worker, self._generation
+
+    def _release(self, client, worker: _Worker | None, generation: int) -> None:
+        with self._condition:
+            self._running -= 1
+            self._running_by_client[client] -= 1
+            if self._running_by_client[client] <= 0:
+                del self._running_by_client[client]
+            if worker is not None:
+                self._busy.discard(worker)
+                if generation == self._generation:
+                    self._idle.append(worker)
+                    worker = None
+            self._condition.notify_all()
+        if worker is not None:  # the pool was closed meanwhile
+            worker.stop()
+
+    # --- jobs ----------------------------------------------------------------------------
+
+    def run(self, function, *args, client=None):
         """``function(*args)`` in a worker; its exceptions pass through unchanged.
+
+        Parameters
+        ----------
+        function : callable
+            A module-level function (it is pickled to the worker by name).
+        *args
+            Its arguments (pickled).
+        client : hashable, optional, keyword-only
+            Who asks (the server gives the client's address), for the per-client limit.
 
         Raises
         ------
         Busy, WorkerTimeout, WorkerDied
             As described in the module docstring.
         """
-        if not self._slots.acquire(timeout=self.wait_s):
-            raise Busy
+        return self._run(function, args, client, self.wait_s)
+
+    def _run(self, function, args: tuple, client, wait_s: float):
+        worker, generation = self._admit(client, wait_s)
         try:
-            return self._executor().submit(function, *args).result(timeout=self.timeout_s)
-        except concurrent.futures.TimeoutError:
-            raise WorkerTimeout from None
-        except BrokenProcessPool:
-            self.close(wait=False)  # start afresh on the next job
+            if worker is not None and not worker.process.is_alive():  # died while idle
+                with self._condition:
+                    self._busy.discard(worker)
+                worker.kill()
+                worker = None
+            if worker is None:
+                try:
+                    worker = _Worker(self._context)
+                except Exception as exc:  # noqa: BLE001 - no descriptors, no memory, ...
+                    raise WorkerDied(f"no worker process could be started ({exc.__class__.__name__})") from None
+                with self._condition:
+                    self._busy.add(worker)
+            ok, value = worker.call(function, args, self.timeout_s)
+        except WorkerTimeout:
+            worker.kill()  # the job is abandoned: nobody else may wait for it
+            worker = None
+            raise
+        except (EOFError, OSError):  # the worker's pipe broke: it died during the job
+            if worker is not None:
+                worker.kill()
+            worker = None
             raise WorkerDied from None
         finally:
-            self._slots.release()
+            self._release(client, worker, generation)
+        if ok:
+            return value
+        raise value
 
     def warm(self, function, *args) -> None:
-        """Start ``function(*args)`` in a worker now, without waiting (e.g. to fill its caches)."""
-        try:
-            self._executor().submit(function, *args)
-        except BrokenProcessPool:
-            self.close(wait=False)
+        """Run ``function(*args)`` in a free worker in the background (e.g. to fill its caches).
+
+        Nothing happens if no worker is free at once; failures are ignored.
+        """
+        def job():
+            try:
+                self._run(function, args, _WARMING, 0.0)
+            except Exception:  # noqa: BLE001 - warming is a courtesy, never an error
+                pass
+
+        threading.Thread(target=job, daemon=True, name="spectrocolor-worker-warm").start()
+
+    @property
+    def _slots(self) -> _Turns:
+        """The pool's turns as a semaphore (``acquire``/``release``), for tests that fill it."""
+        return _Turns(self)
+
+    def worker_pids(self) -> list[int]:
+        """Process ids of the live worker processes (idle and busy)."""
+        with self._condition:
+            workers = [*self._idle, *self._busy]
+        return [w.process.pid for w in workers if w.process.pid is not None and w.process.is_alive()]
 
     def close(self, wait: bool = True) -> None:
-        """Stop the worker processes (a later job starts new ones)."""
-        with self._lock:
-            pool, self._pool = self._pool, None
-        if pool is not None:
-            pool.shutdown(wait=wait, cancel_futures=True)
+        """Stop the worker processes: idle ones are asked to end, busy ones are killed.
+
+        A later job starts new workers. ``wait`` is kept for compatibility: stopping always
+        waits at most :data:`STOP_GRACE_S` per worker.
+        """
+        with self._condition:
+            self._generation += 1
+            idle, self._idle = self._idle, []
+            busy = list(self._busy)
+        for worker in idle:
+            worker.stop()
+        for worker in busy:  # its job ends in WorkerDied, answered to its client
+            if worker.process.is_alive():
+                worker.process.kill()
+
+
+_WARMING = object()  # the client key of warm-up jobs: they count against no real client
+
+
+class _Turns:
+    """A pool's turns seen as a semaphore: ``acquire`` takes a turn without running a job."""
+
+    def __init__(self, pool: WorkerPool) -> None:
+        self._pool = pool
+
+    def acquire(self, timeout: float | None = None) -> bool:
+        """Take a turn (waiting at most ``timeout`` s); False if none came."""
+        key = object()  # a client of its own: the per-client limit does not apply
+        try:
+            worker, generation = self._pool._admit(key, self._pool.wait_s if timeout is None else timeout)
+        except Busy:
+            return False
+        self._pool._held_turns.append((key, worker, generation))
+        return True
+
+    def release(self) -> None:
+        """Give back the turn taken first."""
+        key, worker, generation = self._pool._held_turns.pop(0)
+        self._pool._release(key, worker, generation)

@@ -52,6 +52,10 @@ def _parse_json(text: str, source: str, percent: bool | None) -> Spectrum:
         raise SpectrumError(f"{source}: not valid JSON ({exc})") from None
     except RecursionError:
         raise SpectrumError(f"{source}: JSON nested too deeply; expected {FORMATS[0][1]}") from None
+    if isinstance(data, dict):
+        for key in ("wavelengths_nm", "values", "spectra"):
+            if key in data:
+                _only_numbers(data[key], f"{source}: {key!r} must hold numbers")
     try:
         spectrum = Spectrum.from_dict(data)
     except (SpectrumError, ValueError, TypeError) as exc:
@@ -60,6 +64,24 @@ def _parse_json(text: str, source: str, percent: bool | None) -> Spectrum:
         raise SpectrumError(f"{source}: values: NaN or infinite numbers; every value must be finite")
     values, note = apply_scale(spectrum.values, None, percent, source, "")
     return Spectrum(spectrum.wavelengths_nm, values, spectrum.names, {"format": "JSON", "value_scale": note})
+
+
+def _only_numbers(value, where: str) -> None:
+    """SpectrumError unless every leaf of ``value`` (lists, objects' values) is a JSON number.
+
+    JSON has its own number grammar; a string such as ``"0_5"`` or ``"٣"`` is not a number
+    (NumPy's conversion would read them as 5.0 and 3.0), nor is ``true``.
+    """
+    pending = [value]
+    while pending:  # iterative: the depth is the file's, not the interpreter's
+        item = pending.pop()
+        if isinstance(item, list):
+            pending.extend(item)
+        elif isinstance(item, dict):
+            pending.extend(item.values())
+        elif isinstance(item, bool) or not isinstance(item, (int, float)):
+            raise SpectrumError(f"{where}: {item!r:.40} is not a JSON number (write numbers "
+                                "without quotes, e.g. 0.5)")
 
 
 def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None) -> Spectrum:

@@ -35,6 +35,12 @@ from ..spectrum import Spectrum
 from .text import apply_scale, number, number_table, wavelength_of
 
 _TOKEN = re.compile(r'"([^"]*)"|(\S+)')
+#: Where :meth:`str.splitlines` ends a line (the reader splits lines with it).
+_BREAKS = "\n\r\x0b\x0c\x1c-\x1e\x85\u2028\u2029"
+#: ``BEGIN_DATA_FORMAT`` as the first token of a line. Tried only at line starts and with
+#: spaces that cannot cross a line break, so the search is linear: ``^\s*`` (which crosses
+#: line breaks) took quadratic time on a file of blank lines.
+_FIELD_LIST = re.compile(rf"(?:\A|(?<=[{_BREAKS}]))[^\S{_BREAKS}]*+BEGIN_DATA_FORMAT\b")
 _DIALECTS = {"CTI3": "ArgyllCMS .ti3", "SPECT": "ArgyllCMS .sp", "CTI1": "ArgyllCMS .ti1", "CTI2": "ArgyllCMS .ti2"}
 #: Keywords that say where and how the data were measured, under the names kept in metadata.
 _FACTS = {
@@ -67,7 +73,7 @@ def looks_like_cgats(text: str) -> bool:
     >>> looks_like_cgats("CGATS.17\\nBEGIN_DATA_FORMAT\\nSAMPLE_ID\\nEND_DATA_FORMAT\\n"), looks_like_cgats("a,b")
     (True, False)
     """
-    return re.search(r"^\s*BEGIN_DATA_FORMAT\b", text, re.MULTILINE) is not None
+    return _FIELD_LIST.search(text) is not None
 
 
 def _tokens(line: str) -> list[str]:
@@ -208,7 +214,8 @@ def _table_spectra(identifier, keywords, fields, rows, spectral, source, percent
     upper = [f.upper() for f in fields]
     name_index = next((upper.index(key) for key in ("SAMPLE_NAME", "SAMPLE_ID", "SAMPLEID") if key in upper), None)
     names = [row[name_index] if name_index is not None else f"sample_{r + 1}" for r, (_, row) in enumerate(rows)]
-    others = [i for i in range(len(fields)) if i not in set(columns) and i != name_index]
+    spectral_columns = set(columns)  # built once: a set per field made long field lists quadratic
+    others = [i for i in range(len(fields)) if i not in spectral_columns and i != name_index]
     declared, how = _declared_scale(identifier, keywords, [fields[i] for i in columns], source)
     values, note = apply_scale(values, declared, percent, source, how)
     metadata: dict[str, object] = {

@@ -4,6 +4,12 @@ Every reader turns a file's text into a :class:`~spectrocolor.Spectrum`; this mo
 they share: reading at most :data:`MAX_FILE_BYTES` of UTF-8 text, parsing numbers (with an
 optional decimal comma), wavelength labels such as ``380``, ``380nm``, ``SPECTRAL_NM380``, and
 the one rule for percent versus fraction (:func:`apply_scale`).
+
+Numbers follow one grammar, :data:`NUMBER` (the decimal numbers of CGATS.17, CSV and XML
+Schema): ASCII digits, an optional sign, point and exponent. Python's ``float`` accepts more --
+digit separators (``0_5`` is 5.0), digits of other scripts (``'٣'`` is 3.0), ``inf`` and
+``nan`` -- so every text that reaches ``float`` here has been checked first (for whole rows at
+once: :func:`plain_ascii_numbers`).
 """
 
 from __future__ import annotations
@@ -23,9 +29,40 @@ MAX_FILE_BYTES = 256 * 1024 * 1024
 #: ``SPECTRAL_PCT_380``, ``SPECTRAL_DEC_380`` (case-insensitive; decimals allowed).
 WAVELENGTH_LABEL = re.compile(
     r"^(?:(?P<prefix>spectral_(?:nm|pct|dec)?_?|spec_|nm_?|r_?|λ)?)"
-    r"(?P<nm>\d{3,4}(?:\.\d+)?)\s*(?:nm)?$",
+    r"(?P<nm>[0-9]{3,4}(?:\.[0-9]+)?)\s*(?:nm)?$",
     re.IGNORECASE,
 )
+
+#: A number as the file formats write it: ASCII digits, optional sign, point and exponent
+#: (``0.5``, ``-1``, ``.5``, ``5.``, ``1e-3``); no digit separators, no other scripts' digits.
+#: Possessive quantifiers: no backtracking, linear in the length of the text.
+NUMBER = re.compile(r"[+-]?(?:[0-9]++(?:\.[0-9]*+)?|\.[0-9]++)(?:[eE][+-]?[0-9]++)?")
+
+
+def plain_ascii_numbers(cells) -> bool:
+    """Whether the texts ``cells`` can go to ``float`` without reading more than :data:`NUMBER`.
+
+    For ASCII text without ``_``, ``float`` reads exactly the grammar of :data:`NUMBER` plus
+    ``inf``/``nan`` (which the readers refuse as non-finite afterwards), so one check of the
+    joined row is enough; anything else is parsed cell by cell with :func:`number`.
+
+    Parameters
+    ----------
+    cells : iterable of str
+        The cells of a row (or a table, flattened).
+
+    Returns
+    -------
+    bool
+        True if no cell holds ``_`` or a non-ASCII character.
+
+    Examples
+    --------
+    >>> plain_ascii_numbers(["0.5", "1e-3"]), plain_ascii_numbers(["0_5"]), plain_ascii_numbers(["٣"])
+    (True, False, False)
+    """
+    joined = "".join(cells)
+    return joined.isascii() and "_" not in joined
 
 
 def read_text(path: Path) -> str:
@@ -111,20 +148,29 @@ def number(cell: str, where: str, decimal_comma: bool = False) -> float:
     Raises
     ------
     SpectrumError
-        For text that is not a finite number.
+        For text that is not a finite number of the grammar :data:`NUMBER` (``0_5``, ``٣``,
+        ``1,5`` without ``decimal_comma``, ``nan``, ``inf``).
 
     Examples
     --------
     >>> number("0,5", "tiles.csv, line 2", decimal_comma=True)
     0.5
+    >>> number("0_5", "tiles.csv, line 2")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    spectrocolor.errors.SpectrumError: tiles.csv, line 2: '0_5' is not a number (expected ASCII digits ...)
     """
     text = cell.strip()
     if decimal_comma:
         text = text.replace(",", ".")
-    try:
-        value = float(text)
-    except ValueError:
-        raise SpectrumError(f"{where}: {cell.strip()[:40]!r} is not a number") from None
+    if NUMBER.fullmatch(text) is None:
+        if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+            raise SpectrumError(f"{where}: {cell.strip()[:40]!r} is not a finite number")
+        point = "decimal comma" if decimal_comma else "decimal point"
+        raise SpectrumError(f"{where}: {cell.strip()[:40]!r} is not a number (expected ASCII digits "
+                            f"with an optional sign, {point} and exponent, e.g. "
+                            f"{'0,5' if decimal_comma else '0.5'} or 1e-3)")
+    value = float(text)
     if not np.isfinite(value):
         raise SpectrumError(f"{where}: {cell.strip()[:40]!r} is not a finite number")
     return value
@@ -163,9 +209,10 @@ def number_table(rows: list[list[str]], locate, decimal_comma: bool = False) -> 
     """
     try:
         cells = [[cell.replace(",", ".") for cell in row] for row in rows] if decimal_comma else rows
-        table = np.array(cells, dtype=float)
-        if table.size == 0 or np.all(np.isfinite(table)):
-            return table.reshape(len(rows), -1)
+        if all(plain_ascii_numbers(row) for row in cells):
+            table = np.array(cells, dtype=float)
+            if table.size == 0 or np.all(np.isfinite(table)):
+                return table.reshape(len(rows), -1)
     except ValueError:
         pass
     return np.array(
@@ -197,7 +244,9 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
     Raises
     ------
     SpectrumError
-        When ``percent`` contradicts what the file declares.
+        When ``percent`` contradicts what the file declares, or when the declared full scale
+        is not a finite positive number that keeps every value finite (Argyll's
+        ``SPECTRAL_NORM "1e-320"`` made infinities).
 
     Examples
     --------
@@ -212,7 +261,17 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
                 f"percent: {source} declares its values on {said if declared != 1.0 else 'the 0–1 scale'} "
                 f"({how}); percent={percent} contradicts it; leave percent unset"
             )
-        return values / declared, f"divided by {declared:g} as the file declares ({how})"
+        if not (np.isfinite(declared) and declared > 0):
+            raise SpectrumError(f"{source}: the declared full scale ({how}) must be a finite positive "
+                                f"number, got {declared!r:.40}")
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            scaled = values / declared
+        if not np.all(np.isfinite(scaled)):
+            raise SpectrumError(
+                f"{source}: the declared full scale {declared:g} ({how}) is too small: dividing the "
+                "values by it goes beyond the float range; it must be a full scale such as 1 or 100"
+            )
+        return scaled, f"divided by {declared:g} as the file declares ({how})"
     if percent is None:
         return values, "as written (the file does not declare percent or fraction; pass percent=True/False)"
     if percent:

@@ -13,7 +13,8 @@ TM-27-20 schema is not public and could not be checked (see docs/measurement_dat
 it does not know are kept as text in ``metadata`` under ``Section/Element``. ``BandwidthFWHM`` and
 ``BandwidthCorrected`` are kept (``bandwidth_fwhm_nm``, ``bandwidth_corrected``) for
 :func:`spectrocolor.bandpass.bandpass_correction` to check; nothing is corrected on reading.
-Documents with a ``DOCTYPE`` are refused (no entity expansion). TM-27 does not declare percent
+Documents with a ``DOCTYPE`` or an entity declaration anywhere are refused, found by expat
+itself before the document is parsed (no entity is ever expanded). TM-27 does not declare percent
 or fraction for reflectance data; the caller's ``percent`` option decides
 (:func:`spectrocolor.io.text.apply_scale`).
 
@@ -25,8 +26,8 @@ Engineering Society, 2014; IES TM-27-20 (second edition), 2020.
 
 from __future__ import annotations
 
-import re
 import xml.etree.ElementTree as ElementTree
+from xml.parsers import expat
 
 import numpy as np
 
@@ -38,7 +39,12 @@ EXPECTED = "<IESTM2714> with <SpectralDistribution><SpectralData wavelength=…>
 
 
 def looks_like_tm27(text: str) -> bool:
-    """True for XML whose document element is ``IESTM2714`` (any namespace prefix).
+    """True for XML whose document element is ``IESTM2714`` (any namespace prefix), or with a DTD.
+
+    The document element is found by expat itself, however long the comments and processing
+    instructions before it. A document with a ``DOCTYPE`` is not read past it (its DTD could
+    declare entities): it is answered True, so that :func:`parse_tm27` refuses it with the
+    reason, whatever its document element.
 
     Parameters
     ----------
@@ -54,9 +60,71 @@ def looks_like_tm27(text: str) -> bool:
     --------
     >>> looks_like_tm27('<IESTM2714 version="1.0"></IESTM2714>'), looks_like_tm27("<html></html>")
     (True, False)
+    >>> looks_like_tm27("<!--" + " " * 100_000 + '--><tm:IESTM2714 xmlns:tm="x"/>')
+    True
     """
-    head = text.lstrip()[:4096]
-    return head.startswith("<") and re.search(r"<\s*(\w+:)?IESTM2714\b", head) is not None
+    if not text.lstrip().startswith("<"):
+        return False
+    name = _document_element(text)
+    return name is _DOCTYPE or (name is not None and name.rsplit(":", 1)[-1] == "IESTM2714")
+
+
+class _Found(Exception):
+    """Raised by an expat handler to stop parsing: the document element (or DOCTYPE) is known."""
+
+
+class _Declaration(Exception):
+    """Raised by an expat handler: the document declares a DOCTYPE or an entity."""
+
+
+_DOCTYPE = "<!DOCTYPE>"  # what _document_element answers for a document with a DTD
+
+
+def _stop_at_name(name, *_):
+    raise _Found(name)
+
+
+def _stop_at_doctype(*_):
+    raise _Found(_DOCTYPE)
+
+
+def _document_element(text: str) -> str | None:
+    """The document element's name (prefix included), :data:`_DOCTYPE`, or None (not XML)."""
+    parser = expat.ParserCreate()
+    parser.StartElementHandler = _stop_at_name
+    parser.StartDoctypeDeclHandler = _stop_at_doctype
+    try:
+        parser.Parse(text, True)
+    except _Found as found:
+        return found.args[0]
+    except (expat.ExpatError, ValueError):
+        return None
+    return None
+
+
+def _refuse_declaration(*_):
+    raise _Declaration
+
+
+def _refuse_declarations(text: str, source: str) -> None:
+    """SpectrumError if the document has a DOCTYPE or declares an entity, wherever it is.
+
+    expat reads the whole document once (linear) with handlers that stop at the first DOCTYPE,
+    ENTITY or NOTATION declaration: no prefix of the text is trusted, so a DOCTYPE after 70 kB
+    of comment is found too, and no entity is ever expanded.
+    """
+    parser = expat.ParserCreate()
+    parser.StartDoctypeDeclHandler = _refuse_declaration
+    parser.EntityDeclHandler = _refuse_declaration
+    parser.UnparsedEntityDeclHandler = _refuse_declaration
+    parser.NotationDeclHandler = _refuse_declaration
+    try:
+        parser.Parse(text, True)
+    except _Declaration:
+        raise SpectrumError(f"{source}: XML with a DOCTYPE or ENTITY declaration is not accepted "
+                            "(TM-27 needs none)") from None
+    except (expat.ExpatError, ValueError) as exc:
+        raise SpectrumError(f"{source}: not well-formed XML ({exc})") from None
 
 
 def _local(tag: str) -> str:
@@ -110,8 +178,7 @@ def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
     >>> s.names, s.values.tolist(), s.metadata["spectral_quantity"]
     (('LED',), [0.5, 1.0], 'relative')
     """
-    if re.search(r"<!DOCTYPE|<!ENTITY", text[:65536], re.IGNORECASE):
-        raise SpectrumError(f"{source}: XML with a DOCTYPE or ENTITY declaration is not accepted (TM-27 needs none)")
+    _refuse_declarations(text, source)
     try:
         root = ElementTree.fromstring(text)
     except ElementTree.ParseError as exc:
@@ -177,5 +244,5 @@ def _names(metadata: dict[str, object], count: int) -> list[str]:
     parts = [
         str(metadata[k]) for k in ("Header/Manufacturer", "Header/CatalogNumber", "Header/Description") if k in metadata
     ]
-    base = " – ".join(parts) if parts else "spectrum"
+    base = " ".join(" – ".join(parts).split()) if parts else "spectrum"  # XML line breaks: spaces
     return [base] if count == 1 else [f"{base} {i + 1}" for i in range(count)]

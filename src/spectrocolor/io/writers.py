@@ -8,6 +8,11 @@
 * :func:`table_to_cgats`: result rows (``spectrocolor xyz``/``describe``/``report``) as CGATS.17,
   with CGATS's standard field names where one exists (``XYZ_X``, ``LAB_L`` …).
 
+Every name, keyword and text cell is written on one line: a line break or another control
+character in one (:func:`one_line`), or a keyword that is not one CGATS word, is refused with a
+SpectrumError naming it, so no name can break a file's structure. A double quote inside a CGATS
+string (which has no escape) is written as an apostrophe; CSV quotes as RFC 4180 says.
+
 References
 ----------
 ANSI CGATS.17-2009 / ISO 28178:2009 (file structure, standard field names SAMPLE_ID,
@@ -19,6 +24,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import re
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -40,20 +46,79 @@ CGATS_FIELDS = {
 }
 
 
-def _quoted(text: str) -> str:
-    return '"' + str(text).replace('"', "'") + '"'
+#: Characters that end a line for the readers (:meth:`str.splitlines`) and the other control
+#: characters: none may appear in a name, keyword or text cell that a writer puts on one line.
+_NOT_IN_ONE_LINE = re.compile("[\x00-\x08\x0a-\x1f\x7f\x85\u2028\u2029]")
+#: A CGATS keyword: one token, no quote, no comment sign.
+_KEYWORD = re.compile(r"[^\s\"#]+")
+#: Words that structure a CGATS file: never a keyword of ours.
+_RESERVED = {"BEGIN_DATA_FORMAT", "END_DATA_FORMAT", "BEGIN_DATA", "END_DATA", "KEYWORD"}
 
 
-def _cell(value) -> str:
+def one_line(text, what: str) -> str:
+    """``text`` as a string, or SpectrumError if it would break a line-based file.
+
+    CGATS and the CSV readers are line based: a name holding a line break (``\\n``, ``\\r``,
+    or any other break of :meth:`str.splitlines`) or another control character would end its
+    row in the middle and break the file's structure, so writers refuse it, naming it.
+
+    Parameters
+    ----------
+    text : object
+        The name, keyword value or text cell (made a string with ``str``).
+    what : str
+        What it is, for the message (e.g. ``"names[2]"``).
+
+    Returns
+    -------
+    str
+        The text, unchanged.
+
+    Raises
+    ------
+    SpectrumError
+        If it holds a line break or another control character (a tab is allowed).
+
+    Examples
+    --------
+    >>> one_line("tile 1", "names[0]")
+    'tile 1'
+    >>> one_line("tile\\n1", "names[0]")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    spectrocolor.errors.SpectrumError: names[0]: 'tile\\n1' holds a line break or control character ('\\n'); ...
+    """
+    text = str(text)
+    found = _NOT_IN_ONE_LINE.search(text)
+    if found is not None:
+        raise SpectrumError(f"{what}: {text!r:.60} holds a line break or control character "
+                            f"({found.group()!r}); names, keywords and text cells are written on "
+                            "one line: remove it")
+    return text
+
+
+def _quoted(text, what: str) -> str:
+    return '"' + one_line(text, what).replace('"', "'") + '"'
+
+
+def _keyword(key, what: str) -> str:
+    key = str(key)
+    if _KEYWORD.fullmatch(key) is None or key.upper() in _RESERVED:
+        raise SpectrumError(f"{what}: {key!r:.60} is not a CGATS keyword (one word without spaces, "
+                            f"quotes or '#', and none of {', '.join(sorted(_RESERVED))})")
+    return key
+
+
+def _cell(value, what: str) -> str:
     if value is None:  # a missing number (records() writes NaN as None)
         return "NaN"
     if isinstance(value, bool):
-        return _quoted("true" if value else "false")
+        return _quoted("true" if value else "false", what)
     if isinstance(value, (float, np.floating)):
         return "NaN" if math.isnan(value) else f"{float(value):.17g}"
     if isinstance(value, (int, np.integer)):
         return str(int(value))
-    return _quoted(value)
+    return _quoted(value, what)
 
 
 #: Keywords CGATS.17 defines (written without a ``KEYWORD`` declaration).
@@ -72,9 +137,10 @@ _STRUCTURAL_KEYWORDS = {
 def _cgats(keywords: Mapping[str, str], fields: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     lines = ["CGATS.17"]
     for key, value in keywords.items():
+        key = _keyword(key, "keywords")
         if key not in _STANDARD_KEYWORDS:
-            lines.append(f"KEYWORD {_quoted(key)}")
-        lines.append(f"{key} {_quoted(value)}")
+            lines.append(f"KEYWORD {_quoted(key, 'keywords')}")
+        lines.append(f"{key} {_quoted(value, f'keywords[{key!r}]')}")
     lines += [
         f"NUMBER_OF_FIELDS {len(fields)}",
         "BEGIN_DATA_FORMAT",
@@ -137,7 +203,12 @@ def spectra_to_cgats(spectrum: Spectrum, keywords: Mapping[str, str] | None = No
     spectral = [f"SPECTRAL_NM{wavelength:g}" for wavelength in spectrum.wavelengths_nm]
     fields = ["SAMPLE_ID", "SAMPLE_NAME", *(name for name, _ in extra), *spectral]
     rows = [
-        [str(i + 1), _quoted(names[i]), *(_quoted(column[i]) for _, column in extra), *(_cell(v) for v in values[i])]
+        [
+            str(i + 1),
+            _quoted(names[i], f"names[{i}]"),
+            *(_quoted(column[i], f"sample_fields[{name!r}][{i}]") for name, column in extra),
+            *(_cell(v, "values") for v in values[i]),
+        ]
         for i in range(values.shape[0])
     ]
     kept = {k: v for k, v in dict(spectrum.metadata.get("keywords", {})).items() if k not in _STRUCTURAL_KEYWORDS}
@@ -179,8 +250,15 @@ def table_to_cgats(rows: Sequence[Mapping[str, object]], keywords: Mapping[str, 
         raise SpectrumError("rows: nothing to write")
     columns = list(rows[0])
     fields = ["SAMPLE_ID", *(CGATS_FIELDS.get(c, _field_name(c)) for c in columns)]
-    body = [[str(i + 1), *(_cell(row[c]) for c in columns)] for i, row in enumerate(rows)]
+    body = [[str(i + 1), *(_cell(row[c], f"rows[{i}][{c!r}]") for c in columns)] for i, row in enumerate(rows)]
     return _cgats({"ORIGINATOR": "spectrocolor", **dict(keywords or {})}, fields, body)
+
+
+def _csv_name(name: str) -> str:
+    """A header cell: quoted (RFC 4180) when it holds a delimiter the reader may choose or a quote."""
+    if any(c in name for c in ',;\t"'):
+        return '"' + name.replace('"', '""') + '"'
+    return name
 
 
 def spectra_to_csv(spectrum: Spectrum) -> str:
@@ -210,9 +288,10 @@ def spectra_to_csv(spectrum: Spectrum) -> str:
         raise SpectrumError(f"spectrum: CSV holds (N, K) batches, got values of shape {spectrum.values.shape}")
     rows = np.atleast_2d(spectrum.values)
     names = spectrum.names or tuple(f"spectrum_{i + 1}" for i in range(rows.shape[0]))
+    names = [one_line(name, f"names[{i}]") for i, name in enumerate(names)]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["wavelength_nm", *names])
+    buffer.write(",".join(["wavelength_nm", *map(_csv_name, names)]) + "\n")
     for k, wavelength in enumerate(spectrum.wavelengths_nm):
         writer.writerow([f"{wavelength:.10g}", *(f"{v:.17g}" for v in rows[:, k])])
     return buffer.getvalue()

@@ -208,7 +208,13 @@ function drawGraphic() {
   ctx.globalAlpha = 1;
   ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 1.5;
   ctx.beginPath(); ctx.arc(cx, cy, r, 0, 2 * Math.PI); ctx.stroke();
-  if (!result.graphic) return;
+  if (!result.graphic) { // no graphic for this light: say why (the server's note)
+    ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "center";
+    ctx.fillText("No vector graphic for this light", cx, cy);
+    $("graphic").setAttribute("aria-label", `TM-30 colour vector graphic: ${result.graphic_note || "none"}`);
+    return;
+  }
+  $("graphic").setAttribute("aria-label", "TM-30 colour vector graphic");
   const P = ([a, b]) => [cx + a * r, cy - b * r];
   ctx.strokeStyle = "#b3261e"; ctx.lineWidth = 2.5;
   ctx.beginPath();
@@ -225,17 +231,22 @@ function drawGraphic() {
 
 function samples() {
   const { names, under_light: light, under_reference: reference } = result.samples;
+  const notes = [];  // said when the samples are not shown as the caption describes
+  if (!result.samples.under_light_note.startsWith("adapted")) notes.push(`Under this light: ${result.samples.under_light_note}.`);
+  if (!result.samples.under_reference_note.startsWith("adapted")) notes.push(`Under the reference: ${result.samples.under_reference_note}.`);
+  if (result.graphic_note) notes.push(`${result.graphic_note[0].toUpperCase()}${result.graphic_note.slice(1)}.`);
+  $("samples-note").textContent = notes.join(" ");
   $("samples").replaceChildren(...names.map((name, i) => {
     const item = document.createElement("div");
     item.className = "sample";
     const swatch = document.createElement("div");
     swatch.className = "swatch";
     swatch.setAttribute("role", "img");
-    const top = document.createElement("div"); top.style.background = css(light[i]);
+    const top = document.createElement("div"); top.style.background = light ? css(light[i]) : "transparent";
     const bottom = document.createElement("div");
     bottom.style.background = reference ? css(reference[i]) : "transparent";
     swatch.append(top, bottom);
-    swatch.setAttribute("aria-label", `${name}: under the light ${css(light[i])}, under the reference ${reference ? css(reference[i]) : "none"}`);
+    swatch.setAttribute("aria-label", `${name}: under the light ${light ? css(light[i]) : "none"}, under the reference ${reference ? css(reference[i]) : "none"}`);
     const caption = document.createElement("span");
     caption.textContent = `${name.slice(0, 5)} R${i + 1} ${fmt(result.Ri[i], 0)}`;
     caption.title = name;
