@@ -109,6 +109,7 @@ def test_ciede2000_symmetric_nonnegative_zero_on_identity(c1, c2):
     d12 = sc.delta_e_2000(c1, c2)
     assert d12 >= 0
     assert d12 == pytest.approx(sc.delta_e_2000(c2, c1), abs=1e-9)
+    # exact: every difference of a colour with itself is exactly 0, and so is the sum
     assert sc.delta_e_2000(c1, c1) == 0.0
 
 
@@ -124,3 +125,33 @@ def test_mismatched_batches_are_a_clear_error():
         sc.delta_e_2000(np.ones((4, 3)), np.ones((5, 3)))
     with pytest.raises(ColorimetryError, match="do not broadcast"):
         sc.delta_e_76(np.ones((4, 3)), np.ones((5, 3)))
+
+
+# --- numbers that overflow say so (issue 25) ------------------------------------------------------
+
+
+@pytest.mark.parametrize(("lab1", "lab2"), [
+    ([1e308, 0.0, 0.0], [0.0, 0.0, 0.0]),
+    ([50.0, 1e308, 0.0], [50.0, -1e308, 0.0]),
+    ([50.0, 1e200, 1e200], [50.0, 0.0, 0.0]),
+    ([[50.0, 2.0, 3.0], [50.0, 1e60, 0.0]], [50.0, 0.0, 0.0]),
+])
+def test_differences_that_overflow_are_an_error_naming_the_arguments(lab1, lab2):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # and no RuntimeWarning on the way
+        for difference, name in ((sc.delta_e_2000, "ΔE00"), (sc.delta_e_76, "ΔE*ab")):
+            try:
+                value = difference(lab1, lab2)
+            except sc.ColorimetryError as error:
+                assert str(error).startswith("lab1, lab2: ") and f"{name} overflows" in str(error)
+            else:  # only where the true difference is finite and was computed so
+                assert np.all(np.isfinite(value)), (difference, value)
+    with pytest.raises(sc.ColorimetryError, match="lab1, lab2: .*ΔE00 overflows the float range"):
+        sc.delta_e_2000(lab1, lab2)
+
+
+def test_nan_in_a_difference_stays_per_item_and_is_not_an_overflow():
+    value = sc.delta_e_2000([[np.nan, 0.0, 0.0], [50.0, 2.0, 3.0]], [50.0, 0.0, 0.0])
+    assert np.isnan(value[0]) and np.isfinite(value[1])

@@ -25,13 +25,15 @@ def test_render_in_gamut_colours_against_colour_science():
     XYZ100 = np.array([[20.0, 21.0, 22.0], [30.0, 20.0, 10.0], [30.0, 40.0, 20.0]])
     r = sc.render(XYZ100, "sRGB")
     assert r.in_gamut.all() and r.gamut == sc.display.gamut.DEFAULT_GAMUT == "desaturate"
-    assert r.normalise == "none" and r.scale == 1.0
+    assert r.normalise == "none" and r.scale == 1.0  # exact: the default parameter itself, not a result
     npm = colour.models.normalised_primary_matrix(
         colour.RGB_COLOURSPACES["sRGB"].primaries, colour.RGB_COLOURSPACES["sRGB"].whitepoint
     )
     linear = XYZ100 / 100 @ np.linalg.inv(npm).T
     np.testing.assert_allclose(r.rgb_linear, linear, atol=1e-12)
     np.testing.assert_allclose(r.rgb_encoded, colour.models.eotf_inverse_sRGB(linear), atol=1e-12)
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(r.codes, _srgb8(linear))
     assert r.codes.dtype == np.int64 and r.bit_depth == 8
 
@@ -50,8 +52,8 @@ def test_flag_blacks_and_names_the_negative_channel():
     XYZ = np.array([[1.0, 60.0, 5.0], [30.0, 30.0, 30.0]])
     r = sc.render(XYZ, "sRGB", gamut="flag")
     assert not r.in_gamut[0] and r.in_gamut[1]
-    np.testing.assert_array_equal(r.negative[0], [True, False, True])
-    np.testing.assert_array_equal(r.codes[0], [0, 0, 0])
+    np.testing.assert_array_equal(r.negative[0], [True, False, True])  # exact: booleans of clearly negative channels
+    np.testing.assert_array_equal(r.codes[0], [0, 0, 0])  # exact: flagged colours get code 0, set
     linear = XYZ[0] / 100 @ np.linalg.inv(sc.rgb_space("sRGB").matrix_to_XYZ / 100).T
     np.testing.assert_allclose(r.rgb_unmapped[0], linear, atol=1e-12)
 
@@ -88,6 +90,8 @@ def test_spectra_space_uses_its_64_level_table():
     space = sc.rgb_space("SPECTRA 7000K")
     # half the white's drive on every channel: level 46 of 63 (seed 002 Appendix)
     r = sc.render(space.white_XYZ * 0.5, space)
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(r.codes, [46, 46, 46])
     assert r.bit_depth == 6
     with pytest.raises(sc.ColorimetryError, match="64 levels"):
@@ -118,7 +122,7 @@ def test_render_properties(gamut, XYZ):
     inside = r.in_gamut
     np.testing.assert_allclose(r.rgb_linear[inside], r.rgb_unmapped[inside], atol=1e-9)
     expected_in = np.all((r.rgb_unmapped >= -1e-9) & (r.rgb_unmapped <= 1 + 1e-9), axis=1)
-    np.testing.assert_array_equal(inside, expected_in)
+    np.testing.assert_array_equal(inside, expected_in)  # exact: booleans of the same tolerance test on the same numbers
 
 
 def test_bad_input():
@@ -136,4 +140,19 @@ def test_bad_types_are_colorimetry_errors():
     with pytest.raises(sc.ColorimetryError, match="needs scale, a positive number"):
         sc.render([10.0, 10.0, 10.0], normalise="fixed", scale="2")
     fixed = sc.render([10.0, 10.0, 10.0], normalise="fixed", scale=np.float64(2.0))
-    assert fixed.scale == 2.0
+    assert fixed.scale == 2.0  # exact: the given scale itself, passed through
+
+
+# --- small API slips are one clear error (issue 25) -----------------------------------------------
+
+
+@pytest.mark.parametrize("weights", [[[1, 2, 3], [4, 5]], "W", [[1j, 0, 0]], None])
+def test_max_object_rgb_refuses_weights_that_are_not_a_numeric_array(weights):
+    with pytest.raises(sc.ColorimetryError, match="^weights: expected"):
+        sc.max_object_rgb("sRGB", weights)
+
+
+@pytest.mark.parametrize("white", ["D65", ["95", "100", "108"], 1j, [95 + 1j, 100, 108], [[95, 100], [1]]])
+def test_white_scale_refuses_strings_complex_and_ragged_whites(white):
+    with pytest.raises(sc.ColorimetryError, match="^white_XYZ: expected"):
+        sc.white_scale("sRGB", white)

@@ -69,13 +69,14 @@ def test_constructors():
     block = Spectrum.block(500, 600, g)
     assert block.values.sum() == 11 and block.values[g == 500] == 1 and block.values[g == 490] == 0
     stop = Spectrum.block(600, 500, g)  # band-stop
+    # exact: a block is built of exact ones and zeros
     np.testing.assert_array_equal(stop.values, np.where((g >= 600) | (g <= 500), 1.0, 0.0))
     gauss = Spectrum.gaussian(550, 40, sc.wavelength_grid(400, 700, 1))
     half = gauss.values[np.isin(gauss.wavelengths_nm, [530, 570])]
     np.testing.assert_allclose(half, 0.5, rtol=1e-12)
     bins = Spectrum.bins(np.arange(31), full_scale=30)
     np.testing.assert_allclose(bins.wavelengths_nm, g)
-    assert bins.values[-1] == 1.0
+    assert bins.values[-1] == 1.0  # exact: 30 / 30 full scale: one exact division
     assert Spectrum.constant(0.5, g).values.sum() == pytest.approx(15.5)
 
 
@@ -100,6 +101,7 @@ def test_resample_reproduces_nodes_and_polynomials(method):
     np.testing.assert_allclose(line.resample(fine, method).values, 0.3 + 1e-3 * fine, rtol=0, atol=1e-12)
     wiggly = Spectrum(coarse, np.sin(coarse / 17.0))
     back = wiggly.resample(fine, method).values[::5]
+    # exact: at the nodes the interpolants' higher terms are multiplied by exact 0 (fine[::5] is coarse)
     np.testing.assert_array_equal(back, wiggly.values)
 
 
@@ -158,4 +160,19 @@ def test_bad_arguments_are_spectrum_errors_naming_the_argument():
     for call, argument in cases:
         with pytest.raises(SpectrumError, match=argument):
             call()
-    np.testing.assert_array_equal((s / 2).values, 0.25)
+    np.testing.assert_array_equal((s / 2).values, 0.25)  # exact: 0.5 / 2: one exact division
+
+
+# --- small API slips are one clear error (issue 25) -----------------------------------------------
+
+
+@pytest.mark.parametrize("levels", [["a"], "abc", [1j, 2], [[1, 2], [3]], [None, 1]])
+def test_bins_refuses_levels_that_are_not_numbers(levels):
+    with pytest.raises(sc.SpectrumError, match="^levels: expected"):
+        sc.Spectrum.bins(levels)
+
+
+@pytest.mark.parametrize("full_scale", ["30", 0, -1, float("nan"), True])
+def test_bins_refuses_a_full_scale_that_is_not_a_positive_number(full_scale):
+    with pytest.raises(sc.SpectrumError, match="^full_scale: expected"):
+        sc.Spectrum.bins([1, 2], full_scale=full_scale)

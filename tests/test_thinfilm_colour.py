@@ -64,12 +64,15 @@ def test_colour_science_cmfs_are_the_seed_tables():
 def test_zawischa_strip_matches_independent_reimplementation():
     opd, XYZ_ref, codes_ref = seed000_reference()
     strip = zawischa_strip()
+    # exact: optical path differences are whole nanometres (5 · i): exact
     np.testing.assert_array_equal(strip.opd_nm, opd)
     # XYZ agree up to the arbitrary constant C of eq. (8)
     ratio = strip.colours.XYZ100 / XYZ_ref
     np.testing.assert_allclose(ratio, ratio[0, 0], rtol=1e-9)
     x_ref = XYZ_ref[:, :2] / XYZ_ref.sum(1, keepdims=True)
     np.testing.assert_allclose(strip.colours.xy, x_ref, atol=1e-12)
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(strip.colours.rgb8, codes_ref)
     np.testing.assert_array_equal(strip.tick_columns, np.arange(99, 1000, 100))
 
@@ -83,6 +86,8 @@ def test_zawischa_cli_writes_strip_and_csv(tmp_path, monkeypatch):
     opd, _, codes = seed000_reference()
     img = np.asarray(Image.open(out).convert("RGB"))
     assert img.shape == (80, 1000, 3)
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(img[:70], np.broadcast_to(codes, (70, 1000, 3)))
     # tick band: white at 500 nm (column 99 and neighbours), black elsewhere
     assert np.all(img[70:, 98:101] == 255) and np.all(img[70:, 50] == 0)
@@ -92,6 +97,7 @@ def test_zawischa_cli_writes_strip_and_csv(tmp_path, monkeypatch):
     assert rows[0] == ["opd_nm", "X", "Y", "Z", "x", "y", "r8", "g8", "b8"]
     assert len(rows) == 1001
     data = np.array(rows[1:], dtype=float)
+    # exact: optical path differences are whole nanometres (5 · i): exact
     np.testing.assert_array_equal(data[:, 0], opd)
     np.testing.assert_array_equal(data[:, 6:].astype(int), codes)
     np.testing.assert_allclose(data[:, 4:6], data[:, 1:3] / data[:, 1:4].sum(1, keepdims=True),
@@ -142,11 +148,19 @@ def test_table_lookup_equals_direct_rendering(table):
     img = maps.render_thickness_map(d, table, background=(7, 8, 9))
     wl = np.arange(380.0, 781.0, 5.0)
     direct = film_colours(soap_film(np.arange(0, 1200.5, 0.5), wl)).rgb8
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(img[0, 0], direct[0])
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(img[0, 1], direct[200])
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(img[0, 2], direct[501])
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(img[1, 1], direct[2399])
-    np.testing.assert_array_equal(img[1, 2], [7, 8, 9])
+    np.testing.assert_array_equal(img[1, 2], [7, 8, 9])  # exact: the background codes given, set
     with pytest.raises(SpectrumError, match="0-1200 nm"):
         maps.render_thickness_map(np.array([[1300.0]]), table)
 
@@ -158,6 +172,8 @@ def test_angle_table_and_bubble():
     wl = np.arange(380.0, 781.0, 5.0)
     direct = film_colours(soap_film(np.array([300.0]), wl, angle_deg=40.0),
                           exposure="perfect-reflector", gain=2.0).rgb8[0]
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(tab.lookup(np.array([300.0]), np.array([40.0]))[0], direct)
     thickness, angle = maps.bubble(64, top_thickness_nm=50, bottom_thickness_nm=500)
     assert np.isnan(thickness[0, 0]) and np.isnan(angle[0, 0])
@@ -187,10 +203,13 @@ def test_angle_lookup_interpolates_in_linear_light_between_grid_angles():
         w = (a - a0) / (a1 - a0)
         expected = _srgb_codes((1 - w) * lin0 + w * lin1)
         got = tab.lookup(np.array([d]), np.array([a]))[0]
+        # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+        # reach
         np.testing.assert_array_equal(got, expected, err_msg=f"{d} nm at {a}°")
     # the mixture is not just one of the rows (the test can tell interpolation from nearest)
     row40, row50 = tab.rgb8[4, 150], tab.rgb8[5, 150]
     mid = tab.lookup(np.array([300.0]), np.array([45.0]))[0]
+    # exact: integer codes; the test asserts that they differ
     assert not np.array_equal(mid, row40) and not np.array_equal(mid, row50)
     with pytest.raises(SpectrumError, match="0-89.9°"):
         tab.lookup(np.array([300.0]), np.array([89.95]))
@@ -205,6 +224,7 @@ def test_single_angle_lookup_is_the_nearest_entry_bit_for_bit(table):
     img = table.lookup(d, background=(1, 2, 3))
     film = ~np.isnan(d)
     nearest = np.rint(d[film].astype(np.float64) / 0.5).astype(int)
+    # exact: codes picked from the table: no arithmetic
     np.testing.assert_array_equal(img[film], table.rgb8[0, nearest])
     assert np.all(img[~film] == [1, 2, 3])
     assert table.rgb_linear is None  # one-angle tables keep only their codes
@@ -231,6 +251,7 @@ def test_read_thickness_maps(tmp_path):
         maps.read_thickness_map(png)
     npy = tmp_path / "t.npy"
     np.save(npy, np.ones((2, 2)) * 123.0)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     assert maps.read_thickness_map(npy)[0, 0] == 123.0
 
 
@@ -281,3 +302,28 @@ def test_zawischa_strip_needs_columns():
     for columns in (0, -3, 2.5):
         with pytest.raises(SpectrumError, match="columns"):
             zawischa_strip(columns=columns)
+
+
+# --- tables computed in blocks (issue 25) ---------------------------------------------------------
+
+
+def test_a_table_computed_in_blocks_is_the_table_computed_at_once():
+    options = dict(max_angle_deg=60.0, angle_step_deg=20.0, thickness_step_nm=2.0)
+    whole = maps.colour_table(soap_film, 900.0, memory_budget="64GiB", **options)
+    blocks = maps.colour_table(soap_film, 900.0, memory_budget="1MiB", **options)  # 64 KiB blocks: 6 thicknesses
+    # exact: 8-bit codes rounded from floats that agree to ~1e-14 move only at a half-code tie
+    np.testing.assert_array_equal(blocks.rgb8, whole.rgb8)
+    # each entry's XYZ is a sum of K = 81 products; a matrix product split into other batches may
+    # add them in another order: at most K rounding errors of the largest value (eps each)
+    K = 81
+    bound = K * np.finfo(float).eps * np.abs(whole.rgb_linear).max()
+    np.testing.assert_allclose(blocks.rgb_linear, whole.rgb_linear, rtol=0, atol=bound)
+
+
+def test_tables_beyond_the_budget_are_one_error_before_any_work():
+    with pytest.raises(SpectrumError, match="max_thickness_nm / thickness_step_nm: a table of 1500000001 thicknesses"):
+        maps.colour_table(soap_film, 1500.0, thickness_step_nm=1e-6)
+    with pytest.raises(SpectrumError, match="max_angle_deg / angle_step_deg"):
+        maps.colour_table(soap_film, 100.0, max_angle_deg=80.0, angle_step_deg=1e-300)
+    with pytest.raises(SpectrumError, match="columns: 10000000 columns"):
+        zawischa_strip(columns=10**7)

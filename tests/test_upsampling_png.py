@@ -86,6 +86,7 @@ def test_every_filter_depth_and_colour_type_decodes_to_the_codes(image, compiled
         patch.setenv("SPECTROCOLOR_NUMBA", "1" if compiled else "0")
         back = decode_png(data)
     assert back.dtype == codes.dtype
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(back, codes)
 
 
@@ -94,8 +95,10 @@ def test_all_five_filters_in_one_image_with_both_paths(monkeypatch):
     codes = rng.integers(0, 65536, (23, 31, 3), dtype=np.uint16)
     codes[:, :8] = np.arange(8)[None, :, None] * 9000  # smooth runs as well as noise
     data = encode(codes, filters=[r % 5 for r in range(23)], pieces=4)
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(decode_png(data), codes)
     monkeypatch.setenv("SPECTROCOLOR_NUMBA", "0")
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(decode_png(data), codes)
 
 
@@ -107,6 +110,7 @@ def test_large_images_cross_bands(monkeypatch, band, band_bytes):
     monkeypatch.setattr(png_reader, "BAND_BYTES", band_bytes)
     monkeypatch.setenv("SPECTROCOLOR_NUMBA", "0")
     codes = np.random.default_rng(8).integers(0, 65536, (11, 6, 4), dtype=np.uint16)
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(decode_png(encode(codes, 16, 6, [4, 3, 2, 1, 0, 4, 4, 3, 3, 2, 4])), codes)
 
 
@@ -114,8 +118,10 @@ def test_round_trip_with_the_project_writer_keeps_all_16_bits(tmp_path):
     codes = np.random.default_rng(9).integers(0, 65536, (40, 33, 3), dtype=np.uint16)
     codes[0, 0] = (0x0001, 0x0100, 0xFFFE)  # the low byte matters
     back = read_png(write_image(tmp_path / "rgb16.png", codes))
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(back, codes)
     with Image.open(tmp_path / "rgb16.png") as pillow:  # what the reader exists for
+        # exact: integer codes through an encoder and a decoder: no floating point
         assert not np.array_equal(np.asarray(pillow).astype(np.uint16) * 257, codes)
 
 
@@ -130,6 +136,7 @@ def test_pillow_files_with_adaptive_filters(mode, shape):
     assert picture.mode == mode
     picture.save(buffer, format="PNG")
     back = decode_png(buffer.getvalue())
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(back.reshape(shape), codes)
 
 
@@ -137,6 +144,7 @@ def test_pillow_16_bit_grey():
     codes = ((np.arange(24 * 17).reshape(24, 17) * 2579) % 65536).astype(np.uint16)
     buffer = io.BytesIO()
     Image.fromarray(codes).save(buffer, format="PNG")
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(decode_png(buffer.getvalue())[..., 0], codes)
 
 
@@ -176,8 +184,51 @@ def test_damaged_and_unsupported_files_get_one_clear_error(tmp_path, data, messa
 
 def test_ancillary_chunks_are_skipped_and_a_missing_file_is_one_error(tmp_path):
     text = chunk(b"tEXt", b"Comment\0made here") + chunk(b"gAMA", struct.pack(">I", 45455))
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(decode_png(encode(CODES, filters=[2, 3], before_idat=text)), CODES)
     with pytest.raises(sc.SpectrumError, match="cannot be read"):
         read_png(tmp_path / "absent.png")
     with pytest.raises(sc.SpectrumError, match="bytes"):
         decode_png("not bytes")
+
+
+# --- streamed decoding (issue 25): blocks of rows, long chunks in pieces, the budget ---------------
+
+
+@settings(max_examples=60, deadline=None)
+@given(images(), st.integers(1, 10))
+def test_blocks_of_rows_join_to_the_whole_image(image, rows):
+    from spectrocolor.upsampling.png_reader import iter_png_rows
+
+    codes, depth, colour_type, filters, pieces = image
+    data = encode(codes, depth, colour_type, filters, pieces)
+    blocks = list(iter_png_rows(data, rows_per_block=rows))
+    assert [top for top, _ in blocks] == list(range(0, codes.shape[0], rows))
+    # exact: integer codes through an encoder and a decoder: no floating point
+    np.testing.assert_array_equal(np.concatenate([block for _, block in blocks]), codes)
+
+
+def test_long_chunks_are_read_in_pieces(monkeypatch):
+    from spectrocolor.upsampling import png_reader
+
+    monkeypatch.setattr(png_reader, "_PIECE", 7)  # every IDAT chunk is "long"
+    codes = np.random.default_rng(11).integers(0, 65536, (9, 7, 3), dtype=np.uint16)
+    data = encode(codes, 16, 2, [4, 3, 2, 1, 0, 4, 4, 3, 1], before_idat=chunk(b"tEXt", b"Comment\0" + b"x" * 40))
+    # exact: integer codes through an encoder and a decoder: no floating point
+    np.testing.assert_array_equal(decode_png(data), codes)
+    # a long chunk's data are inflated as they come, its CRC checked at its end: damage is met
+    # by whichever check comes first
+    with pytest.raises(sc.SpectrumError, match="CRC-32|cannot be decompressed"):
+        decode_png(corrupt_crc(data, b"IDAT"))
+
+
+def test_a_header_is_read_without_decoding_and_the_whole_image_is_checked_against_the_budget(tmp_path):
+    from spectrocolor.upsampling.png_reader import png_header
+
+    path = tmp_path / "wide.png"
+    path.write_bytes(encode(np.zeros((600, 1000, 3), np.uint16)))  # 3.4 MiB of codes
+    header = png_header(path)
+    assert (header.width, header.height, header.bit_depth, header.channels) == (1000, 600, 16, 3)
+    with pytest.raises(sc.SpectrumError, match="1000 x 600 pixels of 16-bit codes .*memory budget of 1 MiB"):
+        read_png(path, memory_budget="1MiB")
+    assert read_png(path, memory_budget="8MiB").shape == (600, 1000, 3)

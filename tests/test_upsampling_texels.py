@@ -40,8 +40,11 @@ def test_round_trip_keeps_the_coefficients_bit_for_bit(tmp_path):
     path = save_texel_coefficients(table, t, tmp_path / "t.sctx")
     back = load_texel_coefficients(path, table)
     nodes, weights, exact = texel_coefficients(table, t)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.nodes, nodes)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.weights, weights)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.exact, exact)
     assert (back.resolution, back.samples, back.fingerprint) == (9, 81, table_fingerprint(table))
     assert 0 < exact.sum() < exact.size
@@ -143,6 +146,7 @@ def test_c_reference_reader_agrees(tmp_path):
         run = subprocess.run([str(exe), str(tmp_path / "t.scup"), str(path), str(x), str(y)], check=True,
                              capture_output=True, text=True)
         got = np.array([line.split() for line in run.stdout.splitlines()], dtype=float)
+        # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
         np.testing.assert_array_equal(got[:, 0], table.wavelengths_nm)
         np.testing.assert_allclose(got[:, 1], expected[y, x], rtol=0, atol=READER_TOLERANCE)
     bad = subprocess.run([str(exe), str(tmp_path / "t.scup"), str(path), "9", "0"], capture_output=True,
@@ -159,7 +163,9 @@ def test_cli_writes_coefficients_and_their_table(tmp_path, capsys):
     table = load_table(tmp_path / "t.scup")
     back = load_texel_coefficients(tmp_path / "tex.sctx", table)
     nodes, weights, _ = texel_coefficients(table, sc.upsampling.rgb_linear_from_image(codes))
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.nodes, nodes)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.weights, weights)
     # with the saved table, the same file again (and only with --force over an existing one)
     assert main(["upsample", str(tmp_path / "tex.png"), "--coefficients", str(tmp_path / "tex.sctx"),
@@ -186,3 +192,19 @@ def test_cli_bad_options_get_one_line(tmp_path, capsys, argv, message):
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "o.sctx").exists()
+
+
+# --- streamed writing (issue 25) ------------------------------------------------------------------
+
+
+def test_texel_files_written_in_blocks_are_the_same_bytes(tmp_path):
+    from spectrocolor.upsampling.texels import write_texel_blocks
+
+    table = srgb_table()
+    texture = np.random.default_rng(5).random((7, 5, 3)) * 1.2 - 0.1  # some out of range
+    path, inexact = write_texel_blocks(tmp_path / "t.sctx", table, [texture[:3], texture[3:6], texture[6:]], 5, 7)
+    assert path.read_bytes() == texel_bytes(table, texture)
+    assert inexact == int(np.count_nonzero(~load_texel_coefficients(path, table).exact))
+    with pytest.raises(sc.ColorimetryError, match="blocks: 3 rows given for a texture of height 7"):
+        write_texel_blocks(tmp_path / "u.sctx", table, [texture[:3]], 5, 7)
+    assert not (tmp_path / "u.sctx").exists()

@@ -103,3 +103,62 @@ def real_number(value, name: str, what: str = "a number", error: type[ValueError
         kind = "a positive, finite real number" if positive else "a finite real number"
         raise error(f"{name}: expected {what} ({kind}), got {value!r:.60}")
     return number
+
+
+def refuse_overflow(result, inputs, names: str, what: str,
+                    error: type[ValueError] = ColorimetryError) -> np.ndarray:
+    """``result``, unless an item computed from finite input came out NaN or infinite.
+
+    The library's NaN policy: data may carry NaN, and it propagates per item; but a result that
+    is not finite although its input was (an intermediate overflowed the float range) is never
+    returned silently: ``error`` names the arguments and the first such item.
+
+    Parameters
+    ----------
+    result : array_like, shape (...) or (..., M)
+        What was computed, one item per leading index.
+    inputs : sequence of array_like, each (..., N)
+        The inputs, items along the leading axes (broadcast against the result's), values
+        along the last axis.
+    names : str
+        The arguments, for the message (e.g. ``"lab1, lab2"``).
+    what : str
+        What overflowed and what is accepted, for the message.
+    error : type, default ColorimetryError
+        The ``ValueError`` subclass raised.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``result`` as an array.
+
+    Raises
+    ------
+    ValueError
+        ``error``, when some item of finite input has a non-finite result.
+
+    Examples
+    --------
+    >>> refuse_overflow(np.array([1.0, np.nan]), [np.array([[1.0], [np.nan]])], "x", "x squared")
+    array([ 1., nan])
+    >>> with np.errstate(over="ignore"):
+    ...     squared = np.array([1e200]) ** 2
+    >>> refuse_overflow(squared, [np.array([[1e200]])], "x", "x² overflows")
+    Traceback (most recent call last):
+    ...
+    spectrocolor.errors.ColorimetryError: x: item 0: x² overflows (the result is inf although the input is finite)
+    """
+    result = np.asarray(result)
+    finite_in = np.ones((), bool)
+    for values in inputs:
+        finite_in = finite_in & np.all(np.isfinite(np.asarray(values, dtype=float)), axis=-1)
+    finite_out = np.isfinite(result)
+    if finite_out.ndim > finite_in.ndim:  # results with their own value axis, e.g. (..., 3)
+        finite_out = np.all(finite_out, axis=-1)
+    bad = finite_in & ~finite_out
+    if np.any(bad):
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        where = f"item {index[0] if len(index) == 1 else index}: " if index else ""
+        value = float(np.ravel(result[index])[~np.isfinite(np.ravel(result[index]))][0])
+        raise error(f"{names}: {where}{what} (the result is {value!r} although the input is finite)")
+    return result

@@ -9,11 +9,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .arguments import real_number
+from .arguments import real_number, refuse_overflow
 from .coordinates import colour_array
 from .errors import ColorimetryError
 
 __all__ = ["delta_e_76", "delta_e_2000"]
+
+_OVERFLOW = ("{} overflows the float range: CIELAB values this large are not colours (L* is "
+             "0-100, a* and b* within a few hundred)")
 
 
 def _lab_pair(lab1, lab2) -> tuple[np.ndarray, np.ndarray]:
@@ -45,7 +48,8 @@ def delta_e_76(lab1, lab2) -> np.ndarray:
     Raises
     ------
     ColorimetryError
-        For malformed input or shapes that do not broadcast.
+        For malformed input or shapes that do not broadcast, and for finite colours so far
+        apart (values near 1e154 and beyond) that the difference overflows the float range.
 
     References
     ----------
@@ -57,7 +61,9 @@ def delta_e_76(lab1, lab2) -> np.ndarray:
     4.472136
     """
     lab1, lab2 = _lab_pair(lab1, lab2)
-    return np.sqrt(np.sum((lab1 - lab2) ** 2, axis=-1))
+    with np.errstate(over="ignore", invalid="ignore"):
+        distance = np.sqrt(np.sum((lab1 - lab2) ** 2, axis=-1))
+    return refuse_overflow(distance, [lab1, lab2], "lab1, lab2", _OVERFLOW.format("ΔE*ab"))
 
 
 def _hue_deg(b: np.ndarray, a_prime: np.ndarray) -> np.ndarray:
@@ -91,7 +97,8 @@ def delta_e_2000(lab1, lab2, *, k_L: float = 1.0, k_C: float = 1.0, k_H: float =
     ------
     ColorimetryError
         For a weighting factor that is not positive and finite, malformed input or shapes
-        that do not broadcast.
+        that do not broadcast, and for finite colours so large (values near 1e44 and beyond:
+        C'⁷ overflows) that the difference would not be finite.
 
     References
     ----------
@@ -110,6 +117,13 @@ def delta_e_2000(lab1, lab2, *, k_L: float = 1.0, k_C: float = 1.0, k_H: float =
     for name, k in (("k_L", k_L), ("k_C", k_C), ("k_H", k_H)):
         real_number(k, name, "a weighting factor (1 for the reference conditions)", positive=True)
     lab1, lab2 = _lab_pair(lab1, lab2)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        difference = _ciede2000(lab1, lab2, k_L, k_C, k_H)
+    return refuse_overflow(difference, [lab1, lab2], "lab1, lab2", _OVERFLOW.format("ΔE00"))
+
+
+def _ciede2000(lab1: np.ndarray, lab2: np.ndarray, k_L: float, k_C: float, k_H: float) -> np.ndarray:
+    """Sharma, Wu and Dalal's eqs. 1-22 on checked arrays (see :func:`delta_e_2000`)."""
     L1, a1, b1 = lab1[..., 0], lab1[..., 1], lab1[..., 2]
     L2, a2, b2 = lab2[..., 0], lab2[..., 1], lab2[..., 2]
 

@@ -16,6 +16,8 @@ saturation -- the triangle drawn on top marks where exactness ends.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from .errors import ColorimetryError
@@ -25,6 +27,46 @@ __all__ = ["chromaticity_diagram", "spectrum_plot", "planckian_locus_xy", "horse
 
 _LOCUS_LABELS_NM = (380, 460, 470, 480, 490, 500, 510, 520, 540, 560, 580, 600, 620, 700)
 _PLANCK_LABELS_K = (1500, 2000, 3000, 4000, 6500, 10000)
+
+
+def plain_text(draw):
+    """Decorator: every text a drawing function makes is plain text, never maths.
+
+    Matplotlib reads a string with two ``$`` as mathtext, so a light named ``$\\frac{1$`` (or
+    ``a $\\undefinedmacro$ b``) in a file would stop the figure with a parser error, and a
+    name like ``$5 and $6`` would be drawn in italics. Names come from files and are text: the
+    decorated function runs with ``text.parse_math`` off, so every title, legend entry and
+    label it creates is drawn as written.
+
+    Parameters
+    ----------
+    draw : callable
+        A function that creates matplotlib texts (titles, labels, legends).
+
+    Returns
+    -------
+    callable
+        The same function, its texts never parsed as maths.
+
+    Examples
+    --------
+    >>> @plain_text
+    ... def titled(name):
+    ...     ax = axes_or_new(None, (3, 2))
+    ...     ax.set_title(name)
+    ...     return ax
+    >>> ax = titled("$\\frac{1$")
+    >>> ax.title.get_parse_math(), ax.figure.canvas.get_width_height()[0] > 0
+    (False, True)
+    """
+    @functools.wraps(draw)
+    def drawn_as_text(*args, **kwargs):
+        import matplotlib
+
+        with matplotlib.rc_context({"text.parse_math": False}):
+            return draw(*args, **kwargs)
+
+    return drawn_as_text
 
 
 def axes_or_new(ax, figsize):
@@ -185,6 +227,7 @@ def _kind(kind: str) -> str:
     return kind
 
 
+@plain_text
 def chromaticity_diagram(
     kind: str = "xy",
     observer=DEFAULT_OBSERVER,
@@ -490,6 +533,7 @@ def _overlaps(boxes: np.ndarray, box: np.ndarray) -> np.ndarray:
             & (boxes[:, 1] < box[3]) & (box[1] < boxes[:, 3]))
 
 
+@plain_text
 def spectrum_plot(spectrum, index=None, style: str = "bars", ax=None, title=None,
                   ylabel: str = "relative spectral power"):
     """Plot one spectrum as bars (or a filled area) tinted by wavelength (SPECTRA's palette).

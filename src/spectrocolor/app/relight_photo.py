@@ -148,7 +148,8 @@ def _bad(what: str) -> SpectrumError:
 
 def _open_photo(data: bytes):
     """A Pillow image of the photo; a 16-bit PNG is decoded by the library's own reader (Pillow
-    would cut it to 8 bits) and rounded to the 8-bit codes the page shows."""
+    would cut it to 8 bits) block by block of rows, each block rounded to the 8-bit codes the page
+    shows as it comes, so a 40-megapixel photo never exists as 16-bit or float values."""
     from PIL import Image
 
     if not (data[:8] == _PNG and len(data) > 24 and data[24] == 16):
@@ -156,11 +157,14 @@ def _open_photo(data: bytes):
     width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
     if width * height > MAX_PHOTO_PIXELS:  # before any pixel is decoded
         raise _bad(f"{width} x {height} pixels; at most {MAX_PHOTO_PIXELS} are read")
-    from ..upsampling.png_reader import decode_png
+    from ..upsampling.png_reader import iter_png_rows, png_header
 
-    codes16 = decode_png(data, "the upload")
-    colour = codes16[..., :1].repeat(3, axis=-1) if codes16.shape[-1] < 3 else codes16[..., :3]
-    rgb8 = np.round(colour.astype(np.float64) / 257.0).astype(np.uint8)
+    header = png_header(data, "the upload")
+    rgb8 = np.empty((header.height, header.width, 3), np.uint8)
+    for top, codes16 in iter_png_rows(data, name="the upload"):
+        colour = codes16[..., :1] if codes16.shape[-1] < 3 else codes16[..., :3]
+        # round(c / 257) exactly, in integers: (c + 128) // 257 (c / 257 is never k + 1/2)
+        rgb8[top:top + len(codes16)] = ((colour.astype(np.uint32) + 128) // 257).astype(np.uint8)
     return Image.fromarray(rgb8, "RGB")
 
 

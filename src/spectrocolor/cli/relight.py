@@ -3,13 +3,16 @@
 Every pixel's colour is upsampled to the exact smoothest reflectance of an upsampling table
 (:mod:`spectrocolor.upsampling`) built for the light the photo was taken under (``--from``),
 seen under ``--to`` and shown on the display, optionally after chromatic adaptation to the
-new light (``--adapt``). Images are processed in row blocks of bounded memory.
+new light (``--adapt``). Photos are read, relit and written in blocks of rows sized by the
+memory budget (:mod:`spectrocolor.cli.photos`, :func:`spectrocolor.images.stream.write_png_blocks`):
+memory stays bounded whatever the photo's size.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -24,10 +27,6 @@ _ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 #: NaN spectra cannot be displayed, so the command offers the strategies that give colours.
 _OUT_OF_RANGE = tuple(name for name in OUT_OF_RANGE_STRATEGIES if name != "nan")
 _INPUT_SUFFIXES = (".png", ".tif", ".tiff", ".jpg", ".jpeg")
-#: Largest photo read, in pixels (a 24-megapixel photo is 2.4e7).
-MAX_PIXELS = 2**28
-#: Pixels relit per block (bounds the float64 temporaries to a few hundred MiB).
-BLOCK_PIXELS = 2**20
 
 
 def register(subparsers) -> None:
@@ -86,64 +85,6 @@ def _pairs(args: argparse.Namespace) -> list[tuple[Path, Path]]:
     return pairs
 
 
-def read_photo(path: Path) -> np.ndarray:
-    """An (H, W, 3) uint8 or uint16 array of codes; alpha is dropped, grey is repeated.
-
-    16-bit PNG is decoded by :func:`spectrocolor.upsampling.read_png` (all 16 bits); other PNG
-    and JPEG by Pillow, TIFF by tifffile.
-    """
-    suffix = path.suffix.lower()
-    try:
-        if suffix in (".tif", ".tiff"):
-            import tifffile
-
-            codes = np.asarray(tifffile.imread(path))
-        else:
-            from PIL import Image
-
-            with open(path, "rb") as handle:
-                signature = handle.read(25)
-            if signature[:8] == b"\x89PNG\r\n\x1a\n" and signature[24:25] == b"\x10":
-                return _channels_to_rgb(path, _read_png16(path))  # Pillow would cut it to 8 bits
-            with Image.open(path) as image:
-                if image.width * image.height > MAX_PIXELS:
-                    raise UserError(f"{path}: {image.width} x {image.height} pixels; at most "
-                                    f"{MAX_PIXELS} are read")
-                codes = np.asarray(image.convert("RGB"))
-    except UserError:
-        raise
-    except Exception as exc:  # Pillow/tifffile raise many types for damaged files
-        raise UserError(f"{path}: cannot be read as an image ({exc})") from None
-    return _channels_to_rgb(path, codes)
-
-
-def _read_png16(path: Path) -> np.ndarray:
-    """A 16-bit PNG's codes (H, W, C) by :func:`spectrocolor.upsampling.read_png`."""
-    from ..errors import SpectrumError
-    from ..upsampling import read_png
-
-    try:
-        return read_png(path)
-    except SpectrumError as exc:
-        raise UserError(f"cannot be read as an image: {exc}") from None
-
-
-def _channels_to_rgb(path: Path, codes: np.ndarray) -> np.ndarray:
-    """(H, W, 3) codes: alpha dropped, grey repeated; other shapes and dtypes refused."""
-    if codes.ndim == 3 and codes.shape[-1] in (1, 2):
-        codes = codes[..., 0]
-    if codes.ndim == 2:
-        codes = np.repeat(codes[..., None], 3, axis=-1)
-    if codes.ndim != 3 or codes.shape[-1] not in (3, 4) or codes.dtype not in (np.uint8,
-                                                                                np.uint16):
-        raise UserError(f"{path}: expected an RGB image of 8- or 16-bit codes; got "
-                        f"{codes.dtype} {codes.shape}")
-    if codes.shape[0] * codes.shape[1] > MAX_PIXELS:
-        raise UserError(f"{path}: {codes.shape[1]} x {codes.shape[0]} pixels; at most "
-                        f"{MAX_PIXELS} are read")
-    return codes[..., :3]
-
-
 def add_table_options(parser: argparse.ArgumentParser, *, taken: str, space: str,
                       out_of_range: tuple[str, ...]) -> None:
     """The options that choose or build the upsampling table (``relight`` and ``upsample``)."""
@@ -159,11 +100,24 @@ def add_table_options(parser: argparse.ArgumentParser, *, taken: str, space: str
 
 
 def check_table_options(args: argparse.Namespace) -> None:
-    """One clear error for a ``--resolution`` or ``--from`` no table can have, before any work."""
+    """One clear error for a ``--resolution`` or ``--from`` no table can have, before any work.
+
+    The memory the table takes to build (:func:`spectrocolor.upsampling.table.table_build_bytes`)
+    is checked against the memory budget, naming ``--resolution``.
+    """
+    from ..budget import check_bytes, format_size, memory_budget
     from ..illuminants import canonical_illuminant
+    from ..upsampling.table import DEFAULT_SAMPLES, table_build_bytes
 
     if not 2 <= args.resolution <= 65:
         raise UserError(f"--resolution must be from 2 to 65 nodes per axis; got {args.resolution}")
+    if args.table is None:
+        largest = max((n for n in range(2, 66) if table_build_bytes(n, DEFAULT_SAMPLES) <= memory_budget()),
+                      default=None)
+        check_bytes(table_build_bytes(args.resolution, DEFAULT_SAMPLES),
+                    f"--resolution {args.resolution}: building the table",
+                    raise_hint=f"choose --resolution {largest} or less, or raise the budget of "
+                    f"{format_size(memory_budget())} with spectrocolor --memory-budget SIZE")
     if args.from_illuminant is not None:
         canonical_illuminant(args.from_illuminant, "--from")
 
@@ -184,44 +138,47 @@ def table_for(args: argparse.Namespace):
                             resolution=args.resolution, measure_excess=False)
 
 
-def relight_codes(table, codes: np.ndarray, args: argparse.Namespace) -> tuple[np.ndarray, int, int]:
-    """Relit display codes of one photo, in row blocks; also (inexact, out-of-gamut) counts."""
+def relit_blocks(table, photo, args: argparse.Namespace, counts: dict) -> Iterator[np.ndarray]:
+    """Relit display codes of ``photo`` (:class:`~spectrocolor.cli.photos.Photo`), block by block.
+
+    ``counts`` gets ``inexact`` (pixels not reproduced exactly) and ``clipped`` (outside the
+    display gamut) as the blocks go.
+    """
     from ..display.render import render
     from ..upsampling import relight, rgb_linear_from_image
 
-    height, width = codes.shape[:2]
-    rows = max(1, BLOCK_PIXELS // max(width, 1))
-    out = np.empty(codes.shape, dtype=np.uint8 if args.bit_depth == 8 else np.uint16)
-    inexact = clipped = 0
     adaptation = None if args.adapt == "none" else args.adapt
-    for start in range(0, height, rows):
-        block = codes[start:start + rows]
+    dtype = np.uint8 if args.bit_depth == 8 else np.uint16
+    counts.update(inexact=0, clipped=0)
+    for block in photo.blocks(photo.rows_per_block()):
         relit = relight(table, rgb_linear_from_image(block, table.space), args.to_illuminant,
                         adaptation=adaptation, out_of_range=args.out_of_range)
         shown = render(relit.XYZ100, space=table.space, gamut=args.gamut,
                        bit_depth=args.bit_depth)
-        out[start:start + rows] = shown.codes
-        inexact += int(np.count_nonzero(~relit.exact))
-        clipped += int(np.count_nonzero(~shown.in_gamut))
-    return out, inexact, clipped
+        counts["inexact"] += int(np.count_nonzero(~relit.exact))
+        counts["clipped"] += int(np.count_nonzero(~shown.in_gamut))
+        yield np.asarray(shown.codes, dtype=dtype)
 
 
 def _relight(args: argparse.Namespace) -> int:
-    from ..pictures import write_image
+    from ..images.stream import write_png_blocks
+    from .photos import open_photo
 
     check_table_options(args)
     from ..illuminants import canonical_illuminant
 
     canonical_illuminant(args.to_illuminant, "--to")  # a clear error before any work
     pairs = _pairs(args)
-    table = table_for(args)
-    for photo, target in pairs:
-        codes = read_photo(photo)
-        out, inexact, clipped = relight_codes(table, codes, args)
-        write_image(target, out)
-        pixels = codes.shape[0] * codes.shape[1]
-        print(f"wrote {target}: {codes.shape[1]} x {codes.shape[0]} pixels, {table.space} under "
+    table = None
+    for photo_path, target in pairs:
+        photo = open_photo(photo_path)  # its header checked before the table is built
+        table = table_for(args) if table is None else table
+        counts: dict = {}
+        write_png_blocks(target, relit_blocks(table, photo, args, counts), photo.height,
+                         photo.width, 3, args.bit_depth)
+        pixels = photo.width * photo.height
+        print(f"wrote {target}: {photo.width} x {photo.height} pixels, {table.space} under "
               f"{table.illuminant} -> {args.to_illuminant} (adaptation {args.adapt}); "
-              f"{inexact} of {pixels} pixels not reproduced exactly ({args.out_of_range}), "
-              f"{clipped} outside the display gamut ({args.gamut})", file=sys.stdout)
+              f"{counts['inexact']} of {pixels} pixels not reproduced exactly ({args.out_of_range}), "
+              f"{counts['clipped']} outside the display gamut ({args.gamut})", file=sys.stdout)
     return 0

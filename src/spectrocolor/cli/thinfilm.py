@@ -25,6 +25,11 @@ from .options import add_gamut, add_illuminant, add_observer
 #: Largest strip length / locus point count and image side accepted on the command line.
 _MAX_COLUMNS = 100_000
 _MAX_SIDE_PX = 16_384
+#: Memory of one pixel of a thickness map while it is drawn (thickness, angle, table index,
+#: codes): measured about 16 bytes (wedge) and 30 (bubble) at 4096 x 4096.
+_MAP_PIXEL_BYTES = 40
+#: Angles of the bubble's colour table (0-89 degrees in steps of 2).
+_BUBBLE_ANGLES = 46
 _PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
@@ -241,12 +246,18 @@ def _locus(args) -> int:
 
 
 def _map(args) -> int:
+    from ..budget import check_bytes
     from ..pictures import save_image
     from ..thinfilm import maps
 
     if not (1 <= args.width <= _MAX_SIDE_PX and 1 <= args.height <= _MAX_SIDE_PX):
         raise UserError(f"--width and --height must be 1-{_MAX_SIDE_PX} pixels, got "
                         f"{args.width} x {args.height}")
+    if not (np.isfinite(args.step) and args.step > 0):
+        raise UserError(f"--step must be a positive, finite number of nm; got {args.step:g}")
+    if args.kind != "file":
+        check_bytes(args.width * args.height * _MAP_PIXEL_BYTES,
+                    f"--width {args.width} --height {args.height}: a map of {args.width * args.height} pixels")
     check_files(args, ("out",), ("input",))
     film = _film_function(args)
     angle = None
@@ -262,6 +273,11 @@ def _map(args) -> int:
             raise UserError("--kind file needs --input PATH (.npy in nm or .png)")
         thickness = maps.read_thickness_map(args.input, args.nm_per_count)
     top = float(np.nanmax(thickness))
+    entries = int(np.ceil(min(max(top, args.step) / args.step, 1e18) - 1e-9)) + 1
+    check_bytes(entries * (1 if angle is None else _BUBBLE_ANGLES) * maps.TABLE_ENTRY_BYTES,
+                f"--step {args.step:g} nm up to {top:g} nm"
+                + (" (--max-thickness)" if args.kind == "wedge" else "")
+                + f": a colour table of {entries} thicknesses")
     if args.angle and angle is None:
         angle_fn = film
 

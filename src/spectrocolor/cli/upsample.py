@@ -1,10 +1,11 @@
 """``spectrocolor upsample``: a texture's per-texel coefficients for renderers (``.sctx``).
 
 Every texel's colour is located in an upsampling table (:mod:`spectrocolor.upsampling`): four
-node indices and four weights, written by
-:mod:`spectrocolor.upsampling.texels` (atomically) in the layout documented there
-and in ``docs/upsampling.md``. A renderer holding the table evaluates each texel's reflectance
-at any wavelength; ``--save-table`` writes the table the coefficients index.
+node indices and four weights, written block by block of rows (memory bounded by the budget,
+whatever the texture's size) by :func:`spectrocolor.upsampling.texels.write_texel_blocks`
+(atomically) in the layout documented there and in ``docs/upsampling.md``. A renderer holding the
+table evaluates each texel's reflectance at any wavelength; ``--save-table`` writes the table the
+coefficients index.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 from ..upsampling.apply import OUT_OF_RANGE_STRATEGIES
 from . import UserError
 from .files import add_force, check_files
-from .relight import add_table_options, check_table_options, read_photo, table_for
+from .relight import add_table_options, check_table_options, table_for
 
 #: Strategies that give coefficients ("nan" gives none).
 _OUT_OF_RANGE = tuple(name for name in OUT_OF_RANGE_STRATEGIES if name != "nan")
@@ -44,9 +45,9 @@ def register(subparsers) -> None:
 
 
 def _upsample(args: argparse.Namespace) -> int:
-    from ..safe_write import verify_size, write_bytes
     from ..upsampling import rgb_linear_from_image, save_table
-    from ..upsampling.texels import HEADER, MAX_SIDE, texel_bytes
+    from ..upsampling.texels import MAX_SIDE, write_texel_blocks
+    from .photos import open_photo
 
     check_table_options(args)
     for option, value, suffix in (("--coefficients", args.coefficients, ".sctx"),
@@ -57,20 +58,18 @@ def _upsample(args: argparse.Namespace) -> int:
     if args.save_table is not None and args.table is not None:
         raise UserError("--save-table writes a table built here; with --table the table is "
                         "already saved")
-    codes = read_photo(Path(args.input))
-    if max(codes.shape[:2]) > MAX_SIDE:
-        raise UserError(f"{args.input}: {codes.shape[1]} x {codes.shape[0]} texels; the "
+    photo = open_photo(Path(args.input))
+    if max(photo.width, photo.height) > MAX_SIDE:
+        raise UserError(f"{args.input}: {photo.width} x {photo.height} texels; the "
                         f".sctx layout takes sides up to {MAX_SIDE}")
     table = table_for(args)
-    rgb_linear = rgb_linear_from_image(codes, table.space)
-    data = texel_bytes(table, rgb_linear, args.out_of_range)
-    path = write_bytes(args.coefficients, data, verify=lambda p: verify_size(p, len(data)))
+    blocks = (rgb_linear_from_image(codes, table.space)
+              for codes in photo.blocks(photo.rows_per_block()))
+    path, inexact = write_texel_blocks(args.coefficients, table, blocks, photo.width, photo.height,
+                                       args.out_of_range)
     if args.save_table is not None:
         save_table(table, args.save_table)
-    texels = codes.shape[0] * codes.shape[1]
-    flags = data[HEADER.size + 32 * texels:HEADER.size + 33 * texels]
-    inexact = texels - flags.count(1)
-    print(f"wrote {path}: {codes.shape[1]} x {codes.shape[0]} texels, {table.space} table under "
+    print(f"wrote {path}: {photo.width} x {photo.height} texels, {table.space} table under "
           f"{table.illuminant} (n = {table.resolution}); {inexact} texels not reproduced exactly "
           f"({args.out_of_range})" + (f"; table {args.save_table}" if args.save_table else ""),
           file=sys.stdout)

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..arguments import real_array
 from ..errors import ColorimetryError
 from ..registry import Registry
 from .spaces import rgb_space
@@ -138,7 +139,7 @@ def max_object_rgb(space, weights) -> np.ndarray:
     >>> max_object_rgb("SPECTRA 7000K", W).round(2).tolist()
     [1.58, 1.02, 0.92]
     """
-    w = np.asarray(weights, dtype=float)
+    w = real_array(weights, "weights", "tristimulus weights (numbers, shape (K, 3))")
     if w.ndim != 2 or w.shape[1] != 3 or not np.all(np.isfinite(w)):
         raise ColorimetryError(f"weights must be a finite (K, 3) array, got shape {w.shape}")
     per_bin = w @ rgb_space(space).matrix_from_XYZ.T
@@ -175,7 +176,7 @@ def white_scale(space, white_XYZ) -> float:
     >>> round(white_scale("sRGB", white_point("A")), 4)  # illuminant A's white drives red to 1.85
     1.8454
     """
-    w = np.asarray(white_XYZ, dtype=float)
+    w = real_array(white_XYZ, "white_XYZ", "the white's X, Y, Z (three numbers)")
     if w.shape != (3,) or not np.all(np.isfinite(w)):
         raise ColorimetryError(f"white_XYZ must be three finite numbers, got {white_XYZ!r}")
     top = float((rgb_space(space).matrix_from_XYZ @ w).max())

@@ -10,6 +10,7 @@ maps over chunks, so all paths give the same numbers.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -273,7 +274,7 @@ def _values_and_wavelengths(cube, wavelengths_nm):
     return cube, wavelengths
 
 
-def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_mib=64.0,
+def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_mib=None,
                out=None, progress=False) -> np.ndarray:
     """Apply ``plan`` to ``values`` (N, ..., K) in blocks along the first axis.
 
@@ -284,8 +285,9 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     plan : ConversionPlan
     rows_per_block : int, optional
         Rows per block; default: as many as fit in ``max_block_mib`` MiB of float64 spectra.
-    max_block_mib : float
-        Memory budget of one block (float64 spectra), in MiB.
+    max_block_mib : float, optional
+        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
+        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
     out : ndarray or np.memmap, shape (N, ..., plan.channels), optional
         Where to write (e.g. a ``tifffile.memmap`` or ``np.memmap`` for outputs larger than
         memory); a new array by default.
@@ -301,6 +303,8 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     ------
     SpectrumError
         For ``rows_per_block`` below 1 or an ``out`` of the wrong shape.
+    spectrocolor.errors.BudgetError
+        When the result (without ``out``) or one block exceeds the memory budget.
 
     Examples
     --------
@@ -312,6 +316,11 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     """
     out_shape = (*tuple(values.shape)[:-1], plan.channels)
     if out is None:
+        from ..budget import check_bytes
+
+        check_bytes(math.prod(out_shape) * plan.dtype.itemsize,
+                    f"the result, shape {out_shape} of {plan.dtype.name} (give out= a memory map, or "
+                    "write the image with write_converted, which streams it)")
         out = np.empty(out_shape, dtype=plan.dtype)
     elif tuple(out.shape) != out_shape:
         raise SpectrumError(f"out must have shape {out_shape}; got {tuple(out.shape)}")
@@ -321,17 +330,23 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     return out
 
 
-def _rows_per_block(shape: tuple[int, ...], rows_per_block, max_block_mib: float) -> int:
-    per_row = int(np.prod(shape[1:], dtype=np.int64)) * 8
+def _rows_per_block(shape: tuple[int, ...], rows_per_block, max_block_mib: float | None) -> int:
+    from ..budget import block_bytes, check_bytes
+
+    per_row = math.prod(int(n) for n in shape[1:]) * 8
     if rows_per_block is None:
-        rows_per_block = max(1, int(max_block_mib * 2**20) // max(per_row, 1))
+        block = block_bytes() if max_block_mib is None else int(max_block_mib * 2**20)
+        rows_per_block = max(1, block // max(per_row, 1))
     rows_per_block = int(rows_per_block)
     if rows_per_block < 1:
         raise SpectrumError(f"rows_per_block must be at least 1; got {rows_per_block}")
+    # what one block becomes in float64 (its working copies are a few times more)
+    check_bytes(min(rows_per_block, shape[0]) * per_row,
+                f"a block of {min(rows_per_block, shape[0])} row(s) of {shape[1:]} spectra as float64")
     return rows_per_block
 
 
-def iter_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_mib=64.0,
+def iter_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_mib=None,
                 progress=False) -> Iterator[tuple[int, np.ndarray]]:
     """Apply ``plan`` to ``values`` (N, ..., K) block by block, yielding each result as made.
 
@@ -343,8 +358,9 @@ def iter_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_
         From :func:`plan_conversion`.
     rows_per_block : int, optional
         Rows per block; default: as many as fit in ``max_block_mib`` MiB of float64 spectra.
-    max_block_mib : float
-        Memory budget of one block (float64 spectra), in MiB.
+    max_block_mib : float, optional
+        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
+        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
     progress : bool
         Show a progress bar over rows (tqdm) on standard error.
 
@@ -386,7 +402,7 @@ def iter_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_
 
 
 def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
-                    max_block_mib: float = 64.0, metadata: dict | None = None,
+                    max_block_mib: float | None = None, metadata: dict | None = None,
                     progress: bool = False) -> Path:
     """Convert a cube block by block straight into a PNG or float TIFF file.
 
@@ -407,8 +423,9 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
         From :func:`plan_conversion`.
     rows_per_block : int, keyword-only, optional
         Rows per block; default as many as fit in ``max_block_mib``.
-    max_block_mib : float, keyword-only, default 64.0
-        Memory budget of one block of float64 spectra, MiB.
+    max_block_mib : float, keyword-only, optional
+        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
+        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
     metadata : dict, keyword-only, optional
         TIFF only: JSON-serialisable facts stored in the image description.
     progress : bool, keyword-only, default False
@@ -467,7 +484,7 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
 
 def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, rows_per_block=None,
-                max_block_mib: float = 64.0, out=None, progress: bool = False) -> np.ndarray:
+                max_block_mib: float | None = None, out=None, progress: bool = False) -> np.ndarray:
     """CIE XYZ of every pixel of a spectral cube, converted in bounded-memory row blocks.
 
     Parameters
@@ -491,8 +508,9 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         an ENVI reflectance scale factor of 10000). Applied exactly, folded into the weights.
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
-    max_block_mib : float, keyword-only, default 64.0
-        Memory budget of one block of float64 spectra, MiB.
+    max_block_mib : float, keyword-only, optional
+        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
+        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
         Where to write (e.g. a memory map for outputs larger than memory); default a new array.
     progress : bool, keyword-only, default False
@@ -536,7 +554,7 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
 
 def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, white_XYZ=None, rows_per_block=None,
-                max_block_mib: float = 64.0, out=None, progress: bool = False) -> np.ndarray:
+                max_block_mib: float | None = None, out=None, progress: bool = False) -> np.ndarray:
     """CIELAB (L*, a*, b*) of every pixel, in bounded-memory row blocks.
 
     The reference white is, by default, the perfect reflector under ``illuminant`` on the
@@ -562,8 +580,9 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         The reference white on the XYZ scale of the result (required for lights).
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
-    max_block_mib : float, keyword-only, default 64.0
-        Memory budget of one block of float64 spectra, MiB.
+    max_block_mib : float, keyword-only, optional
+        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
+        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
         Where to write (e.g. a memory map for outputs larger than memory); default a new array.
     progress : bool, keyword-only, default False
@@ -602,7 +621,7 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
 def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_OBSERVER,
                 method: str = "sum", scale: float = 1.0, space="sRGB", gamut: str = DEFAULT_GAMUT,
                 exposure: float = 1.0, adaptation: str | None = "bradford", bit_depth: int = 8,
-                output: str = "codes", masked=None, rows_per_block=None, max_block_mib: float = 64.0,
+                output: str = "codes", masked=None, rows_per_block=None, max_block_mib: float | None = None,
                 out=None, progress: bool = False) -> np.ndarray:
     """Display RGB of every pixel, in bounded-memory row blocks.
 
@@ -649,8 +668,9 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         65535 or 1.0 elsewhere; or a colour (see :func:`masked_fill`).
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
-    max_block_mib : float, keyword-only, default 64.0
-        Memory budget of one block of float64 spectra, MiB.
+    max_block_mib : float, keyword-only, optional
+        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
+        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
         Where to write (e.g. a memory map for outputs larger than memory); default a new array.
     progress : bool, keyword-only, default False

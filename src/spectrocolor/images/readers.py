@@ -27,24 +27,33 @@ Formats (chosen by the path):
 
 Wavelength units are never guessed: nanometres and micrometres are converted explicitly;
 anything else (or no unit) is an error unless ``wavelength_units=`` says what they are.
+
+Sizes are checked before anything is read (:mod:`spectrocolor.budget`): the size a header
+claims against the file's length and against the bytes the file really stores on disk (a sparse
+file promising 310 GB of holes is refused, not read for hours); compressed data (``.npz``
+members, compressed TIFF, MATLAB v5, chunked v7.3 datasets) against the compressed bytes times
+:data:`~spectrocolor.budget.MAX_COMPRESSION_RATIO`; and what must be held in memory (formats
+that cannot be read lazily) against the memory budget. Lazily read cubes are not limited by the
+budget: they are converted in blocks.
 """
 
 from __future__ import annotations
 
 import re
 import struct
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..budget import check_bytes, check_file_claim, claimed_bytes, format_size, npy_claim
+from ..budget import memory_budget as budget_in_force
 from ..errors import SpectrumError
 from .cube import MappedArray, SpectralCube, wavelengths_to_nm
 
 __all__ = ["read_cube", "read_envi_header", "CorrectedArray", "MatlabH5Array"]
 
-#: Largest cube a reader loads into memory at once (formats that cannot be read lazily), bytes.
-MAX_IN_MEMORY_BYTES = 4 * 1024**3
 _MAT_WAVELENGTH_NAMES = ("wavelengths_nm", "wavelengths", "wavelength", "bands", "wl", "lambda")
 _MAT_CLASS_BYTES = {
     "double": 8, "single": 4, "int8": 1, "uint8": 1, "int16": 2, "uint16": 2,
@@ -67,6 +76,7 @@ def read_cube(
     wavelength_units: str | None = None,
     variable: str | None = None,
     raw: bool = False,
+    memory_budget=None,
 ) -> SpectralCube:
     """Read a spectral cube from a file or a folder of one-band images.
 
@@ -87,6 +97,11 @@ def read_cube(
         ENVI only: return the stored numbers without applying the header's reflectance scale
         factor, data ignore value and bad-band list (they are then in ``metadata``). Default
         False: applied, and ``metadata["applied"]`` says what was done.
+    memory_budget : int or str, keyword-only, optional
+        Most bytes the cube may take in memory when its format is read whole (``.npz``,
+        compressed TIFF, MATLAB v5, a folder of images), e.g. ``"2GiB"``; default the budget in
+        force (:func:`spectrocolor.budget.memory_budget`: 1 GiB unless
+        ``SPECTROCOLOR_MEMORY_BUDGET`` says otherwise). Lazily read cubes are streamed instead.
 
     Returns
     -------
@@ -100,6 +115,10 @@ def read_cube(
         Unknown format, missing wavelengths, unknown wavelength units, a band count that does
         not match the wavelength count, a raw file of the wrong size, images of different
         sizes.
+    spectrocolor.errors.BudgetError
+        (a ``SpectrumError``) A header that claims more data than the file holds or stores on
+        disk (sparse files), compressed data claiming an impossible expansion, or a cube that
+        must be read whole and exceeds the memory budget.
     FileNotFoundError
         The path does not exist.
 
@@ -119,8 +138,9 @@ def read_cube(
     ((2, 3, 31), [400.0, 700.0])
     """
     path = Path(path)
+    budget = budget_in_force(memory_budget)
     if path.is_dir():
-        cube = _read_folder(path, wavelength_units)
+        cube = _read_folder(path, wavelength_units, budget)
     elif not path.exists():
         raise FileNotFoundError(f"no such file or folder: {path}")
     else:
@@ -128,11 +148,11 @@ def read_cube(
         if suffix == ".npy":
             cube = _read_npy(path, wavelengths_nm)
         elif suffix == ".npz":
-            cube = _read_npz(path, wavelengths_nm, wavelength_units)
+            cube = _read_npz(path, wavelengths_nm, wavelength_units, budget)
         elif suffix in _TIFF_SUFFIXES:
-            cube = _read_tiff(path, wavelengths_nm, wavelength_units)
+            cube = _read_tiff(path, wavelengths_nm, wavelength_units, budget)
         elif suffix == ".mat":
-            cube = _read_mat(path, wavelengths_nm, wavelength_units, variable)
+            cube = _read_mat(path, wavelengths_nm, wavelength_units, variable, budget)
         elif suffix in _NETCDF_SUFFIXES:
             cube = _read_netcdf(path, wavelength_units, variable, wavelengths_nm)
         elif suffix == ".hdr" or _envi_header_for(path) is not None:
@@ -153,14 +173,8 @@ def _given_wavelengths(wavelengths_nm, path) -> np.ndarray:
     return wavelengths_to_nm(wavelengths_nm, "nm", f"{path} (wavelengths_nm argument)")
 
 
-def _check_claimed_size(path: Path, claimed_bytes: int, what: str) -> None:
-    """Refuse a header that claims more bytes than the file holds, before anything is allocated."""
-    size = path.stat().st_size
-    if claimed_bytes > size:
-        raise SpectrumError(
-            f"{path}: the header claims {what}, {claimed_bytes} bytes of data, but the file holds "
-            f"{size} bytes; the file is damaged or cut short"
-        )
+def _describe(shape, dtype) -> str:
+    return f"shape {tuple(int(s) for s in shape)} of {np.dtype(dtype).name}"
 
 
 # --- NumPy -------------------------------------------------------------------------------
@@ -172,23 +186,7 @@ def _read_npy(path: Path, wavelengths_nm) -> SpectralCube:
             f"{path}: a .npy file holds no wavelengths; give them (wavelengths_nm=..., or "
             "--wavelengths on the command line), or use .npz with a 'wavelengths_nm' array"
         )
-    with open(path, "rb") as handle:
-        try:
-            version = np.lib.format.read_magic(handle)
-        except ValueError:
-            raise SpectrumError(f"{path}: not a NumPy .npy file (no .npy header)") from None
-        read_header = {
-            (1, 0): np.lib.format.read_array_header_1_0,
-            (2, 0): np.lib.format.read_array_header_2_0,
-        }.get(version)
-        if read_header is None:
-            raise SpectrumError(f"{path}: .npy format version {version} is not supported")
-        try:
-            shape, fortran_order, dtype = read_header(handle)
-        except ValueError as exc:
-            raise SpectrumError(f"{path}: damaged .npy header ({exc})") from None
-        offset = handle.tell()
-    _check_claimed_size(path, offset + int(np.prod(shape, dtype=object)) * dtype.itemsize, f"shape {shape}")
+    shape, dtype, offset, fortran_order = npy_claim(path, held=None)  # read lazily: streamed
     if dtype.kind not in "biuf":
         raise SpectrumError(f"{path}: values must be numbers; the array holds dtype {dtype}")
     if len(shape) != 3:
@@ -200,7 +198,7 @@ def _read_npy(path: Path, wavelengths_nm) -> SpectralCube:
     return SpectralCube(values, _given_wavelengths(wavelengths_nm, path), str(path))
 
 
-def _read_npz(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
+def _read_npz(path: Path, wavelengths_nm, wavelength_units, budget: int) -> SpectralCube:
     import zipfile
 
     try:
@@ -216,15 +214,23 @@ def _read_npz(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
                 f"{path}: no array named 'values' (the cube, shape (H, W, K)); "
                 f"found {sorted(names)}"
             )
-        values = archive["values"]
+
+        def load(name: str) -> np.ndarray:
+            _check_npz_member(path, archive.zip, name, budget)
+            try:
+                return archive[name]
+            except (ValueError, OSError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
+                raise SpectrumError(f"{path}: member {name!r} cannot be read ({exc})") from None
+
+        values = load("values")
         if wavelengths_nm is not None:
             wavelengths = _given_wavelengths(wavelengths_nm, path)
         elif "wavelengths_nm" in names:
-            wavelengths = wavelengths_to_nm(archive["wavelengths_nm"], "nm", str(path))
+            wavelengths = wavelengths_to_nm(load("wavelengths_nm"), "nm", str(path))
         elif "wavelengths_um" in names:
-            wavelengths = wavelengths_to_nm(archive["wavelengths_um"], "um", str(path))
+            wavelengths = wavelengths_to_nm(load("wavelengths_um"), "um", str(path))
         elif "wavelengths" in names:
-            wavelengths = wavelengths_to_nm(archive["wavelengths"], wavelength_units, str(path))
+            wavelengths = wavelengths_to_nm(load("wavelengths"), wavelength_units, str(path))
         else:
             raise SpectrumError(
                 f"{path}: missing wavelengths: no array 'wavelengths_nm' (or 'wavelengths_um');"
@@ -233,10 +239,46 @@ def _read_npz(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
     return SpectralCube(values, wavelengths, str(path))
 
 
+def _check_npz_member(path: Path, archive, name: str, budget: int) -> None:
+    """Check the shape a member's .npy header claims before NumPy allocates it.
+
+    The claim must fit in the member's uncompressed size, that size in its compressed size times
+    :data:`~spectrocolor.budget.MAX_COMPRESSION_RATIO` (a 1 kB member cannot hold 4.5 GB), and
+    the array in the memory budget (an .npz member is read whole).
+    """
+    import zipfile
+
+    member = f"{name}.npy"
+    try:
+        info = archive.getinfo(member)
+        with archive.open(member) as handle:
+            version = np.lib.format.read_magic(handle)
+            read_header = {(1, 0): np.lib.format.read_array_header_1_0,
+                           (2, 0): np.lib.format.read_array_header_2_0}.get(version)
+            if read_header is None:
+                raise ValueError(f".npy format version {version} is not supported")
+            shape, _, dtype = read_header(handle)
+            offset = handle.tell()
+    except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile, zlib.error) as exc:
+        raise SpectrumError(f"{path}: member {name!r} is not a readable .npy array ({exc})") from None
+    what = f"member {name!r}: the header claims {_describe(shape, dtype)}"
+    nbytes = claimed_bytes(shape, dtype.itemsize, f"{path}: member {name!r}: the header's shape")
+    if offset + nbytes > info.file_size:
+        raise SpectrumError(f"{path}: {what}: {format_size(nbytes)} of data, but the member holds "
+                            f"{format_size(max(info.file_size - offset, 0))}; the archive is damaged")
+    if info.compress_type != zipfile.ZIP_STORED:
+        check_file_claim(path, info.file_size, what, compressed_bytes=info.compress_size)
+    elif info.file_size > info.compress_size:
+        raise SpectrumError(f"{path}: member {name!r} is stored uncompressed in "
+                            f"{format_size(info.compress_size)} but claims {format_size(info.file_size)}")
+    check_bytes(nbytes, f"{path}: {what} (an .npz member is read whole; a .npy file is streamed)",
+                budget=budget)
+
+
 # --- TIFF --------------------------------------------------------------------------------
 
 
-def _read_tiff(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
+def _read_tiff(path: Path, wavelengths_nm, wavelength_units, budget: int) -> SpectralCube:
     import tifffile
 
     try:
@@ -257,18 +299,20 @@ def _read_tiff(path: Path, wavelengths_nm, wavelength_units) -> SpectralCube:
             )
         order = (0, 1, 2) if axes.endswith("S") else (1, 2, 0)
         offset = series.dataoffset
-        claimed = int(np.prod(shape, dtype=object)) * np.dtype(series.dtype).itemsize
-        if offset is not None:
-            _check_claimed_size(path, int(offset) + claimed, f"pages of shape {shape}")
-            dtype = np.dtype(series.dtype).newbyteorder(tif.byteorder)
-            values = MappedArray(str(path), dtype.str, shape, int(offset), order)
-        elif claimed > MAX_IN_MEMORY_BYTES:
-            raise SpectrumError(
-                f"{path}: compressed pages of shape {shape} would take {claimed} bytes in memory; "
-                f"compressed TIFFs are read whole, up to {MAX_IN_MEMORY_BYTES} bytes (write it uncompressed)"
-            )
-        else:  # compressed or scattered: read it
-            values = np.transpose(series.asarray(), order)
+        dtype = np.dtype(series.dtype)
+        claimed = claimed_bytes(shape, dtype.itemsize, f"{path}: the TIFF's shape")
+        what = f"the TIFF claims pages of {_describe(shape, dtype)}"
+        if offset is not None:  # contiguous and uncompressed: read lazily, streamed
+            check_file_claim(path, claimed, what, offset=int(offset))
+            values = MappedArray(str(path), dtype.newbyteorder(tif.byteorder).str, shape, int(offset), order)
+        else:  # compressed or scattered: read whole
+            check_file_claim(path, claimed, what, compressed_bytes=path.stat().st_size)
+            check_bytes(claimed, f"{path}: {what} (compressed TIFFs are read whole; write it "
+                        "uncompressed to stream it)", budget=budget)
+            try:
+                values = np.transpose(series.asarray(), order)
+            except (ValueError, KeyError, TypeError, IndexError, tifffile.TiffFileError) as exc:
+                raise SpectrumError(f"{path}: the TIFF's pages cannot be read ({exc!r:.80})") from None
     if wavelengths_nm is not None:
         wavelengths = _given_wavelengths(wavelengths_nm, path)
     elif "wavelengths_nm" in metadata:
@@ -423,6 +467,8 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) 
             f"{raw_file}: the file has {size} bytes but the header ({samples} samples x {lines} lines x"
             f" {bands} bands of {dtype.name} + {offset} header bytes) describes {expected}"
         )
+    check_file_claim(raw_file, expected - offset, f"the header ({header.name}) claims "
+                     f"{samples} x {lines} x {bands} {dtype.name}", offset=offset)
     if wavelengths_nm is not None:
         wavelengths = _given_wavelengths(wavelengths_nm, header)
     elif "wavelength" not in fields:
@@ -607,12 +653,12 @@ class MatlabH5Array:
         return values if dtype is None else values.astype(dtype)
 
 
-def _read_mat(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+def _read_mat(path: Path, wavelengths_nm, wavelength_units, variable, budget: int) -> SpectralCube:
     with open(path, "rb") as handle:
         head = handle.read(128)
     if head.startswith(b"MATLAB 7.3"):
         return _read_mat73(path, wavelengths_nm, wavelength_units, variable)
-    return _read_mat5(path, wavelengths_nm, wavelength_units, variable)
+    return _read_mat5(path, wavelengths_nm, wavelength_units, variable, budget)
 
 
 def _mat_choice(path: Path, shapes: dict[str, tuple], numeric: set[str], variable) -> str:
@@ -646,7 +692,7 @@ def _mat_wavelengths(path: Path, load, shapes, bands: int, wavelengths_nm, wavel
     )
 
 
-def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable, budget: int) -> SpectralCube:
     """Read a MATLAB v4/v5 cube in a child process.
 
     scipy's MAT v5 parser is compiled code, and some damaged files crash the whole process
@@ -665,7 +711,8 @@ def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> Spectr
         _MAT5_WORKER = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("forkserver"))
         atexit.register(_MAT5_WORKER.shutdown, cancel_futures=True)  # before the interpreter tears down
     try:
-        return _MAT5_WORKER.submit(_read_mat5_here, Path(path), wavelengths_nm, wavelength_units, variable).result()
+        return _MAT5_WORKER.submit(_read_mat5_here, Path(path), wavelengths_nm, wavelength_units, variable,
+                                   budget).result()
     except BrokenProcessPool:
         _MAT5_WORKER = None  # the worker died with the file: the next read starts a new one
         raise SpectrumError(
@@ -677,7 +724,7 @@ def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable) -> Spectr
 _MAT5_WORKER = None
 
 
-def _read_mat5_here(path: Path, wavelengths_nm, wavelength_units, variable) -> SpectralCube:
+def _read_mat5_here(path: Path, wavelengths_nm, wavelength_units, variable, budget: int) -> SpectralCube:
     import scipy.io
 
     # scipy's MAT parser meets damaged files with whatever its code hits (IndexError, KeyError,
@@ -691,12 +738,11 @@ def _read_mat5_here(path: Path, wavelengths_nm, wavelength_units, variable) -> S
     numeric = {name for name, _, kind in listing if kind in _MAT_CLASS_BYTES}
     name = _mat_choice(path, shapes, numeric, variable)
     kind = next(kind for n, _, kind in listing if n == name)
-    claimed = int(np.prod(shapes[name], dtype=object)) * _MAT_CLASS_BYTES[kind]
-    if claimed > MAX_IN_MEMORY_BYTES:
-        raise SpectrumError(
-            f"{path}: variable {name!r} {shapes[name]} would take {claimed} bytes in memory; MATLAB v5 "
-            f"files are read whole, up to {MAX_IN_MEMORY_BYTES} bytes (save it as v7.3 or ENVI to read lazily)"
-        )
+    claimed = claimed_bytes(shapes[name], _MAT_CLASS_BYTES[kind], f"{path}: variable {name!r}: shape")
+    what = f"variable {name!r} claims shape {shapes[name]} of {kind}"
+    check_file_claim(path, claimed, what, compressed_bytes=path.stat().st_size)  # v5 may be compressed
+    check_bytes(claimed, f"{path}: {what} (MATLAB v5 files are read whole; save it as v7.3 or ENVI to "
+                "stream it)", budget=budget)
 
     def load(variable_name):
         try:
@@ -734,9 +780,13 @@ def _mat73_cube(path: Path, handle, wavelengths_nm, wavelength_units, variable) 
     numeric = {name for name, item in datasets.items() if item.dtype.kind in "biuf"}
     name = _mat_choice(path, shapes, numeric, variable)
     dataset = datasets[name]
+    claimed = claimed_bytes(dataset.shape, dataset.dtype.itemsize, f"{path}: variable {name!r}: shape")
+    what = f"variable {name!r} claims {_describe(shapes[name], dataset.dtype)}"
     if dataset.chunks is None:  # contiguous: its bytes must be in the file
-        offset = dataset.id.get_offset() or 0
-        _check_claimed_size(path, offset + dataset.size * dataset.dtype.itemsize, f"{name} {shapes[name]}")
+        check_file_claim(path, claimed, what, offset=dataset.id.get_offset() or 0)
+    else:  # chunked (and perhaps compressed): chunks never written read as the fill value
+        check_file_claim(path, claimed, f"{what} in chunks (chunks never written read as the fill value)",
+                         compressed_bytes=dataset.id.get_storage_size())
     values = MatlabH5Array(str(path), name, tuple(dataset.shape), dataset.dtype.str)
 
     def load(variable_name):
@@ -783,6 +833,7 @@ def _read_netcdf(path: Path, wavelength_units, variable, wavelengths_nm) -> Spec
             f"{path}: variable {name!r} must have 3 dimensions (two spatial + 'wavelength'); "
             f"got {array.dims}"
         )
+    _check_hdf5_storage(path, name)
     array = array.transpose(*[d for d in array.dims if d != "wavelength"], "wavelength")
     if wavelengths_nm is not None:
         wavelengths = _given_wavelengths(wavelengths_nm, path)
@@ -796,6 +847,23 @@ def _read_netcdf(path: Path, wavelength_units, variable, wavelengths_nm) -> Spec
         wavelengths = wavelengths_to_nm(coord.values, units, f"{path} ('wavelength' coordinate)")
     return SpectralCube(array, wavelengths, str(path),
                         {"variable": name, "dims": array.dims})
+
+
+def _check_hdf5_storage(path: Path, name: str) -> None:
+    """The bytes an HDF5 variable claims against those stored (chunks never written are fill value)."""
+    import h5py
+
+    with h5py.File(path, "r") as handle:
+        dataset = handle.get(name)
+        if not isinstance(dataset, h5py.Dataset):
+            return
+        claimed = claimed_bytes(dataset.shape, dataset.dtype.itemsize, f"{path}: variable {name!r}: shape")
+        what = f"variable {name!r} claims {_describe(dataset.shape, dataset.dtype)}"
+        if dataset.chunks is None:
+            check_file_claim(path, claimed, what, offset=dataset.id.get_offset() or 0)
+        else:
+            check_file_claim(path, claimed, f"{what} in chunks (chunks never written read as the fill value)",
+                             compressed_bytes=dataset.id.get_storage_size())
 
 
 # --- folder of one-band images ---------------------------------------------------------------
@@ -835,11 +903,35 @@ def _read_band(file: Path) -> np.ndarray:
     return band
 
 
-def _read_folder(folder: Path, wavelength_units) -> SpectralCube:
+def _band_bytes(file: Path) -> int:
+    """Bytes of one band image's samples, from its header (nothing is decoded)."""
+    try:
+        if file.suffix.lower() == ".png":
+            from PIL import Image
+
+            with Image.open(file) as image:
+                width, height = image.size
+                itemsize = 2 if image.mode.startswith("I") else 1
+                return width * height * len(image.getbands()) * itemsize
+        import tifffile
+
+        with tifffile.TiffFile(file) as tif:
+            series = tif.series[0]
+            return claimed_bytes(series.shape, np.dtype(series.dtype).itemsize, f"{file}: shape")
+    except SpectrumError:
+        raise
+    except Exception as exc:  # Pillow and tifffile raise many types for damaged files
+        raise SpectrumError(f"{file}: cannot be read as a band image ({exc!r:.80})") from None
+
+
+def _read_folder(folder: Path, wavelength_units, budget: int) -> SpectralCube:
     files = sorted(f for f in folder.iterdir() if f.suffix.lower() in _FOLDER_SUFFIXES)
     if not files:
         raise SpectrumError(f"{folder}: no .png or .tif band images in the folder")
     wavelengths = np.array([_wavelength_from_name(f, wavelength_units) for f in files])
+    # the bands and the stacked cube are held together
+    check_bytes(2 * sum(_band_bytes(f) for f in files),
+                f"{folder}: {len(files)} band images (a folder is read whole)", budget=budget)
     order = np.argsort(wavelengths, kind="stable")
     sorted_nm = wavelengths[order]
     repeated = sorted_nm[1:][np.diff(sorted_nm) == 0]

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ColorimetryError
+from ..plot import plain_text
 from ..safe_write import write_bytes
 from .fidelity import HUE_BINS, Fidelity
 
@@ -106,6 +107,7 @@ def bin_colours_rgb8() -> np.ndarray:
     return render(adapted, "sRGB", gamut="desaturate").codes
 
 
+@plain_text
 def vector_graphic(fidelity: Fidelity, index=(), *, ax=None, title: str | None = None):
     """Draw the TM-30 colour vector graphic of one light; returns the matplotlib Figure.
 

@@ -19,13 +19,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import refuse_overflow
 from ..colorimetry import weights
 from ..coordinates import lab
 from ..differences import delta_e_2000
-from ..errors import SpectrumError
+from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import DEFAULT_ILLUMINANT
 from ..observers import DEFAULT_OBSERVER
 from ..spectrum import Spectrum
+
+#: Why a result of finite reflectances is refused: their colours overflowed the float range.
+_OVERFLOW = ("values this large overflow the colours' tristimulus values or CIELAB (reflectance "
+             "factors are 0-1; values beyond about 1e300 cannot be weighted)")
 
 
 def _reflectance(spectrum, argument: str) -> Spectrum:
@@ -170,7 +175,11 @@ def metamerism_index(
     Raises
     ------
     SpectrumError
-        For input that is not a Spectrum, or spectra on different grids.
+        For input that is not a Spectrum, spectra on different grids or batches that do not
+        broadcast.
+    ColorimetryError
+        For finite reflectances so large (near 1e308) that their colours overflow the float
+        range (NaN in a spectrum gives NaN for its pair, as everywhere).
 
     References
     ----------
@@ -186,15 +195,26 @@ def metamerism_index(
     s1, s2 = _reflectance(spectrum1, "spectrum1"), _reflectance(spectrum2, "spectrum2")
     if not np.array_equal(s1.wavelengths_nm, s2.wavelengths_nm):
         raise SpectrumError("spectrum2: must share spectrum1's wavelength grid; resample it first")
+    try:
+        np.broadcast_shapes(s1.values.shape[:-1], s2.values.shape[:-1])
+    except ValueError:
+        raise SpectrumError(f"spectrum1, spectrum2: batches of shapes {s1.values.shape[:-1]} and "
+                            f"{s2.values.shape[:-1]} do not broadcast; pass pairs in matching batches") from None
     grid = s1.wavelengths_nm
     W_ref = np.asarray(weights(grid, observer=observer, illuminant=reference))
     W_test = np.asarray(weights(grid, observer=observer, illuminant=test))
-    ref1, ref2 = s1.values @ W_ref, s2.values @ W_ref
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        ref1, ref2 = s1.values @ W_ref, s2.values @ W_ref
         correction = np.where(ref2 > 0, ref1 / ref2, 1.0)
-    test1, test2 = s1.values @ W_test, s2.values @ W_test * correction
-    white = W_test.sum(axis=0)
-    return delta_e_2000(lab(test1, white), lab(test2, white))
+        test1, test2 = s1.values @ W_test, s2.values @ W_test * correction
+        white = W_test.sum(axis=0)
+        lab1, lab2 = lab(test1, white), lab(test2, white)
+    refuse_overflow(np.concatenate(np.broadcast_arrays(lab1, lab2), axis=-1), [s1.values, s2.values],
+                    "spectrum1, spectrum2", _OVERFLOW)
+    try:
+        return delta_e_2000(lab1, lab2)
+    except ColorimetryError as error:  # finite CIELAB that large still overflows CIEDE2000's C^7
+        raise ColorimetryError(f"spectrum1, spectrum2: {_OVERFLOW} ({error})") from None
 
 
 @dataclass(frozen=True)
@@ -238,6 +258,14 @@ def colour_shift(spectrum: Spectrum, source="D65", target="A", observer="1931",
     ColourShift
         ``lab_source``, ``lab_target`` (…, 3) relative to the source white and the a*b* shift.
 
+    Raises
+    ------
+    SpectrumError
+        For input that is not a Spectrum.
+    ColorimetryError
+        For finite reflectances so large (near 1e308) that their colours overflow the float
+        range, and as :func:`spectrocolor.adapt` for an unknown method.
+
     References
     ----------
     C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Fig. 1.
@@ -255,6 +283,9 @@ def colour_shift(spectrum: Spectrum, source="D65", target="A", observer="1931",
     W_s = np.asarray(weights(s.wavelengths_nm, observer=observer, illuminant=source))
     W_t = np.asarray(weights(s.wavelengths_nm, observer=observer, illuminant=target))
     white_s, white_t = W_s.sum(axis=0), W_t.sum(axis=0)
-    lab_s = lab(s.values @ W_s, white_s)
-    lab_t = lab(adapt(s.values @ W_t, white_t, white_s, method=method), white_s)
-    return ColourShift(lab_s, lab_t, lab_t[..., 1:] - lab_s[..., 1:], method)
+    with np.errstate(invalid="ignore", over="ignore"):
+        lab_s = lab(s.values @ W_s, white_s)
+        lab_t = lab(adapt(s.values @ W_t, white_t, white_s, method=method), white_s)
+        shift = lab_t[..., 1:] - lab_s[..., 1:]
+    refuse_overflow(np.concatenate([lab_s, lab_t, shift], axis=-1), [s.values], "spectrum", _OVERFLOW)
+    return ColourShift(lab_s, lab_t, shift, method)

@@ -33,6 +33,10 @@ from ..observers import DEFAULT_OBSERVER
 from . import zonotope
 from .inputs import DEFAULT_WAVELENGTHS, setup_for, xyz_array
 
+#: Most hue angles :func:`macadam_limits` computes (0.01° apart; each costs one pass over the
+#: solid's facets, so this bounds the time: a few seconds on the default 5 nm grid).
+MAX_HUE_SAMPLES = 36_000
+
 
 @dataclass(frozen=True)
 class SolidMembership:
@@ -201,7 +205,9 @@ def macadam_limits(
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
     samples : int, default 720
-        Number of hue angles, spread uniformly over the full turn.
+        Number of hue angles, spread uniformly over the full turn: 3 to
+        :data:`MAX_HUE_SAMPLES` (each angle costs one pass over the solid's facets, so the
+        limit bounds the time: a few seconds on the default grid).
 
     Returns
     -------
@@ -221,8 +227,10 @@ def macadam_limits(
         Y = np.nan
     if not 0.0 < Y < 100.0:
         raise ColorimetryError(f"luminance_factor: expected 0 < Y < 100 (percent), got {luminance_factor!r}")
-    if not isinstance(samples, int | np.integer) or samples < 3:
-        raise ColorimetryError(f"samples: expected an integer ≥ 3, got {samples!r}")
+    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) \
+            or not 3 <= samples <= MAX_HUE_SAMPLES:
+        raise ColorimetryError(f"samples: expected an integer from 3 to {MAX_HUE_SAMPLES} hue angles "
+                               f"({360 / MAX_HUE_SAMPLES:g}° apart), got {samples!r}")
     setup, _, _ = setup_for(wavelengths, observer, illuminant)
     white = setup.white
     origin = white * (Y / white[1])

@@ -27,6 +27,11 @@ from .optics import FilmOptics
 
 #: The last angle of an angle grid is capped here (grazing incidence reflects everything).
 _MAX_ANGLE_DEG = 89.9
+#: Memory of one table entry while its colour is rendered (XYZ, drive values, codes), bytes.
+TABLE_ENTRY_BYTES = 160
+#: Memory of one spectral sample of a table entry while its optics are computed (complex
+#: amplitudes, reflectance factors), bytes: measured about 90 (soap film, 81 samples).
+SAMPLE_BYTES = 128
 
 
 @dataclass(frozen=True)
@@ -176,8 +181,12 @@ class ColourTable:
 
 def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.5,
                  max_angle_deg: float | None = None, angle_step_deg: float = 1.0,
-                 wavelengths_nm=None, **colour_options) -> ColourTable:
+                 wavelengths_nm=None, memory_budget=None, **colour_options) -> ColourTable:
     """Build a :class:`ColourTable` for a film model.
+
+    The films' spectra are computed in blocks of thicknesses sized by the memory budget
+    (:func:`spectrocolor.budget.block_bytes`), so a fine or long table takes the memory of its
+    colours only; those are checked against the budget before anything is computed.
 
     Parameters
     ----------
@@ -195,6 +204,9 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
         Angle grid spacing, degrees (only with ``max_angle_deg``).
     wavelengths_nm : array_like, shape (K,), keyword-only, optional
         Spectral grid, nm (default 380-780 nm at 5 nm).
+    memory_budget : int or str, keyword-only, optional
+        The memory budget (e.g. ``"2GiB"``; default the budget in force,
+        :func:`spectrocolor.budget.memory_budget`).
     **colour_options : dict
         Passed to :func:`~spectrocolor.thinfilm.colour.film_colours` (illuminant, observer,
         exposure, gain, space, gamut).
@@ -209,6 +221,9 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
     SpectrumError
         For a thickness range or step that is not positive, an angle grid outside (0, 90),
         a ``film`` that does not return FilmOptics, and as :func:`film_colours`.
+    spectrocolor.errors.BudgetError
+        (a ``SpectrumError``) When the table's entries (``max_thickness_nm / thickness_step_nm``
+        thicknesses times the angles) exceed the memory budget.
 
     Examples
     --------
@@ -219,25 +234,30 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
     >>> table.description
     'soap_film, blackbody 6504 K, observer CIE 1931 2°, exposure global-max'
     """
+    from ..budget import check_bytes
+
     if not (np.isfinite(max_thickness_nm) and max_thickness_nm > 0):
         raise SpectrumError(f"max_thickness_nm: expected a positive number, got {max_thickness_nm}")
     if not (np.isfinite(thickness_step_nm) and thickness_step_nm > 0):
         raise SpectrumError(f"thickness_step_nm: expected > 0, got {thickness_step_nm}")
     wl = np.arange(380.0, 781.0, 5.0) if wavelengths_nm is None else wavelengths_nm
-    count = int(np.ceil(max_thickness_nm / thickness_step_nm - 1e-9)) + 1
-    d = np.arange(count) * thickness_step_nm
+    count = int(np.ceil(min(max_thickness_nm / thickness_step_nm, 1e18) - 1e-9)) + 1
     if max_angle_deg is None:
         angles, angle_step = np.zeros(1), None
     else:
         if not (0 < max_angle_deg < 90 and angle_step_deg > 0):
             raise SpectrumError("max_angle_deg must be in (0, 90) and angle_step_deg > 0")
+        check_bytes(8 * (int(np.ceil(min(max_angle_deg / angle_step_deg, 1e18) - 1e-9)) + 1),
+                    f"max_angle_deg / angle_step_deg: {max_angle_deg:g} / {angle_step_deg:g} deg",
+                    budget=memory_budget)
         angles = np.arange(int(np.ceil(max_angle_deg / angle_step_deg - 1e-9)) + 1) * angle_step_deg
         angles = np.minimum(angles, _MAX_ANGLE_DEG)
         angle_step = float(angle_step_deg)
-    optics = film(d, wl, angle_deg=angles[:, None])
-    if not isinstance(optics, FilmOptics):
-        raise SpectrumError("film: must return FilmOptics (e.g. soap_film, thin_film)")
-    colours = film_colours(optics, **colour_options)
+    check_bytes(angles.size * count * TABLE_ENTRY_BYTES,
+                f"max_thickness_nm / thickness_step_nm: a table of {count} thicknesses x "
+                f"{angles.size} angle(s)", budget=memory_budget)
+    d = np.arange(count) * thickness_step_nm
+    colours = _table_colours(film, d, np.asarray(wl, dtype=float), angles, colour_options, memory_budget)
     description = (f"{getattr(film, '__name__', 'film')}, {colours.illuminant}, observer "
                    f"{colours.observer}, exposure {colours.exposure}")
     if angle_step is None:
@@ -247,6 +267,32 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
     transfer = rgb_space(colour_options.get("space", "sRGB")).transfer
     return ColourTable(float(thickness_step_nm), angle_step, colours.rgb8, description,
                        colours.rendering.rgb_linear, transfer)
+
+
+def _table_colours(film, d: np.ndarray, wl: np.ndarray, angles: np.ndarray, colour_options: dict,
+                   memory_budget):
+    """The colours of every (angle, thickness) entry, the spectra computed in blocks of thicknesses."""
+    from ..budget import block_bytes
+    from .colour import colours_of, film_weights
+
+    per_thickness = angles.size * max(wl.size, 1) * SAMPLE_BYTES
+    step = max(1, block_bytes(memory_budget) // per_thickness)
+    quantity = colour_options.get("quantity", "reflectance")
+    if d.size <= step:  # one block: the films' colours as film_colours gives them
+        return film_colours(_optics(film, d, wl, angles), **colour_options)
+    W = film_weights(wl, **colour_options)
+    XYZ100 = np.empty((angles.size, d.size, 3))
+    for start in range(0, d.size, step):
+        optics = _optics(film, d[start:start + step], wl, angles)
+        XYZ100[:, start:start + step] = optics.spectrum(quantity).values @ W
+    return colours_of(XYZ100, **colour_options)
+
+
+def _optics(film, d: np.ndarray, wl: np.ndarray, angles: np.ndarray) -> FilmOptics:
+    optics = film(d, wl, angle_deg=angles[:, None])
+    if not isinstance(optics, FilmOptics):
+        raise SpectrumError("film: must return FilmOptics (e.g. soap_film, thin_film)")
+    return optics
 
 
 def render_thickness_map(thickness_nm, table: ColourTable, angle_deg=None,
@@ -471,6 +517,9 @@ def read_thickness_map(path, nm_per_count: float | None = None) -> np.ndarray:
     if suffix == ".npy":
         if nm_per_count is not None:
             raise SpectrumError("nm_per_count: a .npy map is already in nm; do not give a scale")
+        from ..budget import npy_claim
+
+        npy_claim(path, held=3.0)  # the array, its float32 copy and the picture's work
         data = np.load(path, allow_pickle=False)
         if data.ndim != 2 or data.dtype.kind not in "fiu":
             raise SpectrumError(f"{path}: expected a 2-D numeric array, got {data.shape}")
@@ -482,7 +531,11 @@ def read_thickness_map(path, nm_per_count: float | None = None) -> np.ndarray:
             )
         from PIL import Image
 
+        from ..budget import check_bytes
+
         with Image.open(path) as image:
+            check_bytes(image.width * image.height * 12, f"{path}: {image.width} x {image.height} "
+                        "pixels (counts, their float32 thicknesses and the picture's work)")
             if image.mode not in ("I;16", "I;16B", "I", "L"):
                 raise SpectrumError(
                     f"{path}: expected a greyscale PNG (8 or 16 bit), got mode {image.mode}"

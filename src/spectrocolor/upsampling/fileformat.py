@@ -147,13 +147,37 @@ def _bad(path, what: str) -> SpectrumError:
     return SpectrumError(f"{path}: not a valid spectrocolor upsampling table: {what}")
 
 
-def load_table(path) -> UpsamplingTable:
+def _read_exactly(handle, count: int, path, into=None):
+    """``count`` bytes from ``handle`` (into the buffer ``into`` if given); short reads refused."""
+    if into is None:
+        data = handle.read(count)
+        if len(data) != count:
+            raise _bad(path, "the file ended early (it changed while being read?)")
+        return data
+    done = 0
+    while done < count:
+        got = handle.readinto(into[done:])
+        if not got:
+            raise _bad(path, "the file ended early (it changed while being read?)")
+        done += got
+    return into
+
+
+def load_table(path, *, memory_budget=None) -> UpsamplingTable:
     """Read a table written by :func:`save_table`, checking its size, checksum and values.
+
+    The sizes in the header are checked before anything is read: against the accepted ranges,
+    the file's length, the bytes it really stores on disk (a sparse file promising gigabytes of
+    holes is refused) and the memory budget (the table is held in memory, about the file's
+    size). The sections are read straight into their arrays, the checksum computed on the way.
 
     Parameters
     ----------
     path : str or os.PathLike
         The table file.
+    memory_budget : int or str, keyword-only, optional
+        Most bytes the table may take in memory (e.g. ``"2GiB"``); default the budget in force
+        (:func:`spectrocolor.budget.memory_budget`).
 
     Returns
     -------
@@ -165,6 +189,8 @@ def load_table(path) -> UpsamplingTable:
     SpectrumError
         Wrong magic or version, sizes out of range, a length that does not match the header, a
         checksum mismatch, malformed metadata, or values outside their ranges.
+    spectrocolor.errors.BudgetError
+        (a ``SpectrumError``) A sparse file, or a table larger than the memory budget.
 
     Examples
     --------
@@ -176,6 +202,8 @@ def load_table(path) -> UpsamplingTable:
     ...     load_table(path).resolution
     2
     """
+    from ..budget import check_bytes, check_file_claim
+
     path = Path(path)
     try:
         size = os.stat(path).st_size
@@ -200,13 +228,26 @@ def load_table(path) -> UpsamplingTable:
                 int(np.prod(s)) * np.dtype(d).itemsize for _, s, d in sections) + 4
             if size != expected:
                 raise _bad(path, f"{size} bytes; the header promises {expected}")
-            data = head + handle.read(size - HEADER.size)
+            claim = f"the header claims a table of n = {n} nodes per axis and K = {K} samples"
+            check_file_claim(path, expected, claim)
+            check_bytes(expected, f"{path}: {claim}", budget=memory_budget)
+            crc = zlib.crc32(head)
+            text = _read_exactly(handle, J, path)
+            crc = zlib.crc32(text, crc)
+            arrays = {}
+            for name, shape, dtype in sections:
+                array = np.empty(shape, dtype=dtype)
+                buffer = memoryview(array.reshape(-1)).cast("B")
+                _read_exactly(handle, len(buffer), path, into=buffer)
+                crc = zlib.crc32(buffer, crc)
+                arrays[name] = array.astype(np.dtype(dtype).newbyteorder("="), copy=False)
+            stored_crc = _read_exactly(handle, 4, path)
     except OSError as exc:
         raise SpectrumError(f"{path}: cannot read the table ({exc.strerror or exc})") from None
-    if zlib.crc32(data[:-4]) != struct.unpack("<I", data[-4:])[0]:
+    if crc != struct.unpack("<I", stored_crc)[0]:
         raise _bad(path, "CRC-32 mismatch (the file is damaged or truncated)")
     try:
-        meta = json.loads(data[HEADER.size:HEADER.size + J].decode("utf-8"))
+        meta = json.loads(text.decode("utf-8"))
         labels = [meta[k] for k in ("space", "illuminant", "observer")]
     except (UnicodeDecodeError, ValueError, KeyError, TypeError):
         raise _bad(path, "the metadata block is not the expected JSON object") from None
@@ -214,13 +255,6 @@ def load_table(path) -> UpsamplingTable:
         raise _bad(path, "space, illuminant and observer must be strings")
     if not (np.isfinite(start) and np.isfinite(step) and step > 0):
         raise _bad(path, f"wavelength start {start!r} and step {step!r}")
-    arrays = {}
-    offset = HEADER.size + J
-    for name, shape, dtype in sections:
-        count = int(np.prod(shape))
-        arrays[name] = np.frombuffer(data, dtype=dtype, count=count, offset=offset).reshape(
-            shape).astype(np.dtype(dtype).newbyteorder("="))
-        offset += count * np.dtype(dtype).itemsize
     rho = arrays["reflectance"]
     if not np.all((rho >= 0.0) & (rho <= 1.0)):
         raise _bad(path, "node reflectances outside [0, 1] (or NaN)")

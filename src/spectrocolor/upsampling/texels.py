@@ -32,6 +32,7 @@ from __future__ import annotations
 import os
 import struct
 import zlib
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -42,7 +43,7 @@ from .apply import texel_coefficients
 from .table import MAX_RESOLUTION, MIN_RESOLUTION, UpsamplingTable
 
 __all__ = ["TexelCoefficients", "load_texel_coefficients", "save_texel_coefficients",
-           "table_fingerprint"]
+           "write_texel_blocks", "table_fingerprint"]
 
 MAGIC = b"SCTEXEL\0"
 VERSION = 1
@@ -246,8 +247,107 @@ def save_texel_coefficients(table: UpsamplingTable, rgb_linear, path,
     return write_bytes(path, data, verify=lambda p: verify_size(p, len(data)))
 
 
-def load_texel_coefficients(path, table: UpsamplingTable | None = None) -> TexelCoefficients:
+def write_texel_blocks(path, table: UpsamplingTable, blocks: Iterable[np.ndarray], width: int,
+                       height: int, out_of_range: str = "toward-grey") -> tuple[Path, int]:
+    """Write a ``.sctx`` file from blocks of rows of table coordinates, one block at a time.
+
+    Each block's node indices, weights and flags are written at their places in the file's
+    three sections as soon as they are computed; the CRC-32 is then computed by reading the file
+    back in blocks. Memory: one block, whatever the texture's size. The file is written beside
+    ``path``, checked and renamed, like every writer.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Output file (conventionally ``.sctx``).
+    table : UpsamplingTable
+        The table the coefficients index.
+    blocks : iterable of numpy.ndarray, each shape (rows, width, 3)
+        Table coordinates (e.g. from ``rgb_linear_from_image``), top to bottom, ``height`` rows
+        in all.
+    width, height : int
+        Texels per row and rows (1 to 65535 each).
+    out_of_range : str, default "toward-grey"
+        "toward-grey" or "clip" (see :data:`~spectrocolor.upsampling.OUT_OF_RANGE_STRATEGIES`).
+
+    Returns
+    -------
+    tuple
+        ``(path, inexact)``: the file written and the number of texels not reproduced exactly.
+
+    Raises
+    ------
+    ColorimetryError
+        As :func:`texel_bytes`, and for blocks that are not ``height`` rows of ``(width, 3)``.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (a previous file is left unchanged).
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from spectrocolor.upsampling import upsampling_table
+    >>> table = upsampling_table("sRGB", "D65", resolution=3, measure_excess=False)
+    >>> texture = np.random.default_rng(0).random((4, 5, 3))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path, inexact = write_texel_blocks(pathlib.Path(folder) / "t.sctx", table,
+    ...                                        [texture[:3], texture[3:]], 5, 4)
+    ...     same = path.read_bytes() == texel_bytes(table, texture)
+    >>> same, inexact
+    (True, 0)
+    """
+    from ..budget import block_bytes
+    from ..safe_write import atomic_path, verify_size
+    from .apply import OUT_OF_RANGE_STRATEGIES
+
+    if not isinstance(table, UpsamplingTable):
+        raise ColorimetryError(f"table: expected an UpsamplingTable, got {type(table).__name__}")
+    if not (1 <= width <= MAX_SIDE and 1 <= height <= MAX_SIDE):
+        raise ColorimetryError(f"width, height: sides 1 to {MAX_SIDE} texels, got {width} x {height}")
+    if OUT_OF_RANGE_STRATEGIES.canonical(out_of_range) == "nan":
+        raise ColorimetryError("out_of_range: 'nan' has no coefficients; use 'toward-grey' or 'clip'")
+    texels = width * height
+    size = HEADER.size + 33 * texels + 4
+    inexact = 0
+    with atomic_path(path, verify=lambda p: verify_size(p, size)) as temporary:
+        with open(temporary, "w+b") as out:
+            out.write(HEADER.pack(MAGIC, VERSION, width, height, table.resolution,
+                                  table.wavelengths_nm.size, table_fingerprint(table)))
+            row = 0
+            for block in blocks:
+                block = np.asarray(block)
+                if block.ndim != 3 or block.shape[1:] != (width, 3) or row + len(block) > height:
+                    raise ColorimetryError(f"blocks: expected {height} rows of shape ({width}, 3) in "
+                                           f"all; got a block of shape {block.shape} after {row} rows")
+                nodes, weights, exact = texel_coefficients(table, block, out_of_range)
+                first = row * width
+                for at, data in ((HEADER.size + 16 * first, np.ascontiguousarray(nodes, "<u4")),
+                                 (HEADER.size + 16 * texels + 16 * first, np.ascontiguousarray(weights, "<f4")),
+                                 (HEADER.size + 32 * texels + first, exact.astype(np.uint8))):
+                    out.seek(at)
+                    out.write(data.tobytes())
+                inexact += int(np.count_nonzero(~exact))
+                row += len(block)
+            if row != height:
+                raise ColorimetryError(f"blocks: {row} rows given for a texture of height {height}")
+            out.seek(0)
+            crc, left, piece = 0, size - 4, block_bytes()
+            while left:
+                data = out.read(min(left, piece))
+                crc = zlib.crc32(data, crc)
+                left -= len(data)
+            out.seek(size - 4)
+            out.write(struct.pack("<I", crc))
+    return Path(path), inexact
+
+
+def load_texel_coefficients(path, table: UpsamplingTable | None = None, *,
+                            memory_budget=None) -> TexelCoefficients:
     """Read a ``.sctx`` file, checking its size, checksum and values (and its table, if given).
+
+    The header's sizes are checked before anything is read: against the accepted ranges, the
+    file's length, the bytes it really stores on disk (a sparse file promising 142 GB of holes is
+    refused) and the memory budget (the coefficients are held in memory: 33 bytes per texel).
+    Each section is read straight into its array and checked in blocks.
 
     Parameters
     ----------
@@ -255,6 +355,9 @@ def load_texel_coefficients(path, table: UpsamplingTable | None = None) -> Texel
         The file.
     table : UpsamplingTable, optional
         The table it should belong to: refused unless ``n``, ``K`` and the fingerprint match.
+    memory_budget : int or str, keyword-only, optional
+        Most bytes the coefficients may take in memory (e.g. ``"2GiB"``); default the budget in
+        force (:func:`spectrocolor.budget.memory_budget`).
 
     Returns
     -------
@@ -267,6 +370,8 @@ def load_texel_coefficients(path, table: UpsamplingTable | None = None) -> Texel
         Not a version-1 texel file, sizes out of range, a length that does not match the header,
         a checksum mismatch, node indices ≥ n³, or weights that are negative, not finite or do
         not sum to 1.
+    spectrocolor.errors.BudgetError
+        (a ``SpectrumError``) A sparse file, or coefficients larger than the memory budget.
     ColorimetryError
         For a ``table`` other than the file's.
 
@@ -280,10 +385,22 @@ def load_texel_coefficients(path, table: UpsamplingTable | None = None) -> Texel
     ...
     spectrocolor.errors.SpectrumError: .../x.sctx: not a valid texel coefficient file: 7 bytes, ...
     """
+    from ..budget import block_bytes, check_bytes, check_file_claim
+
     path = Path(path)
 
     def bad(what: str) -> SpectrumError:
         return SpectrumError(f"{path}: not a valid texel coefficient file: {what}")
+
+    def read_into(handle, array: np.ndarray, crc: int) -> int:
+        buffer = memoryview(array.reshape(-1)).cast("B")
+        done = 0
+        while done < len(buffer):
+            got = handle.readinto(buffer[done:])
+            if not got:
+                raise bad("the file ended early (it changed while being read?)")
+            done += got
+        return zlib.crc32(buffer, crc)
 
     try:
         size = os.stat(path).st_size
@@ -307,25 +424,33 @@ def load_texel_coefficients(path, table: UpsamplingTable | None = None) -> Texel
             expected = HEADER.size + 33 * texels + 4
             if size != expected:
                 raise bad(f"{size} bytes; the header promises {expected}")
-            data = head + handle.read(size - HEADER.size)
+            claim = f"the header claims {width} x {height} texels"
+            check_file_claim(path, expected, claim)
+            check_bytes(expected, f"{path}: {claim}", budget=memory_budget)
+            nodes = np.empty((height, width, 4), "<u4")
+            weights = np.empty((height, width, 4), "<f4")
+            flags = np.empty((height, width), np.uint8)
+            crc = zlib.crc32(head)
+            for array in (nodes, weights, flags):
+                crc = read_into(handle, array, crc)
+            stored_crc = handle.read(4)
     except OSError as exc:
         raise SpectrumError(f"{path}: cannot read the file ({exc.strerror or exc})") from None
-    if zlib.crc32(data[:-4]) != struct.unpack("<I", data[-4:])[0]:
+    if len(stored_crc) != 4 or crc != struct.unpack("<I", stored_crc)[0]:
         raise bad("CRC-32 mismatch (the file is damaged or truncated)")
-    offset = HEADER.size
-    nodes = np.frombuffer(data, "<u4", 4 * texels, offset).astype(np.uint32)
-    weights = np.frombuffer(data, "<f4", 4 * texels, offset + 16 * texels).astype(np.float32)
-    flags = np.frombuffer(data, np.uint8, texels, offset + 32 * texels)
-    if nodes.max() >= n**3:
-        raise bad(f"node index {int(nodes.max())} ≥ n³ = {n**3}")
-    sums = weights.reshape(-1, 4).astype(np.float64).sum(axis=-1)
-    if not (np.all(np.isfinite(weights)) and weights.min() >= 0
-            and np.all(np.abs(sums - 1.0) <= 1e-6)):
-        raise bad("weights negative, not finite, or not summing to 1")
-    if np.any(flags > 1):
+    nodes, weights = nodes.astype(np.uint32, copy=False), weights.astype(np.float32, copy=False)
+    rows = max(1, block_bytes(memory_budget) // (48 * width))  # float64 sums of a block of rows
+    for top in range(0, height, rows):
+        block = weights[top:top + rows]
+        if nodes[top:top + rows].max() >= n**3:
+            raise bad(f"node index {int(nodes[top:top + rows].max())} ≥ n³ = {n**3}")
+        sums = block.astype(np.float64).sum(axis=-1)
+        if not (np.all(np.isfinite(block)) and block.min() >= 0
+                and np.all(np.abs(sums - 1.0) <= 1e-6)):
+            raise bad("weights negative, not finite, or not summing to 1")
+    if flags.max() > 1:
         raise bad("flags other than 0 and 1")
-    found = TexelCoefficients(nodes.reshape(height, width, 4), weights.reshape(height, width, 4),
-                              flags.reshape(height, width).astype(bool), n, K, fingerprint)
+    found = TexelCoefficients(nodes, weights, flags.view(bool), n, K, fingerprint)
     if table is not None:
         _check_table(table, n, K, fingerprint, str(path))
     return found
