@@ -45,7 +45,7 @@ def test_alpha_opic_is_linear_and_its_ratios_scale_free():
 
 
 def test_melanopic_irradiance_of_a_monochromatic_line_is_the_action_spectrum():
-    grid = wavelength_grid(480, 500, 1)
+    grid = wavelength_grid(380, 780, 1)  # the α-opic quantities need 380–780 nm
     line = Spectrum.block(490, 490, grid)  # 1 W·m⁻²·nm⁻¹ over Δλ = 1 nm at the melanopic peak
     assert float(alpha_opic_irradiance(line)[4]) == pytest.approx(1.0, abs=1e-15)
     np.testing.assert_allclose(action_spectra([490.0])[0], [0.185297, 0.456137, 0.282752, 0.904, 1.0])
@@ -74,9 +74,9 @@ def test_photopic_flux_and_ler_agree_with_colour_science():
 
 
 def test_luminous_quantity_of_a_555_nm_watt_is_683_lumen():
-    line = Spectrum.block(555, 555, wavelength_grid(550, 560, 1))
+    line = Spectrum.block(555, 555, wavelength_grid(380, 780, 1))  # photometry needs 380–780 nm
     assert float(luminous_quantity(line)) == pytest.approx(683.0, abs=1e-9)
-    assert float(radiant_quantity(line)) == 1.0
+    assert float(radiant_quantity(line)) == 1.0  # exact: one sample of 1 W/nm times 1 nm: a single exact product
     # scotopic: V'(555 nm) = 0.402 (CIE 1951), K'm = 1700 lm/W
     assert float(luminous_quantity(line, "scotopic")) == pytest.approx(1700 * 0.402, abs=1e-9)
 
@@ -95,7 +95,7 @@ def test_bad_input_gets_one_clear_error():
     with pytest.raises(ColorimetryError, match="vision"):
         luminous_quantity(illuminant("D65"), vision="mesopic")
     with pytest.raises(SpectrumError, match="finite"):
-        alpha_opic(Spectrum([400, 500], [1.0, np.inf]))
+        alpha_opic(Spectrum([380, 780], [1.0, np.inf]))
 
 
 # ---------------------------------------------------------------------------- CIECAM02 / CAM02-UCS

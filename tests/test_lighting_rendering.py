@@ -23,11 +23,10 @@ import colour.quality.cri as colour_cri
 import numpy as np
 import pytest
 
-import spectrocolor.lighting.cri as cri_module
 from spectrocolor import Spectrum, cct, illuminant, illuminant_names, wavelength_grid, xy_from_uv_1960
-from spectrocolor.errors import SpectrumError
+from spectrocolor.errors import ColorimetryError, SpectrumError
 from spectrocolor.lighting import colour_fidelity, colour_rendering_index
-from spectrocolor.lighting.reference import daylight_spd, fidelity_reference
+from spectrocolor.lighting.reference import fidelity_reference
 
 EXACT = 1e-9
 PRINTED = 0.05
@@ -72,14 +71,37 @@ def test_ra_of_the_fluorescent_illuminants_rounds_to_the_published_integer(numbe
     assert round(float(result.Ra)) == PUBLISHED_RA_FL[number]
 
 
-def test_fl8_sits_on_the_5000_k_switch_of_the_reference(monkeypatch):
-    # FL8's CCT is 4997 K by exact projection (CIE 015 prints 5000 K): the CIE 13.3 reference is
-    # then Planckian and Ra = 95.50; with the daylight reference of the printed 5000 K it is
-    # 95.15, which rounds to the published 95.
+def test_integer_rounding_gives_every_printed_ra_of_fl1_to_fl12():
+    """CIE reports whole numbers: each Ri rounded, Ra the mean of the rounded R1–R8, rounded.
+    With that rule our exact computation gives all twelve printed Ra (CIE 015:2004 Table T.8.2)
+    in one batched call; unrounded, FL8 (95.50) would print 96."""
+    names = [f"FL{n}" for n in PUBLISHED_RA_FL]
+    lights = Spectrum(illuminant("FL1").wavelengths_nm, np.stack([illuminant(n).values for n in names]), names)
+    rounded = colour_rendering_index(lights, rounding="integer")
+    assert rounded.rounding == "integer"
+    assert rounded.Ra.tolist() == list(PUBLISHED_RA_FL.values())
+    exact = colour_rendering_index(lights)
+    # exact: the same call on the same input gives the same Ri, then the same half-away rounding
+    np.testing.assert_array_equal(rounded.Ri, np.floor(exact.Ri + 0.5) * (exact.Ri >= 0)
+                                  - np.floor(-exact.Ri + 0.5) * (exact.Ri < 0))  # half away from zero
+    # exact: the mean of eight whole numbers (an exact sum divided by a power of two)
+    np.testing.assert_array_equal(rounded.Ra, np.floor(rounded.Ri[:, :8].mean(axis=1) + 0.5))
+
+
+def test_fl8_is_explained_by_the_rounding_not_by_the_5000_k_reference_switch():
+    # FL8's CCT is 4997 K by exact projection (CIE 015 prints 5000 K): the reference stays the
+    # Planckian radiator of CIE 13.3 below 5000 K. Unrounded Ra = 95.50 would print 96; CIE's
+    # rounding of each Ri gives the printed 95 with that same reference.
     fl8 = illuminant("FL8")
-    assert float(colour_rendering_index(fl8).cct_K) == pytest.approx(4997.2, abs=0.1)
-    monkeypatch.setattr(cri_module, "cri_reference", lambda T, grid: daylight_spd(np.full_like(T, 5000.0), grid))
-    assert round(float(colour_rendering_index(fl8).Ra)) == PUBLISHED_RA_FL[8]
+    exact = colour_rendering_index(fl8)
+    assert float(exact.cct_K) == pytest.approx(4997.2, abs=0.1) and float(exact.cct_K) < 5000.0
+    assert np.floor(float(exact.Ra) + 0.5) == 96
+    assert float(colour_rendering_index(fl8, rounding="integer").Ra) == PUBLISHED_RA_FL[8]
+
+
+def test_unknown_rounding_is_refused_by_name():
+    with pytest.raises(ColorimetryError, match="rounding"):
+        colour_rendering_index(illuminant("FL2"), rounding="nearest")
 
 
 def test_daylight_and_planckian_lights_render_perfectly():
@@ -231,7 +253,17 @@ def test_bad_spectra_get_one_clear_error(spd, message):
             metric(spd)
 
 
-def test_metrics_of_a_dark_light_are_nan_not_an_exception():
-    dark = Spectrum(wavelength_grid(380, 780, 5), np.zeros(81))
-    assert np.isnan(float(colour_rendering_index(dark).Ra))
-    assert np.isnan(float(colour_fidelity(dark).Rf))
+def test_a_dark_light_is_nan_with_its_reason_in_a_batch_and_an_error_alone():
+    """Issue 27: a light with no power is refused, never a number: NaN and a reason per light
+    in a batch (the other lights computed as alone), a clear error for one light."""
+    grid = wavelength_grid(380, 780, 5)
+    d65 = illuminant("D65", grid).values
+    batch = Spectrum(grid, np.stack([d65, np.zeros(81)]))
+    for metric, main in ((colour_rendering_index, "Ra"), (colour_fidelity, "Rf")):
+        result = metric(batch)
+        assert np.isfinite(getattr(result, main)[0]) and np.isnan(getattr(result, main)[1])
+        assert result.reason[0] == "" and result.reason[1].startswith("no power")
+        # a batch and a single light differ only by the order of the sums (EXACT, above)
+        assert getattr(result, main)[0] == pytest.approx(float(getattr(metric(Spectrum(grid, d65)), main)), abs=EXACT)
+        with pytest.raises(SpectrumError, match="spd: no power"):
+            metric(Spectrum(grid, np.zeros(81)))

@@ -37,7 +37,7 @@ def test_additive_mix_adds_tristimulus_values():
 def test_complement_adds_up_to_the_white():
     # seed 002: "two filters r and 1 - r ... superimposed give colourless light"
     total = additive_mix(A, complement(A, full=30))
-    np.testing.assert_array_equal(total, 30.0)
+    np.testing.assert_array_equal(total, 30.0)  # exact: whole levels 0-30 and 30 minus them: small integers, exact
     np.testing.assert_allclose(xyz_of_levels(total), xyz_of_levels(np.full(31, 30.0)))
     # a yellow-making distribution has a blue-making complement
     yellow = np.where(WL >= 500, 30.0, 0.0)
@@ -52,6 +52,7 @@ def test_subtractive_mix_is_the_product_commutes_and_darkens():
     np.testing.assert_allclose(subtractive_mix(A, B, full=30), A * B / 30, rtol=1e-15)
     np.testing.assert_allclose(subtractive_mix(A, B, full=30), subtractive_mix(B, A, full=30),
                                rtol=1e-15)
+    # exact: whole levels times 30/30: small integers, exact
     np.testing.assert_array_equal(subtractive_mix(A, np.full(31, 30.0), full=30), A)
     assert xyz_of_levels(subtractive_mix(A, B, full=30))[1] <= min(xyz_of_levels(A)[1],
                                                                    xyz_of_levels(B)[1])
@@ -64,6 +65,7 @@ def test_complementary_edit_conserves_the_pair_and_does_not_touch_its_inputs():
     left, right = np.full(31, 28.0), np.full(31, 2.0)
     a, b = complementary_edit(left, right, 18, 0)  # take 580 nm away from the left
     assert a[18] == 0 and b[18] == 30
+    # exact: whole levels moved from one side to the other: small integers, exact
     np.testing.assert_array_equal(a + b, left + right)
     assert left[18] == 28 and right[18] == 2
     a, b = complementary_edit(left, right, -1, 99)  # clipped to the pair's sum
@@ -95,3 +97,37 @@ def test_hostile_input_gets_one_clear_error(call, needle):
     with pytest.raises(sc.SpectrumError) as info:
         call()
     assert needle in str(info.value)
+
+
+def test_mixing_accepts_the_packages_spectrum_and_keeps_its_grid():
+    """Issue 27: additive_mix and subtractive_mix (and complement) take Spectrum; the result is a
+    Spectrum on the same grid whose colour is what mixing means (exact: the same products)."""
+    grid = sc.wavelength_grid(380, 780, 5)
+    d65, a = sc.illuminant("D65", grid), sc.illuminant("A", grid)
+    mixed = additive_mix(d65, a, weights=[1.0, 0.5])
+    assert isinstance(mixed, sc.Spectrum)
+    np.testing.assert_array_equal(mixed.wavelengths_nm, grid)  # exact: the grid is carried, not computed
+    # exact: the same function on the same arrays
+    np.testing.assert_array_equal(mixed.values, additive_mix(d65.values, a.values, weights=[1.0, 0.5]))
+    # superposition adds tristimulus values (sums of 81 products each: a few ulps per term)
+    XYZ = sc.tristimulus(mixed, observer="1931", illuminant=None)
+    np.testing.assert_allclose(XYZ, sc.tristimulus(d65, observer="1931", illuminant=None)
+                               + 0.5 * sc.tristimulus(a, observer="1931", illuminant=None),
+                               rtol=4 * 81 * np.finfo(float).eps)
+    filters = sc.Spectrum(grid, np.stack([np.linspace(0.1, 0.9, grid.size), np.full(grid.size, 0.5)]))
+    through = subtractive_mix(filters, np.linspace(1.0, 0.0, grid.size))  # a Spectrum and an array
+    assert isinstance(through, sc.Spectrum) and through.values.shape == (2, grid.size)
+    # exact: one IEEE product (and one difference) of the same operands
+    np.testing.assert_array_equal(through.values, filters.values * np.linspace(1.0, 0.0, grid.size))
+    np.testing.assert_array_equal(complement(filters).values, 1.0 - filters.values)  # exact: one IEEE difference
+    # arrays alone still give arrays
+    assert isinstance(additive_mix([1.0, 2.0], [3.0, 4.0]), np.ndarray)
+
+
+def test_mixing_spectra_on_different_grids_is_refused_by_name():
+    a = sc.Spectrum(sc.wavelength_grid(400, 700, 10), np.ones(31))
+    b = sc.Spectrum(sc.wavelength_grid(400, 700, 5), np.ones(61))
+    with pytest.raises(sc.SpectrumError, match=r"distributions\[1\]: .*resample"):
+        additive_mix(a, b)
+    with pytest.raises(sc.SpectrumError, match=r"transmittances\[1\]: .*K = 31"):
+        subtractive_mix(a, np.ones(61))

@@ -48,6 +48,30 @@ def test_van_trigt_structure_plots_draw_their_data():
     left = [line for line in ax.lines if line.get_label().startswith("left branch")][0]
     np.testing.assert_allclose(left.get_xydata(), loc.left_xy)
     ax = plots.generating_luminance_plot(gen)
-    solid = [line for line in ax.lines if line.get_label().startswith("Y(λ₁)")][0]
-    interior = gen.solution_class == "1"
-    np.testing.assert_allclose(solid.get_ydata(), gen.luminance_factor[interior])
+    # one solid Y(λ₁) line per family: class 2, then class 1 at λ_b and at λ_e (Figs. 9–10)
+    solid = [line for line in ax.lines if line.get_label().startswith("Y(λ₁)")]
+    assert [line.get_label().split(", ", 1)[1] for line in solid] == [
+        "class 2 (interior zero at λ₁)", "class 1 (zero at 400 nm)", "class 1 (zero at 700 nm)"]
+    for line, rows in zip(solid, (gen.family("2"), gen.family("1", 400.0), gen.family("1", 700.0)),
+                          strict=True):
+        y = line.get_ydata()
+        # exact: the plot holds the generating functions' own numbers (a copy, no arithmetic)
+        np.testing.assert_array_equal(y[np.isfinite(y)], gen.luminance_factor[rows])
+
+
+def test_classes_plot_marks_regions_end_points_and_given_points():
+    """Van Trigt Figs. 7–8: class regions (fans from the white), their end points and marked
+    chromaticities (``points=``)."""
+    d = domain_of_validity("D65", wavelengths=GRID)
+    points = {"9": (0.55, 0.32), "1": (0.35, 0.34)}
+    ax = plots.domain_of_validity_plot(d, luminance=False, points=points, points_label="test colours")
+    marked = [line for line in ax.lines if line.get_label() == "test colours"][0]
+    np.testing.assert_array_equal(marked.get_xydata(), list(points.values()))  # exact: the points given
+    assert [t.get_text() for t in ax.texts if t.get_text() in points] == list(points)
+    ends = [line for line in ax.lines if line.get_label() == "end points of the classes"][0]
+    pieces = d.boundary_pieces()
+    expected = np.unique(np.round([p.xy[i] for p in pieces for i in (0, -1)], 12), axis=0)
+    np.testing.assert_array_equal(ends.get_xydata(), expected)  # exact: the same pieces, rounded alike
+    assert {t.get_text() for t in ax.texts} >= {"1: ρ(400) = 0", "1: ρ(700) = 0", "2"}
+    with pytest.raises(sc.SpectrumError, match="points"):
+        plots.domain_of_validity_plot(d, points=[[0.3, 0.3, 0.4]])

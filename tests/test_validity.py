@@ -37,10 +37,14 @@ def test_region_matches_brute_force_and_does_not_depend_on_Y(illuminant):
         rho = smoothest_reflectance(_xyz(xy, Y), illuminant=illuminant, wavelengths=GRID,
                                     bounds=None).spectrum.values
         signs.append(rho.min(axis=1) >= 0)
+    # exact: Y = 40 is 8 × 5 and enters last: scaling by a power of two commutes with every rounding (no
+    # under/overflow), so the same path on the same CPU gives exactly scaled numbers
     np.testing.assert_array_equal(signs[0], signs[1])  # linear in XYZ: Y only scales ρ
     # away from the boundary (rounding), polygon, predicate and brute force agree
     margin = np.abs(d._levels(xy)).min(axis=1) > 1e-9
+    # exact: booleans, compared only 1e-9 or more away from the boundary
     np.testing.assert_array_equal(d.nonnegative(xy)[margin], signs[0][margin])
+    # exact: booleans, compared only 1e-9 or more away from the boundary
     np.testing.assert_array_equal(_inside_polygon(d.region_xy, xy)[margin], signs[0][margin])
     assert signs[0].sum() > 100  # a real region
     # white is inside; the region lies within the spectral locus
@@ -96,28 +100,79 @@ def test_bad_chromaticities():
 
 
 @pytest.mark.parametrize("illuminant", ["A", "D65"])
-def test_generating_functions_touch_zero_with_zero_slope_and_stay_below_the_optimal_colour(illuminant):
+def test_generating_functions_of_both_classes_and_their_luminance(illuminant):
     """ρ(λ; λ₁): the unconstrained smoothest reflectance of its chromaticity (independently
-    recomputed), maximum 1, zero at the two samples around λ₁ (zero slope there); its
-    luminance factor Y(λ₁) never exceeds Y_M(λ₁), which is on the boundary of the solid."""
+    recomputed), maximum 1, non-negative; class 2 zero with zero slope at λ₁, class 1 zero at an
+    end with an inflection at λ₁; its luminance factor Y(λ₁) is the domain's maximum luminance
+    factor there and never exceeds Y_M(λ₁), which is on the boundary of the solid."""
     from spectrocolor.recovery.optimal import object_colour_membership
     from spectrocolor.recovery.validity import generating_functions
 
     g = generating_functions(illuminant, wavelengths=GRID)
+    K = len(g.wavelengths_nm)
+    # ρ ≤ 1 computed twice, each from sums of at most 2K + 8 rounded terms (validity.
+    # _rounding_bound); 64 K ε leaves room for terms up to 16 times the result
+    tol = 64 * K * np.finfo(float).eps
     XYZ = g.luminance_factor[:, None] * 100 * _xyz(g.xy, 1.0)
     rho = smoothest_reflectance(XYZ, illuminant=illuminant, wavelengths=GRID, bounds=None).spectrum.values
-    np.testing.assert_allclose(rho, g.reflectance, atol=1e-9)
-    np.testing.assert_allclose(g.reflectance.max(axis=1), 1.0, atol=1e-12)
-    interior = g.solution_class == "1"
-    assert interior.sum() > 20 and (~interior).sum() >= 2
-    k = np.searchsorted(g.wavelengths_nm, g.touch_nm[interior])
-    rows = g.reflectance[interior]
-    around = np.abs(np.stack([rows[np.arange(len(k)), k - 1], rows[np.arange(len(k)), k]]))
-    assert around.max() < 1e-9 and rows.min() > -1e-9
-    assert np.all(g.luminance_factor <= g.max_luminance_factor + 1e-12)
+    np.testing.assert_allclose(rho, g.reflectance, atol=tol)
+    np.testing.assert_allclose(g.reflectance.max(axis=1), 1.0, atol=tol)
+    assert g.reflectance.min() >= -tol
+    on_grid = np.isin(g.lambda1_nm, g.wavelengths_nm)
+    k = np.searchsorted(g.wavelengths_nm, g.lambda1_nm)
+    rows = np.arange(len(k))
+    two = (g.solution_class == "2") & on_grid
+    r, kk = g.reflectance[two], k[two]
+    assert two.sum() > 20 and np.all(g.zero_nm[two] == g.lambda1_nm[two])
+    assert np.abs(r[rows[:len(kk)], kk]).max() <= tol  # zero at λ₁ ...
+    assert np.abs(r[rows[:len(kk)], kk + 1] - r[rows[:len(kk)], kk - 1]).max() <= 2 * tol  # ... flat
+    d = domain_of_validity(illuminant, wavelengths=GRID)
+    for end in (0, -1):
+        one = (g.solution_class == "1") & (g.zero_nm == g.wavelengths_nm[end])
+        assert np.abs(g.reflectance[one, end]).max() <= tol
+        inner = one & on_grid & (k > 0) & (k < K - 1)
+        assert inner.sum() > 5
+        r, kk = g.reflectance[inner], k[inner]
+        n = rows[:len(kk)]
+        bend = r[n, kk - 1] - 2 * r[n, kk] + r[n, kk + 1]  # inflection: no curvature at λ₁
+        assert np.abs(bend).max() <= 4 * tol
+        # each function is on its end line
+        np.testing.assert_allclose(d._levels(g.xy[one])[:, end], 0.0, atol=tol)
+    ymax = d.max_luminance_factor(g.xy)
+    finite = np.isfinite(ymax)  # NaN where rounding puts a boundary point just outside
+    assert finite.sum() > len(ymax) // 3
+    np.testing.assert_allclose(g.luminance_factor[finite], ymax[finite], atol=tol)
+    assert np.all(g.luminance_factor <= g.max_luminance_factor + tol)
     optimal = g.max_luminance_factor[:, None] * 100 * _xyz(g.xy, 1.0)
     depth = object_colour_membership(optimal, illuminant=illuminant, wavelengths=GRID).relative_depth
     assert np.abs(depth).max() < 1e-12
+
+
+@pytest.mark.parametrize("illuminant", ["A", "D65"])
+def test_class_1_family_covers_each_end_line_and_classes_agree_with_the_domain(illuminant):
+    """The class-1 functions reach along each straight end line from one end point to the
+    other (issue 27: at 1 nm there used to be 3 on the end lines in all); the class of each
+    function's own chromaticity, read from the domain's boundary, is the function's class."""
+    from spectrocolor.recovery.validity import _Family, generating_functions
+
+    g = generating_functions(illuminant, wavelengths=GRID)
+    d = domain_of_validity(illuminant, wavelengths=GRID)
+    pieces = [p for p in d.boundary_pieces() if p.solution_class == "1"]
+    assert sorted(p.zero_nm for p in pieces) == [GRID[0], GRID[1]]
+    for piece in pieces:
+        a, b = piece.xy[0], piece.xy[-1]
+        rows = g.family("1", piece.zero_nm)
+        t = (g.xy[rows] - a) @ (b - a) / ((b - a) @ (b - a))
+        gaps = np.diff(np.sort(np.concatenate([[0.0, 1.0], t]))) * np.linalg.norm(b - a)
+        # refined until neighbours are at most XY_STEP apart (and 1e-4 of a step in λ₁)
+        assert gaps.max() <= _Family.XY_STEP * (1 + 1e-9)
+    c = d.solution_class(g.xy)
+    ends = np.concatenate([[p.xy[0], p.xy[-1]] for p in d.boundary_pieces()])
+    clear = np.min(np.linalg.norm(g.xy[:, None] - ends[None], axis=-1), axis=1) > 1e-6
+    # exact: class labels, compared only 1e-6 or more away from the ends of the classes
+    np.testing.assert_array_equal(c.solution_class[clear], g.solution_class[clear])
+    one = clear & (g.solution_class == "1")
+    np.testing.assert_array_equal(c.zero_nm[one], g.zero_nm[one])  # exact: end wavelengths of the grid
 
 
 def test_boundary_locus_branches_run_from_the_ends_to_the_white():
@@ -128,3 +183,69 @@ def test_boundary_locus_branches_run_from_the_ends_to_the_white():
     np.testing.assert_allclose(loc.right_xy[0], loc.white_xy, atol=1e-12)
     first = sc.xy(np.asarray(sc.weights(sc.wavelength_grid(*GRID), observer="1931", illuminant="D65"))[0])
     np.testing.assert_allclose(loc.left_xy[0], first, atol=1e-12)
+
+
+# --- van Trigt's printed numbers (seed 004; values as quoted in issue 27, see docs/reflectance.md)
+# Our copy of the seed marks the coordinates and line equations of the captions of Figs. 5–8
+# "[withheld]"; issue 27 quotes them from the published captions. The paper's integrals are
+# reproduced by our sums on 360–830 nm at 1 nm (the CIE tables' range and native step).
+FULL = (360.0, 830.0, 1.0)
+
+
+def test_end_line_equations_as_printed_for_A():
+    """Fig. 7 caption (light source A, 360–830 nm): 0.8584x + 1.2291y = 1 and
+    −26.58x + 20.60y = 1; tolerance: half a unit of the last printed digit."""
+    (alpha_b, beta_b), (alpha_e, beta_e) = domain_of_validity("A", wavelengths=FULL).end_line_equations()
+    assert abs(alpha_b - 0.8584) <= 0.5e-4 and abs(beta_b - 1.2291) <= 0.5e-4
+    assert abs(alpha_e - -26.58) <= 0.5e-2 and abs(beta_e - 20.60) <= 0.5e-2
+
+
+# Fig. 5 (D65): "Class 2b", λ₁ = 500 and 564 nm; Fig. 6 (D65): "Class 1b", λ₁ = 500 and 564 nm.
+FIG5 = {500.0: (0.5455, 0.3829), 564.0: (0.1657, 0.0957)}
+FIG6 = {500.0: (0.4500, 0.4707), 564.0: (0.5242, 0.4478)}
+# one unit of the last printed digit: half for his rounding to 4 decimals, half for the
+# difference between his quadrature and our 1 nm sums (the line equations above agree to
+# every printed digit; our 2 nm sums move these points by at most 0.5e-4)
+PRINTED_XY = 1e-4
+
+
+def test_van_trigt_printed_points_land_in_the_class_his_captions_name():
+    d = domain_of_validity("D65", wavelengths=FULL)
+    c = d.solution_class(np.array([*FIG5.values(), *FIG6.values()]))
+    # Fig. 5: interior zero (class 2) at the sample of λ₁; Fig. 6: zero at λ_b = 360 nm (class 1)
+    assert c.solution_class.tolist() == ["2", "2", "1", "1"]
+    assert c.zero_nm.tolist() == [500.0, 564.0, 360.0, 360.0]  # exact: wavelengths of the grid
+    # each printed point is on the boundary to within the printed digits
+    assert np.abs(c.boundary_xy - [*FIG5.values(), *FIG6.values()]).max() <= PRINTED_XY
+    # independently: the unconstrained solution at the Fig. 5 points has its minimum at λ₁
+    # and that minimum is zero to within what a move of PRINTED_XY in xy can change
+    # ρ/max ρ (ρ_k ∝ a_k x + b_k y + c_k)
+    levels = d._levels(np.array(list(FIG5.values())))
+    slope = np.hypot(d.line_coefficients[:, 0], d.line_coefficients[:, 1]).max()
+    rho = smoothest_reflectance(_xyz(np.array(list(FIG5.values())), 20.0), illuminant="D65",
+                                wavelengths=FULL, bounds=None).spectrum.values
+    # exact: wavelengths of the grid, picked where ρ has its zero (its neighbours are larger by
+    # the curvature, far above rounding)
+    np.testing.assert_array_equal(d.wavelengths_nm[rho.argmin(axis=1)], list(FIG5))
+    assert np.all(np.abs(levels.min(axis=1)) <= 2 * PRINTED_XY * slope)
+
+
+def test_generating_functions_reproduce_the_printed_points():
+    from spectrocolor.recovery.validity import generating_functions
+
+    g = generating_functions("D65", wavelengths=FULL, lambda1_nm=[500.0, 564.0])
+    for cls, end, printed in (("2", None, FIG5), ("1", 360.0, FIG6)):
+        rows = g.family(cls, end)
+        assert g.lambda1_nm[rows].tolist() == list(printed)
+        assert np.abs(g.xy[rows] - np.array(list(printed.values()))).max() <= PRINTED_XY
+
+
+def test_cie_test_colours_all_but_9_and_12_inside_the_domain_under_D65():
+    """Fig. 8: the CIE 13.3 test colour samples shipped with the package lie in the domain
+    of validity under D65, all but 9 and 12."""
+    from spectrocolor.lighting.spectra import tcs_reflectances
+
+    grid = sc.wavelength_grid(*FULL)
+    XYZ = tcs_reflectances(grid) @ np.asarray(sc.weights(grid, observer="1931", illuminant="D65"))
+    inside = domain_of_validity("D65", wavelengths=FULL).nonnegative(sc.xy(XYZ))
+    assert (np.flatnonzero(~inside) + 1).tolist() == [9, 12]

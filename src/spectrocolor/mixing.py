@@ -7,7 +7,9 @@ flux through two filters multiplies it wavelength by wavelength by each transmit
 they add up to the full constant distribution ``f(λ) ≡ f_max`` (setting 3: what is taken from
 one is added to the other).
 
-All functions work on plain arrays ``(..., K)`` sampled on one wavelength grid, on a scale
+All functions work on arrays ``(..., K)`` sampled on one wavelength grid, or on the package's
+:class:`~spectrocolor.Spectrum` (then every Spectrum must have the same grid, plain arrays given
+with them must have its K samples, and the result is a Spectrum on that grid), on a scale
 given by ``full``: ``full=1`` for reflectance or transmittance factors 0-1, ``full=30`` for
 SPECTRA's bin levels 0-30. They broadcast like NumPy and never loop in Python.
 
@@ -22,11 +24,46 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import SpectrumError
+from .spectrum import Spectrum
 
 __all__ = ["additive_mix", "subtractive_mix", "complement", "complementary_edit"]
 
 
+def _grid_of(values, arguments) -> np.ndarray | None:
+    """The one wavelength grid of the Spectra among ``values`` (None if there are none).
+
+    Spectra on different grids are refused (mixing is wavelength by wavelength; nothing is
+    resampled silently), and so are plain arrays whose last axis is not the grid's K.
+    """
+    grid, first = None, None
+    for value, argument in zip(values, arguments, strict=True):
+        if isinstance(value, Spectrum):
+            if grid is None:
+                grid, first = value.wavelengths_nm, argument
+            elif value.wavelengths_nm.shape != grid.shape or not np.array_equal(value.wavelengths_nm, grid):
+                raise SpectrumError(
+                    f"{argument}: sampled at {value.wavelengths_nm[0]:g}–{value.wavelengths_nm[-1]:g} nm "
+                    f"(K = {value.wavelengths_nm.size}), {first} at {grid[0]:g}–{grid[-1]:g} nm "
+                    f"(K = {grid.size}); mixing is wavelength by wavelength: resample one onto the "
+                    f"other's grid first, e.g. {argument}.resample({first}.wavelengths_nm)")
+    if grid is not None:
+        for value, argument in zip(values, arguments, strict=True):
+            if not isinstance(value, Spectrum):
+                shape = np.shape(value)
+                if not shape or shape[-1] != grid.size:
+                    raise SpectrumError(f"{argument}: an array mixed with Spectra needs their K = "
+                                        f"{grid.size} samples on its last axis, got shape {shape}")
+    return grid
+
+
+def _wrapped(result: np.ndarray, grid: np.ndarray | None):
+    """``result`` as a Spectrum on ``grid`` when the inputs were Spectra, else the array."""
+    return result if grid is None else Spectrum(grid, result)
+
+
 def _values(value, argument: str) -> np.ndarray:
+    if isinstance(value, Spectrum):
+        value = value.values
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -59,15 +96,27 @@ def additive_mix(*distributions, weights=None) -> np.ndarray:
 
     Parameters
     ----------
-    *distributions : array_like (..., K)
-        Spectral distributions on one grid (any non-negative scale), broadcast together.
+    *distributions : array_like (..., K) or Spectrum
+        Spectral distributions on one grid (any non-negative scale), broadcast together; Spectra
+        must share their grid.
     weights : sequence of float, optional
         One non-negative factor per distribution (e.g. spotlight intensities); default 1 each.
 
     Returns
     -------
-    ndarray (..., K)
-        The spectral distribution of the superimposed lights, on the inputs' scale.
+    ndarray (..., K) or Spectrum
+        The spectral distribution of the superimposed lights, on the inputs' scale (a Spectrum
+        on their grid when any input is a Spectrum).
+
+    Raises
+    ------
+    SpectrumError
+        For negative or non-finite values, shapes that do not broadcast, Spectra on different
+        grids, or weights that are not one non-negative number per distribution.
+
+    References
+    ----------
+    P. Sällström (1999), USIP Report 99-05, "Serial and parallel composition of light fluxes".
 
     Examples
     --------
@@ -75,10 +124,17 @@ def additive_mix(*distributions, weights=None) -> np.ndarray:
     [30.0, 30.0, 30.0]
     >>> additive_mix([1, 2], [3, 4], weights=[0.5, 2]).tolist()
     [6.5, 9.0]
+    >>> from spectrocolor import illuminant, wavelength_grid
+    >>> grid = wavelength_grid(380, 780, 5)
+    >>> mixed = additive_mix(illuminant("D65", grid), illuminant("A", grid), weights=[1, 0.5])
+    >>> type(mixed).__name__, mixed.values.shape
+    ('Spectrum', (81,))
     """
     if not distributions:
         raise SpectrumError("distributions: give at least one spectral distribution")
-    arrays = [_values(d, f"distributions[{i}]") for i, d in enumerate(distributions)]
+    names = [f"distributions[{i}]" for i in range(len(distributions))]
+    grid = _grid_of(distributions, names)
+    arrays = [_values(d, name) for d, name in zip(distributions, names, strict=True)]
     for i, a in enumerate(arrays):
         if a.size and a.min() < 0:
             raise SpectrumError(f"distributions[{i}]: a light cannot be negative "
@@ -97,7 +153,7 @@ def additive_mix(*distributions, weights=None) -> np.ndarray:
         raise SpectrumError(
             "distributions: shapes " + ", ".join(str(a.shape) for a in arrays)
             + " do not broadcast (they must share the grid of K samples)") from None
-    return sum(float(wi) * a for wi, a in zip(w, stacked, strict=True))
+    return _wrapped(sum(float(wi) * a for wi, a in zip(w, stacked, strict=True)), grid)
 
 
 def subtractive_mix(*transmittances, full: float = 1.0) -> np.ndarray:
@@ -110,14 +166,27 @@ def subtractive_mix(*transmittances, full: float = 1.0) -> np.ndarray:
 
     Parameters
     ----------
-    *transmittances : array_like (..., K)
-        Transmittances on the scale ``0..full``, on one grid, broadcast together.
+    *transmittances : array_like (..., K) or Spectrum
+        Transmittances on the scale ``0..full``, on one grid, broadcast together; Spectra must
+        share their grid.
     full : float
         The value that means "transmits everything": 1 for factors, 30 for SPECTRA's levels.
 
     Returns
     -------
-    ndarray (..., K)
+    ndarray (..., K) or Spectrum
+        ``full · Π (t_i / full)`` on the inputs' scale (a Spectrum on their grid when any input
+        is a Spectrum).
+
+    Raises
+    ------
+    SpectrumError
+        For values outside ``0..full``, shapes that do not broadcast, or Spectra on different
+        grids.
+
+    References
+    ----------
+    P. Sällström (1999), USIP Report 99-05, setting 5 and "Equivalent visual situations".
 
     Examples
     --------
@@ -127,12 +196,16 @@ def subtractive_mix(*transmittances, full: float = 1.0) -> np.ndarray:
     [15.0, 0.0]
     >>> subtractive_mix([0.5, 0.8], [0.5, 0.5]).tolist()
     [0.25, 0.4]
+    >>> from spectrocolor import Spectrum
+    >>> subtractive_mix(Spectrum([400, 500], [0.5, 0.8]), [0.5, 0.5]).values.tolist()
+    [0.25, 0.4]
     """
     f = _full(full)
     if not transmittances:
         raise SpectrumError("transmittances: give at least one transmittance")
-    arrays = [_within(_values(t, f"transmittances[{i}]"), f, f"transmittances[{i}]")
-              for i, t in enumerate(transmittances)]
+    names = [f"transmittances[{i}]" for i in range(len(transmittances))]
+    grid = _grid_of(transmittances, names)
+    arrays = [_within(_values(t, name), f, name) for t, name in zip(transmittances, names, strict=True)]
     try:
         stacked = np.broadcast_arrays(*arrays)
     except ValueError:
@@ -142,7 +215,7 @@ def subtractive_mix(*transmittances, full: float = 1.0) -> np.ndarray:
     out = stacked[0]
     for a in stacked[1:]:
         out = out * a
-    return out / f ** (len(stacked) - 1)
+    return _wrapped(out / f ** (len(stacked) - 1), grid)
 
 
 def complement(distribution, full: float = 1.0) -> np.ndarray:
@@ -153,14 +226,15 @@ def complement(distribution, full: float = 1.0) -> np.ndarray:
 
     Parameters
     ----------
-    distribution : array_like (..., K)
+    distribution : array_like (..., K) or Spectrum
         Values on the scale ``0..full``.
     full : float
         The level of the full constant distribution (1 for factors, 30 for SPECTRA levels).
 
     Returns
     -------
-    ndarray (..., K)
+    ndarray (..., K) or Spectrum
+        ``full − f``, a Spectrum on the same grid when ``distribution`` is one.
 
     Examples
     --------
@@ -168,7 +242,8 @@ def complement(distribution, full: float = 1.0) -> np.ndarray:
     [30.0, 20.0, 0.0]
     """
     f = _full(full)
-    return f - _within(_values(distribution, "distribution"), f, "distribution")
+    grid = _grid_of([distribution], ["distribution"])
+    return _wrapped(f - _within(_values(distribution, "distribution"), f, "distribution"), grid)
 
 
 def complementary_edit(left, right, index: int, level: float,

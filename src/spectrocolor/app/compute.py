@@ -202,7 +202,8 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
              pairs=(), adaptation: str = DEFAULT_ADAPTATION) -> dict:
     """Colorimetry and display rendering of up to a few distributions (bin levels).
 
-    Returns per distribution: XYZ (Y = 100 for the full spectrum / perfect white), xy,
+    Returns per distribution: XYZ (CIE, Y = 100 for the full spectrum / perfect white), the
+    ``XYZ_row`` the page shows (SPECTRA's one k per channel in "spectra-exact", else XYZ), xy,
     dominant or complementary wavelength and excitation purity relative to the reference
     white (None, with ``dominant_note``, where undefined), CIELAB, the XYZ the display is asked
     to show (after SPECTRA's per-channel k and the adaptation), the rendering (linear RGB,
@@ -223,6 +224,9 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
     space = chain["space"]
     shown_XYZ = XYZ @ chain["to_display"].T
+    # the X Y Z row: SPECTRA's step-1 values (one k per channel, the full spectrum 100/100/100)
+    # in "spectra-exact", else CIE's (one k); xy, CIELAB and λd are always CIE's
+    row_XYZ = XYZ * chain["channel_factors"]
     r = sc.render(shown_XYZ, space, normalise="per-colour" if normalise == "per-colour"
                   else "fixed", gamut=gamut, scale=chain["scale"])
     explanations = r.explain()
@@ -259,6 +263,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
             "dominant_note": dom_note if lit[i] else None,
             "lab": [_none_nan(v) for v in lab[i]],
             "XYZ_displayed": shown_XYZ[i].tolist(),
+            "XYZ_row": row_XYZ[i].tolist(),
             "rgb_unmapped": r.rgb_unmapped[i].tolist(),
             "rgb_linear": r.rgb_linear[i].tolist(),
             "rgb_encoded": r.rgb_encoded[i].tolist(),
@@ -285,6 +290,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "delta_e_2000_shown": delta_shown,
         "white_XYZ": white_XYZ.tolist(),
         "white_xy": white_xy.tolist(),
+        "XYZ_row_note": XYZ_ROW_NOTES["spectra-exact" if normalise == "spectra-exact" else "cie"],
         "lab_note": lab_note,
         "normalise": normalise,
         "adaptation": adaptation,
@@ -293,6 +299,15 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "bit_depth": r.bit_depth,
         "light_metrics": None if illuminant_levels is None else light_metrics(wl, illuminant_levels),
     }
+
+
+#: What the X Y Z row shows (``XYZ_row``), said once; the page shows the same as the row's tooltip.
+XYZ_ROW_NOTES = {
+    "cie": "CIE tristimulus values: one k = 100 / Σ ȳ for all three, so Y = 100 for the full spectrum",
+    "spectra-exact": ("SPECTRA's step 1 (seed 002): one k per channel, X = 100 Σ f x̄ / (f_max Σ x̄) and so on, "
+                      "so the full spectrum shows X = Y = Z = 100 as in SPECTRA; CIE's one k gives it "
+                      "X 99.861, Z 99.709 (1931, 10 nm). x y, L*a*b* and λd are CIE's"),
+}
 
 
 #: How setting 4's light is extended for the lighting metrics, said once (the page shows it).

@@ -16,6 +16,9 @@ _FORMATS = ("html", "csv", "json")
 _RESAMPLE = ("linear", "sprague", "cubic")
 #: Lights printed to the terminal as a table (beyond, only a count).
 _PRINTED = 10
+#: How to fix a grid the colour metrics refuse, said with this command's own option.
+_RESAMPLE_HINT = ("add --resample sprague (or --resample linear / cubic) to interpolate the spectra to 1 nm "
+                  "first (CIE 167 recommends sprague for uniform data)")
 
 
 def register(subparsers) -> None:
@@ -86,7 +89,7 @@ def _light(args: argparse.Namespace) -> int:
     fmt = _output_format(args)
     check_files(args, ("out", "graphic"), ("file",), MAX_SPECTRAL_FILE_BYTES)
     spectra = _resampled(read_spectra(args.file), args.resample, args.file)
-    report = light_report(spectra)
+    report = light_report(spectra, resample_hint=_RESAMPLE_HINT)
     write_light_report(report, args.out, fmt, title=args.title)
     if args.graphic is not None:
         from ..lighting.vector_graphic import write_vector_graphic
@@ -94,7 +97,12 @@ def _light(args: argparse.Namespace) -> int:
         write_vector_graphic(report.fidelity, args.graphic, 0, title=report.names[0])
     if len(report) <= _PRINTED:
         _print_table(report)
-    meaningless = int(np.sum(~report.cri.meaningful))
+    reasons = report.reasons()
+    refused = int(np.sum(reasons != ""))
+    meaningless = int(np.sum(~report.cri.meaningful & (reasons == "")))
     note = f"; CIE 13.3: CCT not meaningful (|Duv| > 0.0054) for {meaningless}" if meaningless else ""
+    if refused:
+        first = int(np.flatnonzero(reasons != "")[0])
+        note += f"; not computed for {refused} (e.g. {report.names[first]}: {reasons[first]})"
     print(f"wrote {args.out}: {len(report)} light(s){note}")
     return 0

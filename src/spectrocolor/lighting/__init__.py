@@ -9,6 +9,8 @@ Every metric takes spectral power distributions as a :class:`~spectrocolor.Spect
 * :func:`luminous_quantity`, :func:`luminous_efficacy_of_radiation` — photometry (:mod:`.photometry`)
 * :func:`alpha_opic` — CIE S 026 α-opic irradiances, efficacies, EDI, DER (:mod:`.alpha_opic`)
 * :func:`summary`, :func:`light_report` — every metric per light (:mod:`.summary`)
+* :func:`light_refusals` — why a metric gives a light NaN (:mod:`.spectra`): no power, negative
+  power, values that are not finite, a spectrum that does not cover the metric's range
 
 Presentation sits in its own modules (the import graph of docs/design.md keeps it out of this
 package's namespace): :func:`spectrocolor.lighting.report.write_light_report` (HTML, CSV,
@@ -22,6 +24,7 @@ from .alpha_opic import ALPHA_OPIC, AlphaOpic, alpha_opic, alpha_opic_irradiance
 from .cri import CRI, colour_rendering_index
 from .fidelity import Fidelity, colour_fidelity
 from .photometry import luminous_efficacy_of_radiation, luminous_quantity, radiant_quantity
+from .spectra import light_refusals
 from .summary import LightReport, light_report, summary
 
 __all__ = [
@@ -35,6 +38,7 @@ __all__ = [
     "colour_fidelity",
     "colour_rendering_index",
     "d65_efficacies_W_per_lm",
+    "light_refusals",
     "light_report",
     "luminous_efficacy_of_radiation",
     "luminous_quantity",

@@ -18,7 +18,10 @@ to 1 nm); they reproduce the values CIE S 026 publishes (0.8173, 1.4558, 1.6289,
 
 The action spectra are tabulated at 1 nm from 380 to 780 nm (blank cells of the table are 0),
 interpolated linearly at the spectrum's samples and zero outside (as V'(λ) in
-:mod:`~spectrocolor.lighting.photometry`).
+:mod:`~spectrocolor.lighting.photometry`); the spectrum must cover 380–780 nm. A light with no
+power, negative power (``Σ S Δλ ≤ 0``, or a negative α-opic or luminous sum) or values that are
+not finite is refused: NaN and a ``reason`` in a batch, a
+:class:`~spectrocolor.errors.SpectrumError` for one light.
 
 References
 ----------
@@ -34,10 +37,12 @@ from functools import cache, lru_cache
 import numpy as np
 
 from ..data_tables import load_table
+from ..errors import SpectrumError
 from ..illuminants import illuminant
 from ..sampling import interval_weights_nm
 from ..spectrum import wavelength_grid
-from .photometry import luminous_quantity, spectral_values, weighting_on
+from .photometry import checked_luminous, luminous_quantity, weighting_on
+from .spectra import CheckedLights, checked_lights
 
 #: The five α-opic quantities, in the order of every (..., 5) array here.
 ALPHA_OPIC = ("s-cone-opic", "m-cone-opic", "l-cone-opic", "rhodopic", "melanopic")
@@ -60,6 +65,8 @@ class AlphaOpic:
         α-opic daylight (D65) efficacy ratios (1 for D65).
     illuminance_lx : ndarray
         Photopic illuminance E_v (lx), shape ``(...)``.
+    reason : ndarray of str
+        Why a light's quantities are NaN, shape ``(...)``; ``""`` where they are computed.
 
     References
     ----------
@@ -79,6 +86,7 @@ class AlphaOpic:
     edi_lx: np.ndarray
     der: np.ndarray
     illuminance_lx: np.ndarray
+    reason: np.ndarray
 
     @property
     def melanopic_edi_lx(self) -> np.ndarray:
@@ -142,12 +150,13 @@ def alpha_opic_irradiance(spd) -> np.ndarray:
     Returns
     -------
     numpy.ndarray, shape (..., 5)
-        E_α = Σ E(λ) s_α(λ) Δλ, W/m².
+        E_α = Σ E(λ) s_α(λ) Δλ, W/m²; NaN for a light refused in a batch (no power, negative
+        power or α-opic sum, not finite, not covering 380–780 nm).
 
     Raises
     ------
     SpectrumError
-        For a non-Spectrum, fewer than two samples, or non-finite values.
+        For a non-Spectrum, and for a single light that is refused.
 
     References
     ----------
@@ -160,8 +169,24 @@ def alpha_opic_irradiance(spd) -> np.ndarray:
     >>> round(float(alpha_opic_irradiance(flat)[4]), 4)  # 0.01 × Σ s_mel Δλ
     0.8768
     """
-    values = spectral_values(spd)
-    return values @ _weights(np.ascontiguousarray(spd.wavelengths_nm).tobytes())
+    checked, irradiance = _irradiance(checked_lights(spd, "alpha-opic"))
+    return irradiance.reshape(*checked.batch_shape, len(ALPHA_OPIC))
+
+
+def _irradiance(checked: CheckedLights, argument: str = "spd") -> tuple[CheckedLights, np.ndarray]:
+    """α-opic irradiances (N, 5) of checked lights; lights with a negative one refused."""
+    irradiance = checked.values @ _weights(np.ascontiguousarray(checked.grid).tobytes())
+    negative = np.any(irradiance < 0, axis=1) & checked.ok
+    if negative.any():
+        reasons = checked.reasons.astype(object)
+        for i in np.flatnonzero(negative):
+            which = ", ".join(ALPHA_OPIC[k] for k in np.flatnonzero(irradiance[i] < 0))
+            reasons[i] = f"negative power: negative {which} irradiance (negative samples outweigh the rest)"
+        checked = CheckedLights(checked.grid, np.where(negative[:, None], 0.0, checked.values),
+                                reasons.astype(str), checked.batch_shape)
+        if checked.batch_shape == ():
+            raise SpectrumError(f"{argument}: {checked.reasons[0]}")
+    return checked, checked.refuse(irradiance)
 
 
 @cache
@@ -203,15 +228,26 @@ def alpha_opic(spd) -> AlphaOpic:
     >>> round(float(result.melanopic_der), 3)  # illuminant A: half as melanopic per lux as D65
     0.496
     """
-    irradiance = alpha_opic_irradiance(spd)
-    illuminance = luminous_quantity(spd)
+    checked, irradiance = _irradiance(checked_lights(spd, "alpha-opic"))
+    spd_ok = spd if checked.ok.all() else None
+    if spd_ok is None:  # the luminous sums of the lights still computed, the others 0
+        from ..spectrum import Spectrum
+
+        spd_ok = Spectrum(checked.grid, checked.values)
+    lit, illuminance = checked_luminous(spd_ok, "photopic")
+    reasons = np.where(checked.ok, lit.reasons.reshape(-1), checked.reasons)
+    ok = reasons == ""
+    illuminance = np.where(ok, illuminance.reshape(-1), np.nan)
+    irradiance = np.where(ok[:, None], irradiance, np.nan)
     with np.errstate(divide="ignore", invalid="ignore"):
-        efficacy = irradiance / illuminance[..., None]
+        efficacy = irradiance / illuminance[:, None]
     reference = d65_efficacies_W_per_lm()
+    shape = checked.batch_shape
     return AlphaOpic(
-        irradiance_W_m2=irradiance,
-        efficacy_W_lm=efficacy,
-        edi_lx=irradiance / reference,
-        der=efficacy / reference,
-        illuminance_lx=illuminance,
+        irradiance_W_m2=irradiance.reshape(*shape, 5),
+        efficacy_W_lm=efficacy.reshape(*shape, 5),
+        edi_lx=(irradiance / reference).reshape(*shape, 5),
+        der=(efficacy / reference).reshape(*shape, 5),
+        illuminance_lx=illuminance.reshape(shape),
+        reason=reasons.astype(str).reshape(shape),
     )

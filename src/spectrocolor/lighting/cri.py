@@ -15,6 +15,15 @@ CIE 13.3 asks that the light be close to the Planckian locus: the chromaticity d
 reference, ΔC = ``|Duv|`` in the 1960 diagram, should be at most 5.4 × 10⁻³. Results are returned
 for every light; ``meaningful`` says which lights meet this (and have a CCT at all).
 
+CIE reports the indices as whole numbers: each Ri is rounded first and Ra is the mean of the
+rounded R1–R8, itself rounded (``rounding="integer"``). That rule, not the choice of reference
+illuminant, is what makes CIE 015's printed Ra of FL1–FL12 (e.g. FL8: 95, where the unrounded
+mean is 95.50) come out of the exact computation.
+
+Lights that cannot be rendered honestly — no power, negative power, values that are not finite,
+a spectrum that does not cover 380–780 nm — get NaN and a ``reason`` in a batch, and a
+:class:`~spectrocolor.errors.SpectrumError` alone (:func:`~spectrocolor.lighting.spectra.checked_lights`).
+
 References
 ----------
 CIE 13.3-1995 *Method of measuring and specifying colour rendering properties of light
@@ -27,14 +36,39 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import notebook_hooks
 from ..coordinates import uv_1960
+from ..errors import SpectrumError
+from ..registry import Registry
 from ..sampling import cmfs_on
 from ..spectrum import Spectrum
 from .reference import cri_reference
-from .spectra import in_chunks, light_cct, light_grid, tcs_reflectances
+from .spectra import RESAMPLE_HINT, checked_lights, in_chunks, light_cct, tcs_reflectances
 
 #: CIE 13.3 §5.3: largest chromaticity distance ΔC between light and reference.
 DELTA_C_LIMIT = 5.4e-3
+
+
+def _whole(values: np.ndarray) -> np.ndarray:
+    """Round half away from zero to whole numbers (95.5 → 96, −83.5 → −84)."""
+    return np.sign(values) * np.floor(np.abs(values) + 0.5)
+
+
+def _unrounded(Ri: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return Ri[..., :8].mean(axis=-1), Ri
+
+
+def _integer(Ri: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    whole = _whole(Ri)
+    return _whole(whole[..., :8].mean(axis=-1)), whole
+
+
+#: How the indices are reported: name → function ``Ri (..., 14) → (Ra, Ri)``.
+ROUNDINGS = Registry("rounding", "a rounding of the colour rendering indices")
+ROUNDINGS.add("none", _unrounded, "Ri as computed; Ra the mean of R1–R8 (full precision)")
+ROUNDINGS.add("integer", _integer,
+              "CIE 13.3 as CIE reports it: each Ri rounded to a whole number (half away from zero), "
+              "Ra the mean of the rounded R1–R8, rounded to a whole number")
 
 
 @dataclass(frozen=True)
@@ -51,6 +85,11 @@ class CRI:
         Correlated colour temperature (K) and Duv of the light (CIE 1960 UCS).
     meaningful : ndarray of bool
         A CCT exists and ``|Duv|`` ≤ 5.4 × 10⁻³ (CIE 13.3 §5.3).
+    reason : ndarray of str
+        Why a light's indices are NaN (refused input, no CCT, no reference illuminant); ``""``
+        where they are computed.
+    rounding : str
+        The rounding of :data:`ROUNDINGS` used (``"none"`` or ``"integer"``).
 
     References
     ----------
@@ -70,6 +109,10 @@ class CRI:
     cct_K: np.ndarray
     duv: np.ndarray
     meaningful: np.ndarray
+    reason: np.ndarray
+    rounding: str = "none"
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
     @property
     def R9(self) -> np.ndarray:
@@ -127,7 +170,47 @@ def _rendering_rows(S: np.ndarray, grid: np.ndarray, W: np.ndarray, products: np
             "meaningful": meaningful}
 
 
-def colour_rendering_index(spd) -> CRI:
+def undefined_reasons(
+    Ra: np.ndarray, cct_K: np.ndarray, refused: np.ndarray, values: np.ndarray | None = None
+) -> np.ndarray:
+    """Reasons for NaN results: the refusal, else no CCT, else negative samples, else no reference.
+
+    Parameters
+    ----------
+    Ra : numpy.ndarray, shape (N,)
+        A metric's main result (NaN where undefined).
+    cct_K : numpy.ndarray, shape (N,)
+        The lights' CCTs, K.
+    refused : numpy.ndarray of str, shape (N,)
+        Input refusals (:attr:`CheckedLights.reasons`).
+    values : numpy.ndarray, shape (N, K), optional
+        The lights' spectral values: a light with a negative sample whose result is NaN is said to
+        be so (a test colour under it can have negative tristimulus values, which a colour
+        appearance model's fractional powers leave undefined).
+
+    Returns
+    -------
+    numpy.ndarray of str, shape (N,)
+        ``""`` where ``Ra`` is a number.
+
+    Examples
+    --------
+    >>> undefined_reasons(np.array([80.0, np.nan]), np.array([4000.0, np.nan]), np.array(["", ""])).tolist()
+    ['', 'no correlated colour temperature (no luminance, or far from the Planckian locus)']
+    """
+    reasons = np.asarray(refused, dtype=object).copy()
+    no_cct = ~np.isfinite(cct_K) & (reasons == "")
+    reasons[no_cct] = "no correlated colour temperature (no luminance, or far from the Planckian locus)"
+    other = ~np.isfinite(Ra) & (reasons == "")
+    negative = np.zeros(other.shape, bool) if values is None else np.any(np.asarray(values) < 0, axis=-1)
+    for i in np.flatnonzero(other):
+        reasons[i] = (f"undefined at the CCT {cct_K[i]:.0f} K: the light has negative samples, so a test "
+                      "colour under it has negative tristimulus values" if negative[i]
+                      else f"no reference illuminant at the CCT {cct_K[i]:.0f} K")
+    return reasons.astype(str)
+
+
+def colour_rendering_index(spd, rounding: str = "none", *, resample_hint: str = RESAMPLE_HINT) -> CRI:
     """CIE 13.3 colour rendering index of lights ``(..., K)``.
 
     Parameters
@@ -135,33 +218,59 @@ def colour_rendering_index(spd) -> CRI:
     spd : Spectrum
         Spectral power distributions (any scale), uniform 1 or 5 nm, with samples from
         380 nm (or below, down to 360 nm) to 780 nm.
+    rounding : {"none", "integer"}, default "none"
+        ``"integer"`` reports the indices as CIE 13.3 does: each Ri rounded to a whole number,
+        Ra the mean of the rounded R1–R8, rounded (:data:`ROUNDINGS`).
+    resample_hint : str, keyword-only
+        How a refused grid interval is to be fixed (the command line names its own option).
 
     Returns
     -------
     CRI
-        Ra, R1–R14, CCT, Duv and the validity flag, with ``spd.batch_shape``.
+        Ra, R1–R14, CCT, Duv, the validity flag and a reason for each NaN, with
+        ``spd.batch_shape``.
+
+    Raises
+    ------
+    SpectrumError
+        For a grid other than 1 or 5 nm, and for a single light that is refused (no power,
+        negative power, not finite, not covering 380–780 nm); in a batch such a light gets NaN.
 
     References
     ----------
-    CIE 13.3-1995, §5.
+    CIE 13.3-1995, §5. CIE 015:2004, Table T.8.2 (Ra of FL1–FL12, as whole numbers).
 
     Examples
     --------
     >>> from spectrocolor import illuminant
     >>> result = colour_rendering_index(illuminant("FL2"))
-    >>> round(float(result.Ra))  # CIE 015:2018 Table 10 lists Ra = 64 for FL2
-    64
+    >>> round(float(result.Ra), 2)
+    64.16
+    >>> float(colour_rendering_index(illuminant("FL8"), rounding="integer").Ra)  # CIE prints 95
+    95.0
     """
+    report = ROUNDINGS.get(rounding)
+    rounding = ROUNDINGS.canonical(rounding)
+    if not isinstance(spd, Spectrum):
+        raise SpectrumError(f"spd: expected a spectrocolor.Spectrum of spectral power distributions, got "
+                            f"{type(spd).__name__}; wrap arrays as Spectrum(wavelengths_nm, values)")
     # from 360 nm, or from the spectrum's first sample if that lies between 360 and 380 nm
-    start = min(max(360.0, float(spd.wavelengths_nm[0])), 380.0) if isinstance(spd, Spectrum) else 380.0
-    grid, S = light_grid(spd, start, 780.0)
+    start = min(max(360.0, float(spd.wavelengths_nm[0])), 380.0)
+    checked = checked_lights(spd, "cri", start_nm=start, resample_hint=resample_hint)
+    grid, S = checked.grid, checked.values
+    peak = np.abs(S).max(axis=1, keepdims=True)
+    S = S / np.where(peak > 0, peak, 1.0)  # scale-free: keep tiny or huge units away from under/overflow
     W = cmfs_on(grid, "1931") * (grid[1] - grid[0])
     r = in_chunks(_rendering_rows, S, grid, W, tcs_reflectances(grid)[:, :, None] * W[None])
-    shape = spd.batch_shape
+    Ra, Ri = report(checked.refuse(r["Ri"]))
+    cct_K, duv = checked.refuse(r["cct_K"]), checked.refuse(r["duv"])
+    shape = checked.batch_shape
     return CRI(
-        Ra=r["Ri"][:, :8].mean(axis=1).reshape(shape),
-        Ri=r["Ri"].reshape(*shape, 14),
-        cct_K=r["cct_K"].reshape(shape),
-        duv=r["duv"].reshape(shape),
-        meaningful=r["meaningful"].reshape(shape),
+        Ra=Ra.reshape(shape),
+        Ri=Ri.reshape(*shape, 14),
+        cct_K=cct_K.reshape(shape),
+        duv=duv.reshape(shape),
+        meaningful=(r["meaningful"] & checked.ok).reshape(shape),
+        reason=undefined_reasons(Ra, cct_K, checked.reasons, checked.values).reshape(shape),
+        rounding=rounding,
     )

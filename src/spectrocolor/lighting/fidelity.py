@@ -30,10 +30,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import notebook_hooks
 from ..sampling import cmfs_on
 from .cam02ucs import M_CAT02, cam02ucs_planes
 from .reference import fidelity_reference
-from .spectra import ces_reflectances, in_chunks, light_cct, light_grid
+from .spectra import RESAMPLE_HINT, ces_reflectances, checked_lights, in_chunks, light_cct
 
 #: Scaling factor of CIE 224:2017 eq. (8).
 CF = 6.73
@@ -59,6 +60,9 @@ class Fidelity:
     test_ab, reference_ab : ndarray, shape (..., 16, 2)
         Mean CAM02-UCS a', b' of each hue bin under the light and the reference (the corners
         of the colour vector graphic).
+    reason : ndarray of str
+        Why a light's indices are NaN (refused input, no CCT, no reference illuminant at its
+        CCT); ``""`` where they are computed.
 
     References
     ----------
@@ -83,6 +87,9 @@ class Fidelity:
     duv: np.ndarray
     test_ab: np.ndarray
     reference_ab: np.ndarray
+    reason: np.ndarray
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
 
 def rf_from_delta_e(delta_E):
@@ -179,7 +186,7 @@ def _fidelity_rows(S: np.ndarray, grid: np.ndarray, W10: np.ndarray, products: n
     }
 
 
-def colour_fidelity(spd) -> Fidelity:
+def colour_fidelity(spd, *, resample_hint: str = RESAMPLE_HINT) -> Fidelity:
     """CIE 224:2017 / ANSI/IES TM-30-20 colour fidelity and gamut of lights ``(..., K)``.
 
     Parameters
@@ -187,10 +194,19 @@ def colour_fidelity(spd) -> Fidelity:
     spd : Spectrum
         Spectral power distributions (any scale), uniform 1 or 5 nm, with samples from 380 to
         780 nm.
+    resample_hint : str, keyword-only
+        How a refused grid interval is to be fixed (the command line names its own option).
 
     Returns
     -------
     Fidelity
+        Every index with ``spd.batch_shape``, and a reason for each NaN.
+
+    Raises
+    ------
+    SpectrumError
+        For a grid other than 1 or 5 nm, and for a single light that is refused (no power,
+        negative power, not finite, not covering 380–780 nm); in a batch such a light gets NaN.
 
     References
     ----------
@@ -203,12 +219,18 @@ def colour_fidelity(spd) -> Fidelity:
     >>> round(float(result.Rf), 1), round(float(result.Rg), 1)
     (70.1, 86.4)
     """
-    grid, S = light_grid(spd, 380.0, 780.0)
+    from .cri import undefined_reasons
+
+    checked = checked_lights(spd, "fidelity", resample_hint=resample_hint)
+    grid, S = checked.grid, checked.values
+    peak = np.abs(S).max(axis=1, keepdims=True)
+    S = S / np.where(peak > 0, peak, 1.0)  # scale-free: keep tiny or huge units away from under/overflow
     W10 = cmfs_on(grid, "1964") * (grid[1] - grid[0])
     ces = ces_reflectances(grid)
     products = np.ascontiguousarray(((W10 @ M_CAT02.T).T[:, None, :] * ces[None]).transpose(0, 2, 1))  # (3, K, 99)
-    r = in_chunks(_fidelity_rows, S, grid, W10, products)
-    shape = spd.batch_shape
+    r = {key: checked.refuse(value) for key, value in
+         in_chunks(_fidelity_rows, S, grid, W10, products).items()}
+    shape = checked.batch_shape
     return Fidelity(
         Rf=r["Rf"].reshape(shape),
         Rg=r["Rg"].reshape(shape),
@@ -220,4 +242,5 @@ def colour_fidelity(spd) -> Fidelity:
         duv=r["duv"].reshape(shape),
         test_ab=r["test_ab"].reshape(*shape, HUE_BINS, 2),
         reference_ab=r["reference_ab"].reshape(*shape, HUE_BINS, 2),
+        reason=undefined_reasons(r["Rf"], r["cct_K"], checked.reasons, checked.values).reshape(shape),
     )

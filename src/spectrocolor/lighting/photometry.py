@@ -14,7 +14,13 @@ radiance, W·sr⁻¹·m⁻²·nm⁻¹    radiance, W·sr⁻¹·m⁻²   luminanc
 ===========================  =====================  ==========================
 
 The luminous efficacy of radiation (LER, lm/W) is the luminous over the radiant sum; it does
-not depend on the spectrum's scale. The weighting functions are tabulated at 1 nm (V: 360–830
+not depend on the spectrum's scale, but the radiant sum depends on the range measured, so the
+luminous quantities and the LER need a spectrum that covers 380–780 nm (outside it V(λ) is below
+4 × 10⁻⁵ of its peak; a light measured over 400–700 nm only would give FL2 an LER 2.7 % too
+high). A light with no power, negative power (``Σ S Δλ ≤ 0``, or a negative luminous sum) or
+values that are not finite is refused: NaN with a reason in a batch
+(:func:`~spectrocolor.lighting.spectra.light_refusals`), a
+:class:`~spectrocolor.errors.SpectrumError` for one light. The weighting functions are tabulated at 1 nm (V: 360–830
 nm, V': 380–780 nm) and interpolated linearly at the spectrum's samples; outside their tables
 they are zero (their values at the table ends are below 10⁻⁶ of the peak). Δλ is the sample
 spacing (half-spans at the ends of an irregular grid, as in :mod:`spectrocolor.colorimetry`).
@@ -38,6 +44,7 @@ from ..observers import observer
 from ..registry import Registry
 from ..sampling import interval_weights_nm
 from ..spectrum import Spectrum
+from .spectra import checked_lights
 
 #: Maximum luminous efficacy for scotopic vision, lm/W (ISO 23539:2005 / CIE S 010).
 K_M_SCOTOPIC_LM_PER_W = 1700.0
@@ -131,6 +138,58 @@ def spectral_values(spd, argument: str = "spd") -> np.ndarray:
     return values
 
 
+def checked_luminous(spd, vision: str, argument: str = "spd"):
+    """Lights checked for photometry and their luminous sums, negative sums refused.
+
+    :func:`~spectrocolor.lighting.spectra.checked_lights` with ``"photometry"``, then a light
+    whose luminous sum ``K_m Σ S V Δλ`` is negative (negative samples outweighing the rest where
+    V is large) is refused too. Shared by the photometric and α-opic quantities and the report.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)`` covering 380–780 nm.
+    vision : str
+        ``"photopic"`` or ``"scotopic"`` (:data:`VISIONS`).
+    argument : str, default "spd"
+        The caller's argument name, for messages.
+
+    Returns
+    -------
+    checked : CheckedLights
+        The lights (N, K) and a reason per light (``""`` where computed).
+    luminous : numpy.ndarray, shape (N,)
+        ``K_m Σ S V Δλ`` in lm, lx or cd/m² (per the input's unit); NaN for refused lights.
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum, and for a single light that is refused.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid
+    >>> checked, luminous = checked_luminous(Spectrum.block(555, 555, wavelength_grid(380, 780, 1)), "photopic")
+    >>> checked.reasons.tolist(), round(float(luminous[0]), 6)
+    ([''], 683.0)
+    """
+    vision = VISIONS.canonical(vision)
+    K_m = VISIONS.get(vision)[0]
+    checked = checked_lights(spd, "photometry", argument)
+    total = K_m * (checked.values @ _weights(np.ascontiguousarray(checked.grid).tobytes(), vision))
+    negative = (total < 0) & checked.ok
+    if negative.any():
+        reasons = checked.reasons.astype(object)
+        for i in np.flatnonzero(negative):
+            reasons[i] = (f"negative power: the {vision} luminous sum is {total[i]:.4g} "
+                          "(negative samples outweigh the rest)")
+        checked = type(checked)(checked.grid, np.where(negative[:, None], 0.0, checked.values),
+                                reasons.astype(str), checked.batch_shape)
+        if checked.batch_shape == ():
+            raise SpectrumError(f"{argument}: {checked.reasons[0]}")
+    return checked, checked.refuse(total)
+
+
 def luminous_quantity(spd, vision: str = "photopic") -> np.ndarray:
     """Luminous flux (lm), illuminance (lx) or luminance (cd/m²) of spectra ``(..., K)``.
 
@@ -138,14 +197,20 @@ def luminous_quantity(spd, vision: str = "photopic") -> np.ndarray:
     ----------
     spd : Spectrum
         Spectral radiant flux (W/nm), irradiance (W·m⁻²·nm⁻¹) or radiance
-        (W·sr⁻¹·m⁻²·nm⁻¹); the result is in lm, lx or cd/m² respectively.
+        (W·sr⁻¹·m⁻²·nm⁻¹), covering 380–780 nm; the result is in lm, lx or cd/m².
     vision : str
         ``"photopic"`` (V(λ), 683 lm/W) or ``"scotopic"`` (V'(λ), 1700 lm/W).
 
     Returns
     -------
     ndarray
-        Shape ``spd.batch_shape``.
+        Shape ``spd.batch_shape``; NaN for a light refused in a batch (no power, negative
+        power, not finite, not covering 380–780 nm: :func:`~spectrocolor.lighting.light_refusals`).
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum, and for a single light that is refused.
 
     References
     ----------
@@ -158,10 +223,8 @@ def luminous_quantity(spd, vision: str = "photopic") -> np.ndarray:
     >>> round(float(luminous_quantity(flat)), 3)  # 683 lm/W × 1 mW/nm × Σ V Δλ (106.857 nm)
     72.983
     """
-    values = spectral_values(spd)
-    vision = VISIONS.canonical(vision)
-    K_m = VISIONS.get(vision)[0]
-    return K_m * (values @ _weights(np.ascontiguousarray(spd.wavelengths_nm).tobytes(), vision))
+    checked, total = checked_luminous(spd, vision)
+    return total.reshape(checked.batch_shape)
 
 
 def radiant_quantity(spd) -> np.ndarray:
@@ -208,12 +271,16 @@ def luminous_efficacy_of_radiation(spd, vision: str = "photopic") -> np.ndarray:
     Returns
     -------
     numpy.ndarray, shape (...)
-        LER in lm/W; NaN for a spectrum with no radiant power.
+        LER in lm/W; NaN for a light refused in a batch: no power, negative power, values that
+        are not finite, or a spectrum that does not cover 380–780 nm (the radiant sum depends on
+        the range; :func:`~spectrocolor.lighting.light_refusals` says which and why).
 
     Raises
     ------
     ColorimetryError
-        For an unknown ``vision`` or a grid outside the luminous efficiency functions.
+        For an unknown ``vision``.
+    SpectrumError
+        For a non-Spectrum, and for a single light that is refused.
 
     References
     ----------
@@ -222,9 +289,11 @@ def luminous_efficacy_of_radiation(spd, vision: str = "photopic") -> np.ndarray:
     Examples
     --------
     >>> from spectrocolor import wavelength_grid
-    >>> green = Spectrum.block(555, 555, wavelength_grid(550, 560, 1))
+    >>> green = Spectrum.block(555, 555, wavelength_grid(380, 780, 1))
     >>> round(float(luminous_efficacy_of_radiation(green)), 1)  # V(555 nm) = 1
     683.0
     """
+    checked, luminous = checked_luminous(spd, vision)
+    radiant = checked.refuse(checked.values @ interval_weights_nm(checked.grid))
     with np.errstate(divide="ignore", invalid="ignore"):
-        return luminous_quantity(spd, vision) / radiant_quantity(spd)
+        return (luminous / radiant).reshape(checked.batch_shape)

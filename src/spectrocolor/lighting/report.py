@@ -42,6 +42,7 @@ def _records(report: LightReport) -> list[dict]:
     digits = {"cct_K": 1, "duv": 5, "LER_lm_per_W": 2, "melanopic_DER": 4}
     headline = report.headline()
     f, c, a = report.fidelity, report.cri, report.alpha_opic
+    reasons = report.reasons()
     records = []
     for i, name in enumerate(report.names):
         record: dict = {"name": name}
@@ -61,6 +62,8 @@ def _records(report: LightReport) -> list[dict]:
             for k, alpha in enumerate(ALPHA_OPIC)
         }
         record["illuminance_lx"] = _number(a.illuminance_lx[i], 6)
+        record["cri_rounding"] = c.rounding
+        record["not_computed"] = str(reasons[i]) or None  # why metrics are null
         records.append(record)
     return records
 
@@ -68,14 +71,16 @@ def _records(report: LightReport) -> list[dict]:
 def _csv(report: LightReport) -> str:
     columns = ["name", *HEADLINE, "cri_meaningful", *(f"R{i}" for i in range(1, 15)),
                *(f"Rf_h{j}" for j in range(1, HUE_BINS + 1)), *(f"Rcs_h{j}_percent" for j in range(1, HUE_BINS + 1)),
-               *(f"Rhs_h{j}" for j in range(1, HUE_BINS + 1)), *(f"{alpha}_der" for alpha in ALPHA_OPIC)]
+               *(f"Rhs_h{j}" for j in range(1, HUE_BINS + 1)), *(f"{alpha}_der" for alpha in ALPHA_OPIC),
+               "not_computed"]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(columns)
     for record in _records(report):
         row = [neutralise_cell(record["name"]), *(record[key] for key in HEADLINE), record["cri_meaningful"],
                *record["R1_R14"], *record["Rf_hj"], *record["Rcs_hj_percent"], *record["Rhs_hj"],
-               *(record["alpha_opic"][alpha]["der"] for alpha in ALPHA_OPIC)]
+               *(record["alpha_opic"][alpha]["der"] for alpha in ALPHA_OPIC),
+               neutralise_cell(record["not_computed"] or "")]
         writer.writerow(["" if value is None else value for value in row])
     return buffer.getvalue()
 
@@ -129,7 +134,8 @@ def report_html(report: LightReport, *, title: str | None = None, pictures: int 
     rows = "".join(
         "<tr><td>" + html.escape(r["name"]) + "</td>"
         + "".join(f"<td>{_cell(r[key], _HTML_DECIMALS[key])}</td>" for key in HEADLINE)
-        + f"<td>{'yes' if r['cri_meaningful'] else 'no'}</td></tr>"
+        + f"<td>{'yes' if r['cri_meaningful'] else 'no'}</td>"
+        + f"<td class='note'>{html.escape(r['not_computed'] or '')}</td></tr>"
         for r in records
     )
     try:
@@ -157,11 +163,15 @@ def report_html(report: LightReport, *, title: str | None = None, pictures: int 
         "body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;margin:0.5em 0}"
         "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}td:first-child{text-align:left}"
         ".pair{display:flex;gap:2em;align-items:flex-start}.pair svg{width:360px;height:auto}"
+        "td.note{text-align:left;max-width:40em}"
         f"</style></head><body><h1>{html.escape(title)}</h1>"
         "<p>CIE 13.3-1995 (Ra, R9), CIE 224:2017 / ANSI/IES TM-30-20 (Rf, Rg, hue bins), "
         "luminous efficacy of radiation (683 lm/W, CIE 1931 V(λ)), CIE S 026 melanopic DER. "
-        "CCT meaningful: CIE 13.3's |Duv| ≤ 5.4 × 10⁻³.</p>"
-        f"<table><tr><th>name</th>{head}<th>CCT meaningful</th></tr>{rows}</table>"
+        "CCT meaningful: CIE 13.3's |Duv| ≤ 5.4 × 10⁻³. "
+        f"CIE 13.3 indices: {'rounded as CIE reports them' if report.cri.rounding == 'integer' else 'unrounded'}. "
+        "A light with no power, negative power, values that are not finite or a spectrum not "
+        "covering 380–780 nm is not computed (–), with the reason.</p>"
+        f"<table><tr><th>name</th>{head}<th>CCT meaningful</th><th>not computed because</th></tr>{rows}</table>"
         f"{pictures_html}</body></html>"
     )
 

@@ -15,6 +15,7 @@ CIE 167:2005 (Sprague interpolation of uniformly spaced data).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -22,14 +23,250 @@ import numpy as np
 from ..data_tables import load_table
 from ..errors import SpectrumError
 from ..interpolation import interpolation_matrix
-from ..sampling import cmfs_on
-from ..spectrum import Spectrum
+from ..registry import Registry
+from ..sampling import cmfs_on, interval_weights_nm
+from ..spectrum import Spectrum, wavelength_grid
 from ..temperature import CCT, cct
 
 #: Sampling intervals (nm) the metrics accept: those of CIE 224:2017 §3 and of measured data.
 INTERVALS_NM = (1.0, 5.0)
 #: Lights computed together: bounds the temporaries (99 samples × 3 × CHUNK) to a few MB.
 CHUNK = 2048
+
+#: How a refused grid interval is to be fixed, said from Python (the command line says its own).
+RESAMPLE_HINT = "resample it, e.g. spd.resample(wavelength_grid({start:g}, {stop:g}, 1), 'sprague')"
+
+
+@dataclass(frozen=True)
+class MetricRange:
+    """The samples one family of lighting metrics needs.
+
+    Attributes
+    ----------
+    label : str
+        The metric, for messages.
+    start_nm, stop_nm : float
+        The range the spectrum must cover, nm (the metrics never extrapolate).
+    intervals_nm : tuple of float or None
+        The sampling intervals accepted (``None``: any grid, summed with its own Δλ).
+    restrict : bool
+        Whether only the samples in ``[start_nm, stop_nm]`` are used (else the spectrum's own range).
+    """
+
+    label: str
+    start_nm: float
+    stop_nm: float
+    intervals_nm: tuple | None
+    restrict: bool
+
+
+#: Lighting metrics and the samples each needs (name → :class:`MetricRange`). Outside 380–780 nm
+#: V(λ) is below 4 × 10⁻⁵ of its peak and the CIE S 026 action spectra are not tabulated.
+METRICS = Registry("metric", "a lighting metric", SpectrumError)
+METRICS.add("cri", MetricRange("CIE 13.3 colour rendering", 380.0, 780.0, INTERVALS_NM, True),
+            "CIE 13.3 Ra, R1–R14: 1 or 5 nm, 380 (or from 360) to 780 nm")
+METRICS.add("fidelity", MetricRange("CIE 224 / TM-30 fidelity", 380.0, 780.0, INTERVALS_NM, True),
+            "CIE 224 / TM-30 Rf, Rg: 1 or 5 nm, 380–780 nm")
+METRICS.add("photometry", MetricRange("photometry", 380.0, 780.0, None, False),
+            "luminous quantities and LER: any grid covering 380–780 nm, summed over its own range")
+METRICS.add("alpha-opic", MetricRange("CIE S 026 α-opic quantities", 380.0, 780.0, None, False),
+            "CIE S 026 α-opic quantities: any grid covering 380–780 nm, summed over its own range")
+
+
+@dataclass(frozen=True)
+class CheckedLights:
+    """Lights checked for one metric (:func:`checked_lights`).
+
+    Attributes
+    ----------
+    grid : ndarray (K,)
+        The samples the metric uses, nm.
+    values : ndarray (N, K)
+        The lights there (flattened batch); refused lights are 0, so that computing on them is
+        harmless; their results are to be replaced by NaN.
+    reasons : ndarray of str (N,)
+        Why each light is refused, ``""`` for lights the metric computes.
+    batch_shape : tuple
+        The lights' batch shape (``()`` for one light).
+    """
+
+    grid: np.ndarray
+    values: np.ndarray
+    reasons: np.ndarray
+    batch_shape: tuple
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Lights the metric computes, (N,) bool."""
+        return self.reasons == ""
+
+    def refuse(self, result: np.ndarray) -> np.ndarray:
+        """``result`` (N, ...) with NaN in the rows of refused lights (a float copy)."""
+        out = np.array(result, dtype=float)
+        out[~self.ok] = np.nan
+        return out
+
+    def reasons_shaped(self) -> np.ndarray:
+        """:attr:`reasons` with the batch shape."""
+        return self.reasons.reshape(self.batch_shape)
+
+
+def _span(grid: np.ndarray) -> str:
+    return f"{grid[0]:g}–{grid[-1]:g} nm"
+
+
+def checked_lights(spd, metric: str, argument: str = "spd", *, start_nm: float | None = None,
+                   resample_hint: str = RESAMPLE_HINT) -> CheckedLights:
+    """Check lights for a lighting metric; refuse the ones it cannot honestly compute.
+
+    The grid is checked once (a :class:`Spectrum`; for the colour metrics a uniform 1 or 5 nm
+    grid, else a :class:`SpectrumError` whose hint is ``resample_hint``). Then each light is
+    refused, with a reason, when
+
+    * the spectrum does not cover the metric's range (``measured over 400–700 nm; …``), or the
+      light's values are not finite (NaN or infinite: a light measured over less than the
+      others, padded with NaN, is reported with the range it was measured over);
+    * it has no power (every sample 0);
+    * its power is negative: ``Σ S Δλ ≤ 0`` over the samples used (an all-negative light, or
+      one whose negative part outweighs the positive; isolated negative samples of measurement
+      noise or interpolation overshoot are kept).
+
+    A single light (``spd.batch_shape == ()``) that is refused raises a
+    :class:`SpectrumError` naming the reason; in a batch the light's results are NaN and its
+    reason is returned.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)``.
+    metric : str
+        A name of :data:`METRICS`: ``"cri"``, ``"fidelity"``, ``"photometry"``, ``"alpha-opic"``.
+    argument : str, default "spd"
+        The caller's argument name, for messages.
+    start_nm : float, optional
+        Override of the metric's start (CIE 13.3 starts at 360 nm where the data do).
+    resample_hint : str, default :data:`RESAMPLE_HINT`
+        How to fix a refused interval, formatted with ``start`` and ``stop``; the command line
+        passes its own option.
+
+    Returns
+    -------
+    CheckedLights
+        The grid, the lights (N, K) and a reason per light (``""`` where computed).
+
+    Raises
+    ------
+    SpectrumError
+        For a non-Spectrum, a refused interval, or a single refused light.
+
+    Examples
+    --------
+    >>> from spectrocolor import illuminant
+    >>> fl2 = illuminant("FL2")
+    >>> lights = Spectrum(fl2.wavelengths_nm, np.stack([fl2.values, -fl2.values, 0 * fl2.values]))
+    >>> [str(r).split(":")[0] for r in checked_lights(lights, "photometry").reasons]
+    ['', 'negative power', 'no power']
+    """
+    need = METRICS.get(metric)
+    if not isinstance(spd, Spectrum):
+        raise SpectrumError(
+            f"{argument}: expected a spectrocolor.Spectrum of spectral power distributions, got "
+            f"{type(spd).__name__}; wrap arrays as Spectrum(wavelengths_nm, values)"
+        )
+    start = need.start_nm if start_nm is None else float(start_nm)
+    stop = need.stop_nm
+    grid = spd.wavelengths_nm
+    step = spd.interval_nm
+    if need.intervals_nm is not None and (
+            step is None or not any(np.isclose(step, s, rtol=0, atol=1e-9) for s in need.intervals_nm)):
+        spacing = "an irregular grid" if step is None else f"{step:g} nm steps"
+        raise SpectrumError(
+            f"{argument}: {need.label} needs a uniform "
+            f"{' or '.join(f'{s:g} nm' for s in need.intervals_nm)} grid, got {spacing}; "
+            + resample_hint.format(start=start, stop=stop))
+    values = np.asarray(spd.values, dtype=np.float64)
+    shape = spd.batch_shape
+    values = values.reshape(-1, values.shape[-1])
+    n = len(values)
+    inside = (grid >= start - 1e-9) & (grid <= stop + 1e-9)
+    covered = grid[0] <= start + 1e-9 and grid[-1] >= stop - 1e-9 and (
+        not need.restrict or (inside.any() and np.isclose(grid[inside][0], start)
+                              and np.isclose(grid[inside][-1], stop)))
+    if not covered:
+        where = f"sampled {_span(grid)} at {step:g} nm" if step is not None else f"measured over {_span(grid)}"
+        reason = (f"measured over less than the range: {where}; {need.label} takes samples from "
+                  f"{start:g} to {stop:g} nm (the metrics never extrapolate)")
+        reasons = np.full(n, reason, dtype=object)
+        used = wavelength_grid(380.0, 780.0, 5.0)  # every result is NaN: any grid the metrics take
+        result = CheckedLights(used, np.zeros((n, used.size)), reasons.astype(str), shape)
+        _raise_single(result, argument)
+        return result
+    if need.restrict:
+        grid, values = grid[inside], values[:, inside]
+    grid = grid.copy()
+    reasons = np.full(n, "", dtype=object)
+    finite = np.isfinite(values)
+    for i in np.flatnonzero(~finite.all(axis=1)):
+        good = np.flatnonzero(finite[i])
+        if good.size and np.all(finite[i, good[0]:good[-1] + 1]):
+            reasons[i] = (f"measured over less than the range: values only over {_span(grid[good])} (not "
+                          f"finite elsewhere); {need.label} takes {_span(grid)}")
+        else:
+            bad = np.flatnonzero(~finite[i])
+            reasons[i] = f"not finite: {bad.size} NaN or infinite value(s), the first at {grid[bad[0]]:g} nm"
+    clean = np.where(finite, values, 0.0)
+    total = clean @ interval_weights_nm(grid)
+    zero = np.all(clean == 0.0, axis=1) & (reasons == "")
+    reasons[zero] = f"no power: every sample from {grid[0]:g} to {grid[-1]:g} nm is 0"
+    negative = (total <= 0) & (reasons == "")
+    for i in np.flatnonzero(negative):
+        k = int(np.argmin(clean[i]))
+        reasons[i] = (f"negative power: Σ S Δλ = {total[i]:.4g} over {_span(grid)} (most negative sample "
+                      f"{clean[i, k]:.4g} at {grid[k]:g} nm)")
+    reasons = reasons.astype(str)
+    clean[reasons != ""] = 0.0
+    result = CheckedLights(grid, clean, reasons, shape)
+    _raise_single(result, argument)
+    return result
+
+
+def _raise_single(checked: CheckedLights, argument: str) -> None:
+    if checked.batch_shape == () and checked.reasons[0]:
+        raise SpectrumError(f"{argument}: {checked.reasons[0]}")
+
+
+def light_refusals(spd, metric: str) -> np.ndarray:
+    """Why a lighting metric returns NaN for each light of a batch (``""`` where it computes).
+
+    The input checks of :func:`checked_lights` (range, finite values, zero and negative
+    power); the metrics' own undefined results (no CCT, no reference illuminant) are reported in
+    their result records.
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Spectral power distributions ``(..., K)``.
+    metric : str
+        ``"cri"``, ``"fidelity"``, ``"photometry"`` (luminous quantities, LER) or ``"alpha-opic"``.
+
+    Returns
+    -------
+    numpy.ndarray of str, shape ``spd.batch_shape``
+        One reason per light.
+
+    Raises
+    ------
+    SpectrumError
+        As :func:`checked_lights` (a refused grid; a single refused light).
+
+    Examples
+    --------
+    >>> from spectrocolor import illuminant
+    >>> fl2 = illuminant("FL2")
+    >>> light_refusals(Spectrum(fl2.wavelengths_nm, np.stack([fl2.values, -fl2.values])), "photometry")[1][:14]
+    'negative power'
+    """
+    return checked_lights(spd, metric).reasons_shaped()
 
 
 def light_grid(spd, start_nm: float, stop_nm: float, argument: str = "spd") -> tuple[np.ndarray, np.ndarray]:

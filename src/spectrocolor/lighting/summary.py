@@ -25,7 +25,7 @@ from .alpha_opic import AlphaOpic, alpha_opic
 from .cri import CRI, colour_rendering_index
 from .fidelity import Fidelity, colour_fidelity
 from .photometry import luminous_efficacy_of_radiation
-from .spectra import light_grid
+from .spectra import RESAMPLE_HINT, checked_lights
 
 #: The headline columns, in order (name → description with unit).
 HEADLINE = {
@@ -56,6 +56,8 @@ class LightReport:
         Luminous efficacy of radiation, lm/W.
     alpha_opic : AlphaOpic
         CIE S 026 α-opic quantities.
+    ler_reason : ndarray of str (N,)
+        Why a light's LER is NaN (``""`` where computed).
 
     Examples
     --------
@@ -70,9 +72,34 @@ class LightReport:
     fidelity: Fidelity
     ler_lm_per_W: np.ndarray
     alpha_opic: AlphaOpic
+    ler_reason: np.ndarray
 
     def __len__(self) -> int:
         return len(self.names)
+
+    def reasons(self) -> np.ndarray:
+        """Why each light has NaN metrics, one line per light (``""`` where all are computed).
+
+        Returns
+        -------
+        numpy.ndarray of str, shape (N,)
+            The distinct reasons of CIE 13.3, CIE 224 / TM-30, LER and α-opic, joined by "; ".
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spectrocolor import Spectrum, illuminant
+        >>> fl2 = illuminant("FL2")
+        >>> report = light_report(Spectrum(fl2.wavelengths_nm, np.stack([fl2.values, -fl2.values])))
+        >>> [reason[:14] for reason in report.reasons()]
+        ['', 'negative power']
+        """
+        out = []
+        for parts in zip(self.cri.reason, self.fidelity.reason, self.ler_reason, self.alpha_opic.reason,
+                         strict=True):
+            distinct = list(dict.fromkeys(str(p) for p in parts if p))
+            out.append("; ".join(distinct))
+        return np.array(out, dtype=str)
 
     def headline(self) -> dict[str, np.ndarray]:
         """The :data:`HEADLINE` columns as arrays (N,).
@@ -105,17 +132,25 @@ def _flat(spd: Spectrum) -> Spectrum:
     return spd if spd.values.ndim == 2 else Spectrum(spd.wavelengths_nm, spd.values.reshape(-1, spd.values.shape[-1]))
 
 
-def light_report(spd) -> LightReport:
+def light_report(spd, *, rounding: str = "none", resample_hint: str = RESAMPLE_HINT) -> LightReport:
     """Every lighting metric of lights ``(..., K)`` (flattened to N lights).
 
     ``spd`` as for :func:`~spectrocolor.lighting.colour_fidelity` (1 or 5 nm, 380–780 nm at
-    least); CIE 13.3 uses samples from 360 nm where present.
+    least); CIE 13.3 uses samples from 360 nm where present. A light that a metric refuses (no
+    power, negative power, values that are not finite, a spectrum not covering 380–780 nm) gets
+    NaN there and its reason (:meth:`LightReport.reasons`); the other lights are computed as
+    alone.
 
     Parameters
     ----------
     spd : Spectrum
         Spectral power distributions ``(..., K)`` of the lights, uniform 1 or 5 nm, covering
         380–780 nm; any scale.
+    rounding : {"none", "integer"}, keyword-only, default "none"
+        The CIE 13.3 indices as computed, or rounded as CIE reports them
+        (:data:`spectrocolor.lighting.cri.ROUNDINGS`).
+    resample_hint : str, keyword-only
+        How a refused grid interval is to be fixed (the command line names its own option).
 
     Returns
     -------
@@ -124,8 +159,8 @@ def light_report(spd) -> LightReport:
 
     Raises
     ------
-    ColorimetryError
-        For a grid that does not cover 380–780 nm at 1 or 5 nm, and as the metrics.
+    SpectrumError
+        For a grid other than 1 or 5 nm, and for a single light (shape ``(K,)``) that is refused.
 
     References
     ----------
@@ -138,17 +173,46 @@ def light_report(spd) -> LightReport:
     >>> len(report), round(float(report.fidelity.Rf[0]), 1)
     (1, 70.1)
     """
-    light_grid(spd, 380.0, 780.0)  # one clear error before any work
+    checked_lights(spd, "fidelity", resample_hint=resample_hint)  # one clear error before any work
     flat = _flat(spd)
     names = spd.names if spd.names and len(spd.names) == len(flat.values) else tuple(
         f"spectrum {i + 1}" for i in range(len(flat.values)))
     return LightReport(
         names=tuple(names),
-        cri=colour_rendering_index(flat),
-        fidelity=colour_fidelity(flat),
+        cri=colour_rendering_index(flat, rounding, resample_hint=resample_hint),
+        fidelity=colour_fidelity(flat, resample_hint=resample_hint),
         ler_lm_per_W=luminous_efficacy_of_radiation(flat),
         alpha_opic=alpha_opic(flat),
+        ler_reason=light_refusals_ler(flat),
     )
+
+
+def light_refusals_ler(spd) -> np.ndarray:
+    """Why the LER of each light of a batch is NaN (``""`` where computed), shape (N,).
+
+    Parameters
+    ----------
+    spd : Spectrum
+        Lights ``(N, K)``.
+
+    Returns
+    -------
+    numpy.ndarray of str, shape (N,)
+        The photometric refusals (:func:`~spectrocolor.lighting.spectra.checked_lights`,
+        negative luminous sums).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spectrocolor import Spectrum, illuminant
+    >>> fl2 = illuminant("FL2")
+    >>> light_refusals_ler(Spectrum(fl2.wavelengths_nm, np.stack([fl2.values, 0 * fl2.values]))).tolist()
+    ['', 'no power: every sample from 380 to 780 nm is 0']
+    """
+    from .photometry import checked_luminous
+
+    checked, _ = checked_luminous(spd, "photopic")
+    return checked.reasons
 
 
 def summary(spd) -> dict[str, float | bool]:

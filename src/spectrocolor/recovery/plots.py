@@ -11,10 +11,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import SpectrumError
-from ..plot import axes_or_new
+from ..plot import axes_or_new, plain_text
 from ..spectrum import Spectrum
 
 
+@plain_text
 def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=None,
                        title: str | None = None, labels=None):
     """Reflectance curves (solid), optionally against measured ones (dashed, same colour).
@@ -71,12 +72,35 @@ def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=
     return ax
 
 
-def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=None):
-    """A domain of validity on the CIE 1931 xy diagram (van Trigt 1990, Figs. 7–12).
+def _points_and_labels(points):
+    """``points`` as (N, 2) chromaticities with labels: a mapping label → xy, or an array."""
+    if isinstance(points, dict):
+        labels = [str(k) for k in points]
+        xy = np.asarray([points[k] for k in points], dtype=float).reshape(-1, 2)
+    else:
+        xy = np.asarray(points, dtype=float)
+        if xy.ndim == 1:
+            xy = xy[None]
+        labels = [str(i + 1) for i in range(len(xy))]
+    if xy.ndim != 2 or xy.shape[1] != 2:
+        raise SpectrumError(f"points: expected chromaticities (N, 2) or a mapping of labels to (x, y), "
+                            f"got shape {xy.shape}")
+    return xy, labels
 
-    Filled contours: the maximum luminance factor Y/Y0 for which the unconstrained solution
-    stays ≤ 1; outline: the region where it is non-negative; dashed: the straight lines where
-    it vanishes at the first (λ_b) and the last (λ_e) sample.
+
+@plain_text
+def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=None, *,
+                            classes: bool = True, points=None, points_label: str = "marked points",
+                            luminance: bool = True):
+    """A domain of validity on the CIE 1931 xy diagram (van Trigt 1990, Figs. 7–8 and 11–12).
+
+    Outline: the region where the unconstrained solution is non-negative; dashed: the straight
+    lines where it vanishes at the first (λ_b) and the last (λ_e) sample. With ``luminance``,
+    filled contours of the maximum luminance factor Y/Y0 for which it stays ≤ 1 (Figs. 11–12).
+    With ``classes`` (Figs. 7–8), the regions of van Trigt's classes — the fan from the white to
+    each class's stretch of the boundary, separated by straight lines from the white — with
+    the classes' end points marked. ``points`` marks chromaticities such as the CIE test
+    colours.
 
     Parameters
     ----------
@@ -88,6 +112,14 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
         The axes' title (default: the illuminant and the range).
     levels : sequence of float, optional
         Contour levels of Y/Y0 (0–1).
+    classes : bool, default True
+        Draw the class regions and their end points (van Trigt Figs. 7–8).
+    points : mapping of str to (x, y), or array_like (N, 2), optional
+        Chromaticities to mark, labelled by the mapping's keys (or 1…N).
+    points_label : str, default "marked points"
+        The legend entry of ``points``.
+    luminance : bool, default True
+        Fill the maximum luminance factor (Figs. 11–12).
 
     Returns
     -------
@@ -96,14 +128,15 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
 
     References
     ----------
-    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 7–12.
+    C. van Trigt, J. Opt. Soc. Am. A 7, 1891–1904 (1990), Figs. 7–8 and 11–12.
 
     Examples
     --------
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> from spectrocolor import domain_of_validity
-    >>> domain_of_validity_plot(domain_of_validity("D65", wavelengths=(400, 700, 10))).get_title()
+    >>> d = domain_of_validity("D65", wavelengths=(400, 700, 10))
+    >>> domain_of_validity_plot(d, points={"white": (0.3127, 0.3290)}).get_title()
     'Domain of validity, D65, 400–700 nm'
     >>> import matplotlib.pyplot as plt
     >>> plt.close("all")
@@ -114,11 +147,12 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
                               fill=False, ax=axes_or_new(ax, (6.4, 6.4)),
                               title=title or f"Domain of validity, {domain.illuminant}, "
                               f"{domain.wavelengths_nm[0]:g}–{domain.wavelengths_nm[-1]:g} nm")
-    x, y = np.meshgrid(np.linspace(0.0, 0.8, 321), np.linspace(0.001, 0.9, 361))
-    ymax = domain.max_luminance_factor(np.stack([x, y], axis=-1))
-    levels = levels if levels is not None else np.linspace(0.0, 1.0, 11)
-    cs = ax.contourf(x, y, ymax, levels=levels, cmap="viridis", zorder=1, alpha=0.85)
-    ax.figure.colorbar(cs, ax=ax, shrink=0.7, label="max. luminance factor Y/Y0 with ρ ≤ 1")
+    if luminance:
+        x, y = np.meshgrid(np.linspace(0.0, 0.8, 321), np.linspace(0.001, 0.9, 361))
+        ymax = domain.max_luminance_factor(np.stack([x, y], axis=-1))
+        levels = levels if levels is not None else np.linspace(0.0, 1.0, 11)
+        cs = ax.contourf(x, y, ymax, levels=levels, cmap="viridis", zorder=1, alpha=0.85)
+        ax.figure.colorbar(cs, ax=ax, shrink=0.7, label="max. luminance factor Y/Y0 with ρ ≤ 1")
     poly = np.vstack([domain.region_xy, domain.region_xy[:1]])
     ax.plot(poly[:, 0], poly[:, 1], color="black", lw=1.4, zorder=6, label="ρ ≥ 0 region")
     t = np.linspace(-0.1, 1.0, 2)
@@ -131,12 +165,49 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
             xs, ys = -(b * t + c) / a, t
         ax.plot(xs, ys, color="crimson", lw=1.0, ls=style, zorder=6,
                 label=f"ρ({name} = {nm:g} nm) = 0")
+    if classes:
+        _draw_classes(ax, domain, filled=not luminance)
+    if points is not None:
+        xy, labels = _points_and_labels(points)
+        ax.plot(xy[:, 0], xy[:, 1], "o", mfc="white", mec="black", ms=5, zorder=8,
+                label=points_label)
+        for (px, py), text in zip(xy, labels, strict=True):
+            ax.annotate(text, (px, py), xytext=(3, 3), textcoords="offset points", fontsize=6,
+                        zorder=9)
     ax.set_xlim(-0.02, 0.82)
     ax.set_ylim(-0.02, 0.9)
     ax.legend(loc="upper right", fontsize=7, framealpha=0.9)
     return ax
 
 
+def _draw_classes(ax, domain, filled: bool):
+    """Van Trigt's class regions (fans from the white), their dividing lines and end points."""
+    white = domain.white_xy
+    ends = []
+    colours = {"1": ("#f4a582", "#b2182b"), "2": ("#92c5de", "#2166ac")}
+    for piece in domain.boundary_pieces():
+        if not piece.solution_class:
+            continue
+        fan = np.vstack([white, piece.xy])
+        light, dark = colours[piece.solution_class]
+        if filled:
+            ax.fill(fan[:, 0], fan[:, 1], color=light, alpha=0.6, zorder=2, lw=0)
+        ax.plot(*piece.xy.T, color=dark, lw=2.2, zorder=5, solid_capstyle="butt")
+        for corner in (piece.xy[0], piece.xy[-1]):
+            ax.plot([white[0], corner[0]], [white[1], corner[1]], color="0.15", lw=0.8, zorder=5)
+        ends.extend([piece.xy[0], piece.xy[-1]])
+        middle = 0.5 * (piece.xy[(len(piece.xy) - 1) // 2] + piece.xy[len(piece.xy) // 2])
+        inside = 0.35 * white + 0.65 * middle
+        text = (f"1: ρ({piece.zero_nm:g}) = 0" if piece.solution_class == "1" else "2")
+        ax.annotate(text, inside, fontsize=7, ha="center", va="center", color=dark, zorder=9,
+                    fontweight="bold")
+    if ends:
+        ends = np.unique(np.round(np.asarray(ends), 12), axis=0)
+        ax.plot(ends[:, 0], ends[:, 1], "D", color="black", ms=4, zorder=8,
+                label="end points of the classes")
+
+
+@plain_text
 def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65",
                         observer="1931", wavelengths=(380.0, 780.0, 5.0), ax=None):
     """MacAdam limits (optimal colours) at several luminance factors Y (percent).
@@ -185,6 +256,7 @@ def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65"
         ax=axes_or_new(ax, (6.4, 6.4)), title=f"MacAdam limits, {illuminant}, observer {observer}")
 
 
+@plain_text
 def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_second=None, ax=None):
     """A metamer mismatch region seen in CIELAB a*b* under the second illuminant.
 
@@ -258,6 +330,7 @@ def _second_white(region):
     return np.asarray(weights(grid, observer=region.observer, illuminant=region.second_illuminant)).sum(axis=0)
 
 
+@plain_text
 def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = None):
     """Van Trigt's boundary locus (Figs. 3–4): left and right branches on the xy diagram.
 
@@ -309,14 +382,41 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
             if np.all(np.isfinite(branch[k])):
                 ax.annotate(f"{nm}", branch[k], fontsize=6, color=color, zorder=7)
     if generating is not None:
-        ax.plot(*generating.xy.T, color="0.2", lw=1.0, ls="--", zorder=5,
-                label="domain of validity (ρ(λ; λ₁) chromaticities)")
+        for rows, style, text in _families(generating):
+            ax.plot(*generating.xy[rows].T, color="0.2", lw=1.0, ls=style, zorder=5,
+                    label=f"ρ(λ; λ₁) chromaticities, {text}")
     ax.legend(loc="upper right", fontsize=7, framealpha=0.9)
     return ax
 
 
+def _families(generating):
+    """``(rows, line style, label)`` of each family in ``generating``: class 2, then class 1 per end."""
+    out = []
+    rows = generating.family("2")
+    if len(rows):
+        out.append((rows, "--", "class 2 (interior zero at λ₁)"))
+    for end, style in zip(generating.wavelengths_nm[[0, -1]], (":", "-."), strict=True):
+        rows = generating.family("1", end)
+        if len(rows):
+            out.append((rows, style, f"class 1 (zero at {end:g} nm)"))
+    return out
+
+
+def _with_gaps(x, y, step):
+    """``x``, ``y`` with NaN between points more than one grid step apart (no line across gaps)."""
+    if len(x) < 2:
+        return x, y
+    cut = np.flatnonzero(np.diff(x) > 1.5 * step) + 1
+    return np.insert(x.astype(float), cut, np.nan), np.insert(y.astype(float), cut, np.nan)
+
+
+@plain_text
 def generating_luminance_plot(generating, ax=None, title: str | None = None):
-    """``Y(λ₁)/Y₀`` (solid) and ``Y_M(λ₁)/Y₀`` (dashed) against λ₁ (van Trigt Figs. 9–10).
+    """``Y(λ₁)/Y₀`` (solid) and ``Y_M(λ₁)/Y₀`` (dashed) against λ₁, both classes (van Trigt Figs. 9–10).
+
+    One colour per family: class 2 (interior zero with zero slope at λ₁) and class 1 on each end
+    line (zero at λ_b or λ_e, inflection at λ₁). A class-1 family is drawn only over the λ₁ for
+    which ρ(λ; λ₁) ≥ 0; lines break where that set has gaps.
 
     Parameters
     ----------
@@ -347,19 +447,20 @@ def generating_luminance_plot(generating, ax=None, title: str | None = None):
     >>> plt.close("all")
     """
     ax = axes_or_new(ax, (6.4, 4.0))
-    interior = generating.solution_class == "1"
-    ax.plot(generating.touch_nm[interior], generating.luminance_factor[interior], color="C0",
-            lw=1.6, label="Y(λ₁)/Y₀: ρ(λ; λ₁) at most 1")
-    ax.plot(generating.touch_nm[interior], generating.max_luminance_factor[interior], color="C0",
-            lw=1.2, ls="--", label="Y_M(λ₁)/Y₀: optimal colour")
-    ends = ~interior
-    ax.plot(generating.touch_nm[ends], generating.luminance_factor[ends], "s", color="C3", ms=4,
-            label="zero at λ_b or λ_e")
-    ax.set_xlabel("λ₁ (nm): where ρ(λ; λ₁) touches 0")
+    grid = generating.wavelengths_nm
+    step = float(grid[1] - grid[0]) if len(grid) > 1 else 1.0
+    for i, (rows, _, text) in enumerate(_families(generating)):
+        colour = ("C0", "C3", "C2")[i % 3]
+        lam = generating.lambda1_nm[rows]
+        ax.plot(*_with_gaps(lam, generating.luminance_factor[rows], step), color=colour, lw=1.6,
+                label=f"Y(λ₁)/Y₀, {text}")
+        ax.plot(*_with_gaps(lam, generating.max_luminance_factor[rows], step), color=colour,
+                lw=1.1, ls="--", label=f"Y_M(λ₁)/Y₀ (optimal colour), {text}")
+    ax.set_xlabel("λ₁ (nm)")
     ax.set_ylabel("luminance factor Y/Y₀")
     ax.set_ylim(0, 1.02)
     ax.grid(True, lw=0.3, color="0.85")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=6)
     if title is not None:
         ax.set_title(title)
     return ax

@@ -125,7 +125,13 @@ export function paint(colours, server) {
     card.querySelector(".sw").style.background = css;
     card.querySelector(".cname").textContent = e.labels[i];
     const cell = (k) => card.querySelector(`td.${k}`);
-    cell("XYZ").textContent = c.XYZ.map((v) => fmt(v, 2)).join("  ");
+    // SPECTRA's step 1 in "spectra-exact": one k per channel (model.channel_factors; 1 otherwise)
+    const k = (m && m.channel_factors) || [1, 1, 1];
+    cell("XYZ").textContent = c.XYZ.map((v, j) => fmt(v * k[j], 2)).join("  ");
+    cell("XYZ").title = S.normalise === "spectra-exact"
+      ? `SPECTRA's step 1: one k per channel, so the full spectrum shows X = Y = Z = 100 as in SPECTRA. CIE (one k for all three): ${c.XYZ.map((v) => fmt(v, 3)).join("  ")}. x y, L*a*b* and λd are CIE's.`
+      : "";
+    cell("XYZ").previousElementSibling.textContent = S.normalise === "spectra-exact" ? "X Y Z (SPECTRA k)" : "X Y Z";
     cell("xy").textContent = c.xy.map((v) => fmt(v, 4)).join("  ");
     const L = server ? server.colours[i].lab : lab(c.XYZ, local);
     cell("lab").textContent = L.map((v) => fmt(v, 1)).join("  ");
