@@ -16,15 +16,15 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "spectrocolor"
 RANK = {"foundation": 0, "data": 1, "spectra": 2, "colour": 2, "colorimetry": 3, "applications": 4,
         "presentation": 5, "interfaces": 6}
 
-FOUNDATION = {"errors", "registry", "arguments", "safe_write", "spreadsheet", "numba_support", "__init__",
-              "__main__"}
+FOUNDATION = {"errors", "registry", "arguments", "budget", "safe_write", "spreadsheet", "numba_support", "__init__",
+              "__main__", "notebook_hooks"}
 DATA = {"data_tables"}
 SPECTRA = {"spectrum", "interpolation", "sampling", "observers", "illuminants", "spectrum_io", "io"}
 COLOUR = {"coordinates", "differences", "display"}
 COLORIMETRY = {"colorimetry", "astm_e308", "bandpass", "chromaticity", "temperature"}
 APPLICATIONS = {"recovery", "thinfilm", "images", "lighting", "mixing", "upsampling",
                 "display_emission"}
-PRESENTATION = {"plot", "pictures", "report", "labels"}
+PRESENTATION = {"plot", "pictures", "report", "labels", "notebook"}
 PRESENTATION_MODULES = {"plots", "vector_graphic", "report", "pictures", "figures"}
 INTERFACES = {"cli", "app"}
 

@@ -2,7 +2,10 @@
 
 The reference pages are generated from the package's own public-name table
 (``spectrocolor._PUBLIC``), grouped by module, so every public name is documented and nothing
-is listed twice. The guides in ``docs/*.md`` are included as they are (MyST Markdown).
+is listed twice. The guides in ``docs/*.md`` are included as they are (MyST Markdown). The
+gallery notebooks in ``docs/notebooks/*.ipynb`` (stored without outputs) are executed by
+myst-nb on a local kernel at every build, offline, and rendered with their outputs; a cell that
+fails fails the build.
 """
 
 from __future__ import annotations
@@ -21,19 +24,27 @@ import spectrocolor  # noqa: E402
 project = "spectrocolor"
 author = "the spectrocolor developers"
 release = spectrocolor.__version__
-extensions = ["sphinx.ext.autodoc", "sphinx.ext.napoleon", "myst_parser"]
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.napoleon", "myst_nb"]  # myst_nb brings myst_parser
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
 napoleon_use_ivar = True
 autodoc_typehints = "description"
 autodoc_member_order = "bysource"
-source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 myst_heading_anchors = 3
 exclude_patterns = ["_build"]
 html_theme = "alabaster"
 html_static_path: list[str] = []
 suppress_warnings = ["myst.xref_missing", "myst.header"]
+# The gallery: run every notebook at every build (outputs always from this code), in a temporary
+# folder, failing the build on any error or a cell slower than the limit.
+nb_execution_mode = "force"
+nb_execution_timeout = 240
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_execution_in_temp = True
+nb_merge_streams = True
 nitpicky = False
 
 
@@ -82,5 +93,27 @@ def _copy_guides() -> None:
         shutil.copytree(HERE.parent / "images", guides / "images")
 
 
+def _copy_gallery() -> None:
+    """The notebooks of docs/notebooks next to the reference, with an index page."""
+    gallery = HERE / "gallery"
+    shutil.rmtree(gallery, ignore_errors=True)
+    gallery.mkdir()
+    notebooks = sorted((HERE.parent / "notebooks").glob("*.ipynb"))
+    for notebook in notebooks:
+        shutil.copy(notebook, gallery / notebook.name)
+    (gallery / "index.rst").write_text(
+        "Gallery\n=======\n\nShort notebooks that run: the seeds' worked examples first, then each capability. "
+        "Every record shows itself in Jupyter and VS Code (:mod:`spectrocolor.notebook`); these pages are the "
+        "notebooks executed at this build.\n\n.. toctree::\n   :maxdepth: 1\n\n"
+        + "".join(f"   {n.stem}\n" for n in notebooks) + "   notebook_reprs\n")
+    (gallery / "notebook_reprs.rst").write_text(
+        "How records show themselves\n===========================\n\n"
+        ".. automodule:: spectrocolor.notebook\n\n"
+        ".. autofunction:: spectrocolor.notebook.spectrum_view\n\n"
+        ".. autoclass:: spectrocolor.notebook.SpectrumView\n\n"
+        ".. automodule:: spectrocolor.notebook_hooks\n   :members:\n")
+
+
 _write_reference()
 _copy_guides()
+_copy_gallery()

@@ -30,9 +30,11 @@ from pathlib import Path
 
 import numpy as np
 
+from . import notebook_hooks
 from .errors import ColorimetryError, SpectrumError
 from .illuminants import DEFAULT_ILLUMINANT, illuminant_label
 from .observers import DEFAULT_OBSERVER, canonical_observer_name
+from .plot import plain_text
 from .safe_write import write_text
 from .spectrum import Spectrum
 from .spreadsheet import neutralise_cell
@@ -108,6 +110,8 @@ class MeasurementReport:
     in_gamut: np.ndarray
     srgb_hex: tuple
     white_XYZ: np.ndarray
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
     def __len__(self) -> int:
         return len(self.names)
@@ -375,6 +379,7 @@ def _png_base64(figure) -> str:
     return base64.b64encode(buffer.getvalue()).decode("ascii")
 
 
+@plain_text
 def _diagram(report: MeasurementReport, dense: bool) -> str:
     from matplotlib.figure import Figure
 
@@ -408,6 +413,7 @@ def _zoom_extent(report: MeasurementReport) -> tuple[float, float, float, float]
     return centre[0] - half, centre[0] + half, centre[1] - half, centre[1] + half
 
 
+@plain_text
 def _curves(report: MeasurementReport, max_curves: int = 20, shown: int = 40) -> str:
     from matplotlib.figure import Figure
 

@@ -14,6 +14,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from . import notebook_hooks
+from .arguments import real_array, real_number
 from .errors import SpectrumError
 from .interpolation import METHODS, interpolation_matrix, resample_linear
 
@@ -206,6 +208,7 @@ class Spectrum:
     """
 
     __slots__ = ("_wavelengths_nm", "_values", "_names", "_metadata")
+    _repr_html_, _repr_svg_ = notebook_hooks.html, notebook_hooks.svg  # notebooks: spectrocolor.notebook
 
     def __init__(
         self,
@@ -424,7 +427,8 @@ class Spectrum:
         Raises
         ------
         SpectrumError
-            For no levels or a ``full_scale`` that is not positive.
+            For levels that are not real numbers in a regular array (strings, complex, ragged),
+            no levels, or a ``full_scale`` that is not positive.
 
         Examples
         --------
@@ -432,14 +436,14 @@ class Spectrum:
         >>> s.wavelengths_nm.tolist(), s.values.tolist()
         ([400.0, 410.0, 420.0], [0.0, 0.5, 1.0])
         """
-        level_array = np.asarray(levels, dtype=float)
+        level_array = real_array(levels, "levels", "bin levels (numbers)", SpectrumError)
         if level_array.ndim < 1 or level_array.shape[-1] < 1:
             raise SpectrumError(f"levels: expected at least one bin level, got shape {level_array.shape}")
         count = level_array.shape[-1]
         grid = start_nm + step_nm * np.arange(count, dtype=float)
         if full_scale is not None:
-            if not full_scale > 0:
-                raise SpectrumError(f"full_scale: must be positive, got {full_scale!r}")
+            full_scale = real_number(full_scale, "full_scale", "the level that means 1", SpectrumError,
+                                     positive=True)
             level_array = level_array / full_scale
         return cls(grid, level_array)
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import notebook_hooks
 from ..coordinates import colour_array
 from ..errors import ColorimetryError
 from .gamut import DEFAULT_GAMUT, DEFAULT_TOLERANCE, GAMUT_STRATEGIES, apply_gamut, gamut_flags
@@ -69,6 +70,8 @@ class Rendering:
     scale: float | np.ndarray
     space: str
     bit_depth: int
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
     def explain(self) -> list[str]:
         """One line per colour: "in gamut" or "cannot be reproduced (…): what was done".

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import notebook_hooks
 from ..errors import ColorimetryError
 from ..illuminants import DEFAULT_ILLUMINANT
 from ..observers import DEFAULT_OBSERVER
@@ -110,6 +111,8 @@ class SmoothestResult:
     bounds: str | None
     observer: str
     illuminant: str
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
 
 def _boundary_solutions(setup: Setup, b: np.ndarray, lower: float, upper: float,

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import notebook_hooks
 from ..display.gamut import DEFAULT_GAMUT
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import illuminant_label
@@ -65,6 +66,8 @@ class FilmColours:
     illuminant: str
     observer: str
     exposure: str
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
     @property
     def rgb8(self) -> np.ndarray:
@@ -132,9 +135,6 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_IL
     >>> bright.XYZ100.round(2).tolist()  # relative to a perfect reflector: a few per cent
     [[2.58, 3.08, 8.56]]
     """
-    from ..colorimetry import weights
-    from ..coordinates import xy as chromaticity
-    from ..display.render import render
     from ..spectrum import Spectrum
 
     if isinstance(films, FilmOptics):
@@ -147,19 +147,44 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_IL
         raise SpectrumError(
             f"films: expected FilmOptics or Spectrum, got {type(films).__name__}"
         )
+    W = film_weights(spectrum.wavelengths_nm, illuminant=illuminant, observer=observer,
+                     exposure=exposure, gain=gain, method=method)
+    return colours_of(spectrum.values @ W, illuminant=illuminant, observer=observer,
+                      exposure=exposure, gain=gain, space=space, gamut=gamut, bit_depth=bit_depth)
+
+
+def film_weights(wavelengths_nm, *, illuminant=SEED_000_ILLUMINANT, observer=DEFAULT_OBSERVER,
+                 exposure: str = "global-max", gain: float = 1.0, method: str = "sum",
+                 **_ignored) -> np.ndarray:
+    """The options of :func:`film_colours` checked, and its weights ``W`` (K, 3) on the grid.
+
+    ``factors @ W`` are the films' XYZ100, for callers that compute the factors in blocks
+    (:func:`spectrocolor.thinfilm.maps.colour_table`) and render them together with
+    :func:`colours_of`. Other keywords of :func:`film_colours` are ignored.
+    """
+    from ..colorimetry import weights
+
     if exposure not in EXPOSURES:
         raise ColorimetryError(f"exposure: expected one of {EXPOSURES}, got {exposure!r}")
     if not (np.isfinite(gain) and gain > 0):
         raise ColorimetryError(f"gain: expected a positive number, got {gain!r}")
     if exposure == "global-max" and gain != 1.0:
         raise ColorimetryError('gain: only with exposure="perfect-reflector"')
-    wl = spectrum.wavelengths_nm
     if illuminant is None:
         raise ColorimetryError(
             "illuminant: a film's reflectance needs a light; give a CIE name, 'blackbody:T' or a Spectrum "
             f"(seed 000 uses {SEED_000_ILLUMINANT!r}, the default)"
         )
-    XYZ100 = spectrum.values @ weights(wl, observer=observer, illuminant=illuminant, method=method)
+    return weights(wavelengths_nm, observer=observer, illuminant=illuminant, method=method)
+
+
+def colours_of(XYZ100, *, illuminant=SEED_000_ILLUMINANT, observer=DEFAULT_OBSERVER,
+               exposure: str = "global-max", gain: float = 1.0, space="sRGB",
+               gamut: str = DEFAULT_GAMUT, bit_depth: int = 8, **_ignored) -> FilmColours:
+    """:class:`FilmColours` of films' XYZ100 (from :func:`film_weights`), as :func:`film_colours` renders them."""
+    from ..coordinates import xy as chromaticity
+    from ..display.render import render
+
     rendering = render(
         XYZ100 * gain if exposure == "perfect-reflector" else XYZ100,
         space=space,

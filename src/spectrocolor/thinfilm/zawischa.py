@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import notebook_hooks
 from ..errors import SpectrumError
 from .colour import FilmColours, film_colours
 from .optics import two_beam_reflectance
@@ -35,6 +36,9 @@ TEMPERATURE_K = 6504.0
 C2_M_K = 14.388e-3
 COLUMNS = 1000
 OPD_STEP_NM = 5.0
+#: Memory of one spectral sample of one column (the two-beam factors, their spectrum, the
+#: weighting), bytes.
+COLUMN_SAMPLE_BYTES = 32
 TICK_EVERY_NM = 500.0
 
 
@@ -62,6 +66,8 @@ class ZawischaStrip:
     opd_nm: np.ndarray
     colours: FilmColours
     tick_columns: np.ndarray
+
+    _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
 
 def zawischa_space():
@@ -110,6 +116,9 @@ def zawischa_strip(columns: int = COLUMNS, beta: float = BETA) -> ZawischaStrip:
     ------
     SpectrumError
         For ``columns`` that is not a positive whole number or β outside [0, 1].
+    spectrocolor.errors.BudgetError
+        (a ``SpectrumError``) For more columns than fit the memory budget (about 350 000 in
+        the default 1 GiB).
 
     References
     ----------
@@ -123,12 +132,15 @@ def zawischa_strip(columns: int = COLUMNS, beta: float = BETA) -> ZawischaStrip:
     >>> strip.tick_columns.tolist()[:3]
     [99, 199, 299]
     """
+    from ..budget import check_bytes
     from ..illuminants import blackbody
     from ..spectrum import Spectrum, wavelength_grid
 
     if isinstance(columns, bool) or not isinstance(columns, (int, np.integer)) or columns < 1:
         raise SpectrumError(f"columns: expected a positive whole number, got {columns!r}")
     wl = wavelength_grid(360.0, 830.0, 5.0)
+    check_bytes(int(columns) * wl.size * COLUMN_SAMPLE_BYTES,
+                f"columns: {columns} columns of {wl.size} spectral samples")
     opd = OPD_STEP_NM * np.arange(1, columns + 1)
     light = blackbody(TEMPERATURE_K, wl, c2_m_K=C2_M_K)
     factors = Spectrum(wl, two_beam_reflectance(opd, wl, beta=beta))
