@@ -20,6 +20,7 @@ from fastapi.responses import JSONResponse
 from pydantic import Field, model_validator
 
 from ..errors import SpectrumError
+from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import compute
 from .relight_photo import (
     ADAPTATIONS,
@@ -86,9 +87,10 @@ def relight_options():
 
 @router.post("/api/relight")
 def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread pool
-    try:
-        return _workers.run(relight_photo, req.image, req.illuminant, float(req.step_nm),
-                            req.observer, req.source, req.adaptation, req.gamut, req.exposure)
+    try:  # the worker says whether it used the NumPy path (kernels still compiling)
+        answer, used_numpy_path = _workers.run(
+            call_noting_numpy_path, relight_photo, req.image, req.illuminant, float(req.step_nm),
+            req.observer, req.source, req.adaptation, req.gamut, req.exposure)
     except Busy:
         return JSONResponse({"error": "the server is busy relighting other photos; try again"},
                             status_code=429)
@@ -98,3 +100,6 @@ def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread 
     except WorkerDied:
         raise SpectrumError("image: the worker stopped on this photo (out of memory?); "
                             "send a smaller photo") from None
+    if used_numpy_path:
+        note_numpy_path()
+    return answer

@@ -22,7 +22,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
 
-from fastapi import FastAPI
+from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
@@ -35,9 +35,11 @@ from spectrocolor.spreadsheet import neutralise_cell
 
 from . import compute
 from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
+from .kernels import KernelStatusHeader
 from .lab_routes import router as lab_router
 from .relight_routes import router as relight_router
 from .request_models import Level, StrictRequest
+from .responses import FiniteJSONResponse
 from .uploads import Busy, UploadParser
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
@@ -183,11 +185,14 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
         False only for a server that the user chose to open to other machines
         (``spectrocolor app --allow-remote``); foreign Origins are refused in any case.
     """
-    app = FastAPI(title="spectrocolor explorer", docs_url=None, redoc_url=None, openapi_url=None)
+    app = FastAPI(title="spectrocolor explorer", docs_url=None, redoc_url=None, openapi_url=None,
+                  default_response_class=FiniteJSONResponse)  # never NaN/inf, never a 500 for one
     static = Path(str(resources.files("spectrocolor.app") / "static"))
     parsers = UploadParser(MAX_PARSERS, PARSER_WAIT_S, PARSER_TIMEOUT_S)
     app.router.on_shutdown.append(parsers.close)
-    # added last = outermost: Host/Origin first, then the body count, then FastAPI
+    # added last = outermost: Host/Origin first, then the body count, then whether a result
+    # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
+    app.add_middleware(KernelStatusHeader)
     app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
     app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
 
@@ -258,13 +263,14 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
         return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
 
     @app.post("/api/import")
-    def import_(req: ImportRequest):  # a plain def: FastAPI runs it in its thread pool
+    def import_(req: ImportRequest, request: Request):  # a plain def: run in FastAPI's threads
         suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
         if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
             raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
         try:  # in a worker process: other clients keep being answered meanwhile
             return parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
-                                 req.method, req.scale, MAX_IMPORT_SPECTRA)
+                                 req.method, req.scale, MAX_IMPORT_SPECTRA,
+                                 client=request.client.host if request.client else None)
         except Busy:
             return JSONResponse({"error": "the server is busy reading other files; try again"},
                                 status_code=429)

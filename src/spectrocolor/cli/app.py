@@ -4,16 +4,29 @@ The server listens on the loopback address (127.0.0.1) and answers only requests
 it by a loopback name (127.0.0.1, localhost, [::1]) and its port. Any other ``--host`` opens it
 to the network; that needs ``--allow-remote`` and prints a warning, since the explorer has no
 accounts and no encryption.
+
+It prints one line per step: the URL it serves at, then that the compiled kernels are being
+compiled in the background (:mod:`spectrocolor.app.kernels`; results use the NumPy path
+meanwhile, and say so), then when they are ready. ``make run`` starts it with
+``SPECTROCOLOR_MAKE_RUN=1``, so that its advice names make's variables (``make run PORT=8766``)
+rather than options that make cannot pass on.
 """
 
 from __future__ import annotations
 
+import errno
 import ipaddress
 import os
+import signal
 import socket
 import sys
 
-from . import UserError
+from . import UserError, install_command
+
+#: Set (to 1) by ``make run``: advice then names make's variables instead of the options.
+MAKE_RUN_VARIABLE = "SPECTROCOLOR_MAKE_RUN"
+#: Ports after a busy one that are tried for a free one to suggest.
+PORTS_TRIED = 20
 
 
 def register(subparsers) -> None:
@@ -56,12 +69,60 @@ def is_loopback(host: str) -> bool:
         return False
 
 
-def _bind(host: str, port: int) -> socket.socket:
-    if not 0 <= port <= 65535:
-        raise UserError(f"--port must be 0-65535, got {port}")
+def started_by_make() -> bool:
+    """Whether ``make run`` started this command (``SPECTROCOLOR_MAKE_RUN=1``)."""
+    return os.environ.get(MAKE_RUN_VARIABLE, "") == "1"
+
+
+def port_advice(port: int | None, by_make: bool) -> str:
+    """How to choose another port, as a command to run: with make's ``PORT=`` or with ``--port``.
+
+    Parameters
+    ----------
+    port : int or None
+        A port to suggest; None suggests only 0 (any free port).
+    by_make : bool
+        Whether the user started the explorer with ``make run``.
+
+    Examples
+    --------
+    >>> port_advice(8766, by_make=True)
+    'run `make run PORT=8766` (or PORT=0 for any free port)'
+    >>> port_advice(None, by_make=False)
+    'run `spectrocolor app --port 0` (any free port)'
+    """
+    if by_make:
+        return (f"run `make run PORT={port}` (or PORT=0 for any free port)" if port is not None
+                else "run `make run PORT=0` (any free port)")
+    return (f"run `spectrocolor app --port {port}` (or --port 0 for any free port)"
+            if port is not None else "run `spectrocolor app --port 0` (any free port)")
+
+
+def _socket(host: str) -> socket.socket:
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     sock = socket.socket(family, socket.SOCK_STREAM)
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    return sock
+
+
+def _free_port_after(host: str, port: int) -> int | None:
+    """The first of the :data:`PORTS_TRIED` ports after ``port`` that ``host`` can bind now."""
+    for candidate in range(port + 1, min(port + 1 + PORTS_TRIED, 65536)):
+        with _socket(host) as probe:
+            try:
+                probe.bind((host, candidate))
+            except OSError:
+                continue
+            return candidate
+    return None
+
+
+def _bind(host: str, port: int) -> socket.socket:
+    by_make = started_by_make()
+    if not 0 <= port <= 65535:
+        raise UserError(f"{'PORT' if by_make else '--port'} must be 0-65535 (0: any free port), "
+                        f"got {port}")
+    sock = _socket(host)
     # accepted connections inherit it: without, a response written in two parts waits for the
     # client's delayed ACK, 40 ms per request on a kept-alive connection
     sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
@@ -69,7 +130,15 @@ def _bind(host: str, port: int) -> socket.socket:
         sock.bind((host, port))
     except OSError as exc:
         sock.close()
-        raise UserError(f"cannot listen on {host}:{port} ({exc.strerror}); try --port 0") from None
+        if exc.errno == errno.EADDRINUSE:
+            raise UserError(f"port {port} is busy (another program, perhaps an explorer already "
+                            f"started, listens on {host}:{port}); "
+                            f"{port_advice(_free_port_after(host, port), by_make)}") from None
+        if exc.errno == errno.EACCES and 0 < port < 1024:
+            raise UserError(f"port {port} needs administrator rights ({exc.strerror}); choose one "
+                            f"above 1023: {port_advice(8765, by_make)}") from None
+        raise UserError(f"cannot listen on {host}:{port} ({exc.strerror}); "
+                        f"{port_advice(None, by_make)}") from None
     return sock
 
 
@@ -79,13 +148,15 @@ def run(args) -> int:
 
         from ..app.server import create_app
     except ImportError as exc:
-        raise UserError(
-            f"the explorer needs the 'app' extra ({exc.name} is missing): "
-            "pip install 'spectrocolor[app]'") from None
+        if (exc.name or "spectrocolor").split(".")[0] == "spectrocolor":
+            raise  # a module of this package: a bug, not a missing extra
+        raise UserError(f"the explorer needs the extra 'app' ({exc.name} is missing); install it "
+                        f"with: {install_command('app', exc.name)}") from None
     remote = not is_loopback(args.host)
     if remote and not args.allow_remote:
+        allow = "ALLOW_REMOTE=1 to `make run`" if started_by_make() else "--allow-remote"
         raise UserError(f"--host {args.host!r} is not a loopback address: other machines could "
-                        "use the explorer; add --allow-remote if that is what you want")
+                        f"use the explorer; add {allow} if that is what you want")
     if remote:
         print(f"warning: serving on {args.host}: anyone who can reach this port can use the "
               "explorer (no accounts, no encryption)", file=sys.stderr, flush=True)
@@ -93,18 +164,38 @@ def run(args) -> int:
     host, port = sock.getsockname()[:2]
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{port}/"
-    print(f"spectrocolor explorer: {url}  (Ctrl+C stops it)", flush=True)
+    say(f"serving at {url}  (Ctrl+C stops it)")
     if not args.no_browser and _has_display():
         import webbrowser
 
         webbrowser.open(url)
-    app = create_app(port=port, check_host=not remote)
-    from ..app.http_protocol import JSONErrorH11Protocol  # malformed HTTP gets the JSON error shape too
+    from ..app.kernels import BackgroundCompilation
 
-    config = uvicorn.Config(app, log_level="warning", http=JSONErrorH11Protocol)
-    server = uvicorn.Server(config)
+    compilation = BackgroundCompilation.start(report=say)  # before any worker process starts
+    # uvicorn stops on SIGTERM, then raises it again: end through the finally below instead
+    signal.signal(signal.SIGTERM, _exit_on_signal)
     try:
-        server.run(sockets=[sock])
-    except KeyboardInterrupt:
-        pass
+        app = create_app(port=port, check_host=not remote)
+        # malformed HTTP: the JSON error shape too; bounded connections (see http_protocol)
+        from ..app.http_protocol import ACCEPT_BACKLOG, JSONErrorH11Protocol
+
+        config = uvicorn.Config(app, log_level="warning", http=JSONErrorH11Protocol,
+                                backlog=ACCEPT_BACKLOG)
+        server = uvicorn.Server(config)
+        try:
+            server.run(sockets=[sock])
+        except KeyboardInterrupt:
+            pass
+    finally:
+        if compilation is not None:
+            compilation.stop()
     return 0
+
+
+def _exit_on_signal(signum, _frame):
+    raise SystemExit(128 + signum)
+
+
+def say(line: str) -> None:
+    """Print one line of the explorer's progress (``spectrocolor explorer: …``), at once."""
+    print(f"spectrocolor explorer: {line}", flush=True)

@@ -22,7 +22,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..numba_support import numba_enabled
+from ..numba_support import use_compiled
 from . import certificate
 
 __all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas", "roughness", "warm_up"]
@@ -39,7 +39,8 @@ def _compiled():
 
 
 def kernels():
-    """The compiled kernels, or None without numba or with ``SPECTROCOLOR_NUMBA=0``.
+    """The compiled kernels, or None without numba, with ``SPECTROCOLOR_NUMBA=0`` or while another
+    process compiles them (:func:`spectrocolor.numba_support.use_compiled`).
 
     Returns
     -------
@@ -53,7 +54,7 @@ def kernels():
     >>> k is None or callable(k.pdas)
     True
     """
-    if not numba_enabled():
+    if not use_compiled():
         return None
     return _compiled()
 
@@ -159,9 +160,9 @@ def warm_up() -> bool:
 
     The first use on a machine compiles the kernels, about 35 s on a 2-core machine (longer
     under load), and caches them beside this module; later processes load them in well under
-    a second. ``make`` calls this after installing, and ``make test`` before the tests (whose
-    servers must not spend their time limits compiling); ``python -m
-    spectrocolor.recovery.compiled`` does the same.
+    a second. ``make test`` calls this before the tests (whose servers must not spend their time
+    limits compiling), as ``python -m spectrocolor.recovery.compiled``; the explorer calls it in
+    a background process while its pages use the NumPy path (:mod:`spectrocolor.app.kernels`).
 
     Returns
     -------

@@ -18,14 +18,15 @@ serial ones from any other) are :mod:`spectrocolor.numba_support`'s.
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from functools import lru_cache
 from types import SimpleNamespace
 
 import numpy as np
 
-from ..numba_support import numba_enabled, pick
+from ..numba_support import pick, use_compiled
 
-__all__ = ["MOVE_CODES", "kernels", "run_blend", "run_locate"]
+__all__ = ["MOVE_CODES", "kernels", "run_blend", "run_locate", "warm_up"]
 
 #: The out-of-range strategies the kernel implements: strategy name -> how a query outside the
 #: cube is moved (0 toward grey, 1 clip per channel). Other strategies use the NumPy path.
@@ -44,7 +45,8 @@ def _compiled():
 
 
 def kernels():
-    """The compiled kernels, or None without numba or with ``SPECTROCOLOR_NUMBA=0``.
+    """The compiled kernels, or None without numba, with ``SPECTROCOLOR_NUMBA=0`` or while another
+    process compiles them (:func:`spectrocolor.numba_support.use_compiled`).
 
     Returns
     -------
@@ -58,7 +60,7 @@ def kernels():
     >>> k is None or len(k.blend) == 2
     True
     """
-    if not numba_enabled():
+    if not use_compiled():
         return None
     return _compiled()
 
@@ -83,3 +85,49 @@ def run_locate(found_kernels, t, n, move, offsets, status, node_dtype=np.intp,
     moved = np.empty(count, dtype=np.bool_)
     pick(found_kernels.locate)(t, n, move, offsets, status, nodes, weights, exact, moved)
     return nodes, weights, exact, moved
+
+
+def warm_up() -> bool:
+    """Compile (or load from the cache) every kernel now rather than on first use.
+
+    Runs the lookup and the blend of a small table (:func:`~spectrocolor.upsampling.lookup`,
+    :func:`~spectrocolor.upsampling.upsample`, :func:`~spectrocolor.upsampling.relight`,
+    :func:`~spectrocolor.upsampling.texel_coefficients`) from the main thread (the parallel
+    kernels) and from another thread (the serial ones), and undoes the filters of a one-pixel
+    PNG, so that each kernel is compiled for the array types the library passes it. Building
+    the table compiles the smoothest-reflectance kernels too
+    (:func:`spectrocolor.recovery.compiled.warm_up`).
+
+    Returns
+    -------
+    bool
+        Whether the kernels are in use (False without numba or with ``SPECTROCOLOR_NUMBA=0``).
+
+    Examples
+    --------
+    >>> isinstance(warm_up(), bool)
+    True
+    """
+    found = kernels()
+    if found is None:
+        return False
+    from .apply import lookup, texel_coefficients, upsample
+    from .relight import relight
+    from .table import upsampling_table
+
+    table = upsampling_table("sRGB", "D65", wavelengths=(400.0, 700.0, 20.0), resolution=3,
+                             measure_excess=False)
+    colours = np.array([[0.5, 0.4, 0.3], [1.2, 0.5, -0.1]])
+
+    def use_every_kernel():
+        lookup(table, colours)
+        texel_coefficients(table, colours)
+        upsample(table, colours)
+        relight(table, colours, "A")
+
+    use_every_kernel()
+    with ThreadPoolExecutor(1) as other_thread:  # .result() raises what the thread raised
+        other_thread.submit(use_every_kernel).result()
+    found.unfilter_png(np.zeros((1, 1, 3), dtype=np.uint8), np.zeros(1, dtype=np.uint8),
+                       np.empty((1, 1, 3), dtype=np.uint8))
+    return True

@@ -1,5 +1,7 @@
 // The server's JSON API: every colour number the page shows comes from the library through it.
 
+import {showKernelStatus} from "./kernels.js";
+
 export class ApiError extends Error {}
 
 export async function api(path, body) {
@@ -16,6 +18,7 @@ export async function api(path, body) {
     try { msg = (await res.json()).error || msg; } catch { /* not JSON */ }
     throw new ApiError(msg);
   }
+  showKernelStatus(res);
   return res;
 }
 

@@ -1,6 +1,8 @@
 // What every lab page shares: element lookup, the one error banner, the JSON API call (errors in
 // the server's {"error": …} shape), canvases sized to their CSS box, and number formatting.
 
+import { showKernelStatus } from "../js/kernels.js";
+
 export const $ = (id) => document.getElementById(id);
 
 /** Show a message in the page's error banner (role=alert); it stays until dismissed. */
@@ -17,6 +19,7 @@ export async function api(path, body) {
   const response = await fetch(path, init);
   const data = await response.json();
   if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
+  showKernelStatus(response);
   return data;
 }
 
