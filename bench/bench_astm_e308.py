@@ -1,28 +1,33 @@
 """ASTM E308 route: building the weights, and XYZ of a cube, spectrocolor vs colour-science.
 
-Run: .venv/bin/python bench/bench_astm_e308.py
-Prints best-of-N wall times measured in this one run: building one E2022 weight table (ours,
-uncached, vs colour's ``tristimulus_weighting_factors_ASTME2022`` with its cache off), and XYZ of a
-256×256×31 cube by the same method (ours and a bare matmul with the precomputed weights on the cube;
+Run: .venv/bin/python bench/bench_astm_e308.py [--repeats 5] [--burst 0.2] [--speed-only]
+Prints best-of-N wall times, warm, each comparison timed alternately in this one process:
+building one E2022 weight table (ours, uncached, vs colour's
+``tristimulus_weighting_factors_ASTME2022`` with its cache off), and XYZ of a 256×256×31 cube by
+the same method (ours and a bare matmul with the precomputed weights on the cube;
 ``colour.msds_to_XYZ(method="ASTM E308")``, which loops over spectra in Python and refuses plain
-arrays, on 200 of its spectra, compared per spectrum).
+arrays, on 20 of its spectra, compared per spectrum). Records the figures in the results file
+(bench/results.py); then, unless ``--speed-only``, the accuracy and bandpass tables of
+docs/astm_e308.md.
 """
 
 from __future__ import annotations
 
-import time
+import argparse
 import warnings
+from pathlib import Path
 
 import numpy as np
 
 import spectrocolor as sc
+from results import figure, ratio, record
 from spectrocolor.astm_e308 import astm_e308_weights
-from timing import best_of
+from timing import BURST, add_arguments, alternate_best, clock_name
 
-COLOUR_SPECTRA = 200  # colour's ASTM E308 route takes ~10 ms per spectrum
+COLOUR_SPECTRA = 20  # colour's ASTM E308 route takes 10-30 ms per spectrum
 
 
-def main() -> None:
+def main(repeats: int = 5, burst: float = BURST) -> None:
     import colour
 
     colour.utilities.set_caching_enable(False)
@@ -32,40 +37,54 @@ def main() -> None:
     cmfs = colour.MultiSpectralDistributions(cm.values.T, cm.wavelengths_nm)
     spd = colour.SpectralDistribution(sc.illuminant("D65", fine).values, fine)
 
-    ours_table = best_of(lambda: astm_e308_weights(grid, "1931", "D65"))
-    theirs_table = best_of(
-        lambda: colour.colorimetry.tristimulus_weighting_factors_ASTME2022(
-            cmfs, spd, colour.SpectralShape(360, 780, 10)
-        )
-    )
+    tables = alternate_best({
+        "ours": lambda: astm_e308_weights(grid, "1931", "D65"),
+        "colour-science": lambda: colour.colorimetry.tristimulus_weighting_factors_ASTME2022(
+            cmfs, spd, colour.SpectralShape(360, 780, 10)),
+    }, repeats=repeats, burst=burst)
+    ours_table, theirs_table = tables["ours"], tables["colour-science"]
 
     cube = np.random.default_rng(0).random((256, 256, grid.size))
     W = np.array(sc.weights(grid, observer="1931", illuminant="D65", method="astm-e308"))
     spectra = sc.Spectrum(grid, cube)
-    ours = best_of(lambda: sc.tristimulus(spectra, observer="1931", illuminant="D65", method="astm-e308"))
-    limit = best_of(lambda: cube @ W)
     subset = cube.reshape(-1, grid.size)[:COLOUR_SPECTRA]  # colour loops in Python, one spectrum at a time
     msds = colour.MultiSpectralDistributions(subset.T, grid)
+    kwargs = {"method": "ASTM E308", "mi_5nm_omission_method": False, "mi_20nm_interpolation_method": False}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        kwargs = {"method": "ASTM E308", "mi_5nm_omission_method": False, "mi_20nm_interpolation_method": False}
-        start = time.perf_counter()
+        best = alternate_best({
+            "ours": lambda: sc.tristimulus(spectra, observer="1931", illuminant="D65", method="astm-e308"),
+            "colour-science": lambda: colour.msds_to_XYZ(msds, cmfs, spd, **kwargs),
+            "limit": lambda: cube @ W,
+        }, repeats=repeats, burst=burst)
         XYZ_colour = colour.msds_to_XYZ(msds, cmfs, spd, **kwargs)
-        theirs = (time.perf_counter() - start) / COLOUR_SPECTRA
+    ours, limit = best["ours"], best["limit"]
+    theirs = best["colour-science"] / COLOUR_SPECTRA
     agreement = np.abs(XYZ_colour - subset @ W).max()
 
     pixels = cube.shape[0] * cube.shape[1]
-    print("one E2022 weight table, 400-700 nm at 10 nm, 1931, D65 (uncached)")
+    print(f"one E2022 weight table, 400-700 nm at 10 nm, 1931, D65 (uncached); warm, best of {repeats}, alternately, "
+          f"{clock_name()}")
     print(f"  spectrocolor.astm_e308_weights                : {ours_table * 1e3:8.2f} ms")
     print(f"  colour tristimulus_weighting_factors_ASTME2022: {theirs_table * 1e3:8.2f} ms")
     print(f"  ratio colour / ours                            : {theirs_table / ours_table:8.1f}x")
     print(f"cube 256x256x31 float64, {pixels} spectra, method ASTM E308")
     print(f"  spectrocolor.tristimulus : {ours * 1e3:8.2f} ms")
     print(f"  bare NumPy cube @ W      : {limit * 1e3:8.2f} ms  (the limit)")
-    print(f"  colour.msds_to_XYZ       : {theirs * 1e6:8.1f} us per spectrum ({COLOUR_SPECTRA} spectra, one run)")
+    print(f"  colour.msds_to_XYZ       : {theirs * 1e6:8.1f} us per spectrum ({COLOUR_SPECTRA} spectra)")
     print(f"  ratio colour / ours      : {theirs * pixels / ours:8.0f}x per spectrum")
     print(f"  ratio ours / limit       : {ours / limit:8.2f}x")
     print(f"  max |ours - colour|      : {agreement:.2e} (XYZ100)")
+    record("astm_e308", "ASTM E308 weights: one E2022 table; XYZ of a 256² × 31 cube", [
+        figure("table_ms", ours_table * 1e3, "ours", "table {} ms"),
+        figure("cube_ms", ours * 1e3, "ours", "cube {} ms"),
+        ratio("table_colour_over_ours", theirs_table / ours_table, "colour-science", "table {}× slower"),
+        ratio("cube_colour_over_ours", theirs * pixels / ours, "colour-science", "cube {}× slower per spectrum"),
+        figure("colour_ms_per_spectrum", theirs * 1e3, "colour-science",
+               f"{{}} ms per spectrum (timed on {COLOUR_SPECTRA})"),
+        ratio("ours_over_limit", ours / limit, "limit", "cube: ours {}× its time"),
+        figure("limit_ms", limit * 1e3, "limit", "{} ms (`cube @ W`)"),
+    ], script=Path(__file__).name)
 
 
 def accuracy() -> None:
@@ -114,6 +133,11 @@ def bandpass() -> None:
 
 
 if __name__ == "__main__":
-    main()
-    accuracy()
-    bandpass()
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_arguments(parser)
+    parser.add_argument("--speed-only", action="store_true", help="skip the accuracy and bandpass tables")
+    args = parser.parse_args()
+    main(args.repeats, args.burst)
+    if not args.speed_only:
+        accuracy()
+        bandpass()

@@ -4,11 +4,13 @@
 
 1. XYZ of a SIZE x SIZE x 31 float32 cube, pixels/s: ``cube_to_xyz`` (row blocks) vs a bare
    NumPy matmul of the whole cube (the memory-bandwidth limit) vs colour-science's
-   ``msds_to_XYZ`` (timed on a 512 x 512 crop: it needs several float64 copies of the cube).
+   ``msds_to_XYZ`` (timed on a 512 x 512 crop: it needs several float64 copies of the cube);
+   the three timed alternately, warm, best of N each.
 2. A cube 2x larger than the address space the process may use (``RLIMIT_AS`` set in a
    subprocess after the imports) converts to an sRGB PNG; peak RSS is reported.
 3. The same conversion on a dask LocalCluster with 1 and with 2 worker processes.
-All ratios are measured in this one run.
+All ratios are measured in this one run; parts 1 and 2 are recorded in the results file
+(bench/results.py) for the README's table.
 """
 
 from __future__ import annotations
@@ -19,13 +21,17 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
 
-from timing import best_of
+from results import figure, ratio, record
+from timing import add_arguments, alternate_best, best_of, clock_name
 
 WAVELENGTHS = np.arange(400.0, 701.0, 10.0)
+CROP = 512
+SCRIPT = Path(__file__).name
 
 
 def _cube(size: int) -> np.ndarray:
@@ -34,7 +40,7 @@ def _cube(size: int) -> np.ndarray:
     return np.stack([rows[i % 4] for i in range(size)])  # cheap to make, same cost to convert
 
 
-def throughput(size: int) -> None:
+def throughput(size: int, repeats: int, burst: float) -> None:
     import colour
 
     import spectrocolor as sc
@@ -44,25 +50,37 @@ def throughput(size: int) -> None:
     pixels = size * size
     W = np.asarray(sc.weights(WAVELENGTHS, observer="1931", illuminant="D65"))
     flat = cube.reshape(-1, WAVELENGTHS.size)
-    t_numpy64 = best_of(lambda: flat @ W, repeats=3)  # float32 @ float64 -> float64, one call
     W32 = W.astype(np.float32)
-    t_numpy32 = best_of(lambda: flat @ W32, repeats=3)
-    t_ours = best_of(lambda: cube_to_xyz(cube, WAVELENGTHS, illuminant="D65"), repeats=3)
-    crop = cube[:512, :512]
+    crop = cube[:CROP, :CROP]  # colour-science needs several float64 copies of what it converts
     shape = colour.SpectralShape(400, 700, 10)
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"].copy().align(shape)
     illuminant = colour.SDS_ILLUMINANTS["D65"].copy().align(shape)
-    t_colour = best_of(lambda: colour.msds_to_XYZ(crop, cmfs, illuminant, method="Integration",
-                                                shape=shape), repeats=2)
-    rate_colour = 512 * 512 / t_colour
-    print(f"\n1. XYZ of a {size}x{size}x31 float32 cube ({cube.nbytes / 2**20:.0f} MiB)")
-    print(f"   bare NumPy matmul, float32 @ float32 : {pixels / t_numpy32 / 1e6:8.1f} Mpixel/s")
-    print(f"   bare NumPy matmul, float32 @ float64 : {pixels / t_numpy64 / 1e6:8.1f} Mpixel/s")
-    print(f"   spectrocolor cube_to_xyz (64 MiB rows): {pixels / t_ours / 1e6:8.1f} Mpixel/s "
-          f"= {t_ours / t_numpy32:.2f} x the time of the float32 BLAS limit "
+    best = alternate_best({
+        "ours": lambda: cube_to_xyz(cube, WAVELENGTHS, illuminant="D65"),
+        "colour-science": lambda: colour.msds_to_XYZ(crop, cmfs, illuminant, method="Integration",
+                                                     shape=shape),
+        "limit float32": lambda: flat @ W32,
+        "limit float64": lambda: flat @ W,  # float32 @ float64 -> float64, one call
+    }, repeats=repeats, burst=burst)
+    rate_ours = pixels / best["ours"]
+    rate_colour = crop.shape[0] * crop.shape[1] / best["colour-science"]
+    rate_limit = pixels / best["limit float32"]
+    print(f"\n1. XYZ of a {size}x{size}x31 float32 cube ({cube.nbytes / 2**20:.0f} MiB); warm, best of "
+          f"{repeats}, timed alternately, {clock_name()}")
+    print(f"   bare NumPy matmul, float32 @ float32 : {rate_limit / 1e6:8.1f} Mpixel/s")
+    print(f"   bare NumPy matmul, float32 @ float64 : {pixels / best['limit float64'] / 1e6:8.1f} Mpixel/s")
+    print(f"   spectrocolor cube_to_xyz (64 MiB rows): {rate_ours / 1e6:8.1f} Mpixel/s "
+          f"= {best['ours'] / best['limit float32']:.2f} x the time of the float32 BLAS limit "
           f"(float32 cubes are summed in float32, like sc.tristimulus)")
-    print(f"   colour-science msds_to_XYZ (512^2)   : {rate_colour / 1e6:8.1f} Mpixel/s "
-          f"-> spectrocolor is {pixels / t_ours / rate_colour:.1f} x faster")
+    print(f"   colour-science msds_to_XYZ ({CROP}^2)   : {rate_colour / 1e6:8.1f} Mpixel/s "
+          f"-> spectrocolor is {rate_ours / rate_colour:.1f} x faster")
+    record("images_xyz", f"XYZ of a {size} × {size} × 31 float32 cube (colour-science on a {CROP}² crop)", [
+        figure("ours_mpixel_s", rate_ours / 1e6, "ours", "{} Mpixel/s"),
+        ratio("colour_over_ours", rate_ours / rate_colour, "colour-science", "{}× slower per pixel"),
+        figure("colour_mpixel_s", rate_colour / 1e6, "colour-science", "{} Mpixel/s"),
+        ratio("ours_over_limit", best["ours"] / best["limit float32"], "limit", "ours {}× its time"),
+        figure("limit_mpixel_s", rate_limit / 1e6, "limit", "{} Mpixel/s (float32 BLAS matmul)"),
+    ], script=SCRIPT)
 
 
 _CHILD = r"""
@@ -130,6 +148,10 @@ def bounded_memory(folder: Path, budget_mib: int) -> None:
     print(f"   peak RSS (VmHWM) {facts['peak_rss'] / 2**20:.0f} MiB = "
           f"{facts['peak_rss'] / size:.2f} x the cube; peak address space "
           f"{facts['peak_vm'] / 2**20:.0f} MiB")
+    record("images_bounded_memory", "a cube 2× larger than the address-space limit → sRGB PNG", [
+        figure("peak_rss_mib", facts["peak_rss"] / 2**20, "ours", "peak RSS {} MiB"),
+        figure("cube_gib", size / 2**30, "ours", "for a {} GiB cube"),
+    ], script=SCRIPT)
 
 
 def dask_scaling(folder: Path, size: int) -> None:
@@ -147,7 +169,7 @@ def dask_scaling(folder: Path, size: int) -> None:
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                           dashboard_address=":0") as cluster, Client(cluster):
             dask.compute(lazy)  # warm the workers
-            times[workers] = best_of(lambda: dask.compute(lazy), repeats=2)
+            times[workers] = best_of(lambda: dask.compute(lazy), repeats=2, clock=time.perf_counter)  # work in workers
         print(f"   {workers} worker(s): {times[workers]:.2f} s "
               f"({size * size / times[workers] / 1e6:.1f} Mpixel/s)")
     print(f"   speed-up 2 vs 1 workers: {times[1] / times[2]:.2f} x "
@@ -160,12 +182,15 @@ def main() -> None:
     parser.add_argument("--budget-mib", type=int, default=384,
                         help="address space allowed beyond the imports (part 2)")
     parser.add_argument("--dask-size", type=int, default=1024)
+    parser.add_argument("--no-dask", action="store_true", help="skip part 3 (not in the README's table)")
+    add_arguments(parser)
     args = parser.parse_args()
-    throughput(args.size)
+    throughput(args.size, args.repeats, args.burst)
     with tempfile.TemporaryDirectory() as folder:
         bounded_memory(Path(folder), args.budget_mib)
-    with tempfile.TemporaryDirectory() as folder:
-        dask_scaling(Path(folder), args.dask_size)
+    if not args.no_dask:
+        with tempfile.TemporaryDirectory() as folder:
+            dask_scaling(Path(folder), args.dask_size)
 
 
 if __name__ == "__main__":

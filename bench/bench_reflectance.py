@@ -1,24 +1,36 @@
-"""Colours per second of the smoothest-reflectance solvers (run by hand, one run).
+"""Colours per second of the smoothest-reflectance solvers.
 
-sRGB cube every 5th level (52³ = 140 608 colours), D65, CIE 1931, 380–780 nm at 10 and
-5 nm: unbounded (closed form) and unit-bounded (exact active set), the plain NumPy floor
-(one matrix product), colours at relative depth 1e-9 inside the object-colour solid, vs
-colour-science's ``XYZ_to_sd`` (Meng 2015, SLSQP, ρ ≥ 0 only) on a few colours.
+Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python bench/bench_reflectance.py [--repeats 3] [--burst 0.2] [--meng 1]
+
+sRGB cube every 5th level (52³ = 140 608 colours), D65, CIE 1931, 380–780 nm at 10 and 5 nm:
+unbounded (closed form) and unit-bounded (exact active set), the plain NumPy floor (one matrix
+product ``XYZ @ U``), and colours at relative depth 1e-9 inside the object-colour solid, timed
+alternately in this one process, warm, best of N each; then colour-science's ``XYZ_to_sd``
+(Meng 2015, SLSQP, ρ ≥ 0 only, seconds per colour) alternately with ours on the same cube, on
+``--meng`` colours per call (best of two: it takes seconds per colour).
 
 The solvers run compiled where numba is installed (extra ``fast``; one thread) and on the
 NumPy path otherwise or with ``SPECTROCOLOR_NUMBA=0``; the first line says which, and with the
-kernels the bounded 10 nm case is timed on the NumPy path too. Run with
-``OPENBLAS_NUM_THREADS=1`` so that the NumPy limit is one thread as well.
+kernels the bounded 10 nm case is timed on the NumPy path too (on every 4th colour of the cube).
+Run with ``OPENBLAS_NUM_THREADS=1`` so that the NumPy limit is one thread as well. The figures
+are recorded in the results file (bench/results.py).
 """
 
+from __future__ import annotations
+
+import argparse
 import os
-import time
+from pathlib import Path
 
 import numpy as np
 
 import spectrocolor as sc
+from results import figure, ratio, record
 from spectrocolor.recovery import compiled
 from spectrocolor.recovery.inputs import setup_for
+from timing import add_arguments, alternate_best, clock_name
+
+MENG_COLOURS = (1000, 50000)  # indices into the cube; SLSQP takes 2-7 s per colour
 
 
 def srgb_cube(white):
@@ -39,67 +51,119 @@ def near_boundary(grid, n, depth):
     return centre + (rho @ W - centre) * (1 - depth)
 
 
-def main():
-    kernels = compiled.kernels() is not None
-    print("solver path:", "compiled kernels (numba, one thread)" if kernels else "NumPy")
-    rates = {}
-    for step in (10.0, 5.0):
-        grid = (380.0, 780.0, step)
-        white = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant="D65")).sum(axis=0)
-        XYZ = srgb_cube(white)
-        for bounds in (None, "unit"):
-            sc.smoothest_reflectance(XYZ[:100], wavelengths=grid, bounds=bounds)  # warm caches
-            dt = np.inf
-            for _ in range(3):  # best of three: the machine is shared
-                t = time.perf_counter()
-                r = sc.smoothest_reflectance(XYZ, wavelengths=grid, bounds=bounds)
-                dt = min(dt, time.perf_counter() - t)
-            rates[(step, bounds)] = len(XYZ) / dt
-            print(f"{step:>4g} nm  bounds={bounds!s:5}  {len(XYZ)} colours in {dt:.2f} s = "
-                  f"{len(XYZ) / dt:,.0f} colours/s  (feasible {r.feasible.mean():.4%}, converged "
-                  f"{r.certificate.converged[r.feasible].mean():.4%})")
-        U = setup_for(grid, "1931", "D65")[0].problem.unconstrained
-        dt = np.inf
-        for _ in range(3):
-            t = time.perf_counter()
-            XYZ @ U
-            dt = min(dt, time.perf_counter() - t)
-        print(f"{step:>4g} nm  plain NumPy limit (XYZ @ U only): {len(XYZ) / dt:,.0f} colours/s; "
-              f"certified closed form is {len(XYZ) / dt / rates[(step, None)]:.1f}x slower, "
-              f"unit-bounded {len(XYZ) / dt / rates[(step, 'unit')]:.1f}x slower")
-        near = near_boundary(grid, 20000, 1e-9)
-        sc.smoothest_reflectance(near[:100], wavelengths=grid)
-        dt = np.inf
-        for _ in range(3):
-            t = time.perf_counter()
-            r = sc.smoothest_reflectance(near, wavelengths=grid)
-            dt = min(dt, time.perf_counter() - t)
-        print(f"{step:>4g} nm  bounds=unit  {len(near)} colours at relative depth 1e-9: "
-              f"{len(near) / dt:,.0f} colours/s, converged {r.certificate.converged.mean():.4%}, "
-              f"max residual {r.certificate.primal_residual.max():.1e}")
-    if kernels:
-        grid = (380.0, 780.0, 10.0)
-        white = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant="D65")).sum(axis=0)
-        XYZ = srgb_cube(white)
+def numpy_path(function):
+    """``function`` run with the compiled kernels switched off (``SPECTROCOLOR_NUMBA=0``)."""
+    def run():
+        previous = os.environ.get("SPECTROCOLOR_NUMBA")
         os.environ["SPECTROCOLOR_NUMBA"] = "0"
-        t = time.perf_counter()
-        sc.smoothest_reflectance(XYZ, wavelengths=grid)
-        dt = time.perf_counter() - t
-        del os.environ["SPECTROCOLOR_NUMBA"]
-        print(f"  10 nm  bounds=unit  NumPy path: {len(XYZ) / dt:,.0f} colours/s; the kernels are "
-              f"{rates[(10.0, 'unit')] * dt / len(XYZ):.1f}x faster")
+        try:
+            return function()
+        finally:
+            if previous is None:
+                del os.environ["SPECTROCOLOR_NUMBA"]
+            else:
+                os.environ["SPECTROCOLOR_NUMBA"] = previous
+    return run
+
+
+def cube_for(grid):
+    white = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant="D65")).sum(axis=0)
+    return srgb_cube(white)
+
+
+def solver_rates(step: float, repeats: int, burst: float, kernels: bool) -> dict[str, float]:
+    """Colours/s of each solver on the cube at ``step`` nm, timed alternately; prints them."""
+    grid = (380.0, 780.0, step)
+    XYZ = cube_for(grid)
+    near = near_boundary(grid, 20000, 1e-9)
+    U = setup_for(grid, "1931", "D65")[0].problem.unconstrained
+    last = {}
+
+    def solve(name, colours, **options):
+        def run():
+            last[name] = sc.smoothest_reflectance(colours, wavelengths=grid, **options)
+        return run
+
+    functions = {"closed form": solve("closed form", XYZ, bounds=None),
+                 "unit": solve("unit", XYZ, bounds="unit"),
+                 "limit": lambda: XYZ @ U,
+                 "near": solve("near", near, bounds="unit")}
+    counts = {"closed form": len(XYZ), "unit": len(XYZ), "limit": len(XYZ), "near": len(near)}
+    if kernels and step == 10.0:
+        functions["unit numpy"] = numpy_path(solve("unit numpy", XYZ[::4], bounds="unit"))
+        counts["unit numpy"] = len(XYZ[::4])
+    best = alternate_best(functions, repeats=repeats, burst=burst)
+    rates = {name: counts[name] / best[name] for name in best}
+    for name in ("closed form", "unit"):
+        r = last[name]
+        print(f"{step:>4g} nm  {name:12s} {len(XYZ)} colours: {rates[name]:12,.0f} colours/s  (feasible "
+              f"{r.feasible.mean():.4%}, converged {r.certificate.converged[r.feasible].mean():.4%})")
+    print(f"{step:>4g} nm  plain NumPy limit (XYZ @ U only): {rates['limit']:,.0f} colours/s; "
+          f"certified closed form takes {rates['limit'] / rates['closed form']:.2f}x its time, "
+          f"unit-bounded {rates['limit'] / rates['unit']:.1f}x")
+    r = last["near"]
+    print(f"{step:>4g} nm  unit, {len(near)} colours at relative depth 1e-9: {rates['near']:,.0f} colours/s, "
+          f"converged {r.certificate.converged.mean():.4%}, max residual {r.certificate.primal_residual.max():.1e}")
+    if "unit numpy" in rates:
+        print(f"{step:>4g} nm  unit on the NumPy path: {rates['unit numpy']:,.0f} colours/s; the kernels are "
+              f"{rates['unit'] / rates['unit numpy']:.1f}x faster")
+    return rates
+
+
+def meng_rates(meng: int, repeats: int) -> dict[str, float]:
+    """Colours/s of colour-science's Meng 2015 and of our unit-bounded solver, alternately, 10 nm."""
     import colour
 
+    grid = (380.0, 780.0, 10.0)
+    XYZ = cube_for(grid)
+    sample = XYZ[list(MENG_COLOURS[:meng])] / 100
     shape = colour.SpectralShape(380, 780, 10)
-    W10 = np.asarray(sc.weights(sc.wavelength_grid(380, 780, 10), observer="1931", illuminant="D65"))
-    sample = srgb_cube(W10.sum(0))
-    sample = sample[[1000, 50000, 90000]] / 100
-    t = time.perf_counter()
-    for xyz in sample:
-        colour.XYZ_to_sd(xyz, method="Meng 2015", shape=shape)
-    dt = (time.perf_counter() - t) / len(sample)
-    print(f"colour-science XYZ_to_sd (Meng 2015, 10 nm): {dt:.3f} s/colour = {1 / dt:.2f} colours/s")
-    print(f"ratio unit-bounded 10 nm / colour-science: {rates[(10.0, 'unit')] * dt:,.0f}x")
+    best = alternate_best({
+        "unit": lambda: sc.smoothest_reflectance(XYZ, wavelengths=grid, bounds="unit"),
+        "colour-science": lambda: [colour.XYZ_to_sd(xyz, method="Meng 2015", shape=shape) for xyz in sample],
+    }, repeats=repeats)
+    rates = {"unit": len(XYZ) / best["unit"], "colour-science": len(sample) / best["colour-science"]}
+    print(f"colour-science XYZ_to_sd (Meng 2015, 10 nm, {len(sample)} colours per call): "
+          f"{1 / rates['colour-science']:.2f} s/colour = {rates['colour-science']:.2f} colours/s")
+    print(f"ratio unit-bounded 10 nm / colour-science: {rates['unit'] / rates['colour-science']:,.0f}x")
+    return rates
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_arguments(parser, repeats=3)
+    parser.add_argument("--meng", type=int, default=1, choices=range(1, len(MENG_COLOURS) + 1),
+                        help="colours of the cube that colour-science's Meng 2015 solves per timed call")
+    args = parser.parse_args()
+    kernels = compiled.kernels() is not None
+    path = "compiled kernels (numba, one thread)" if kernels else "NumPy path"
+    print(f"solver path: {path}; OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}; "
+          f"warm, best of {args.repeats}, timed alternately, {clock_name()}")
+    rates = {step: solver_rates(step, args.repeats, args.burst, kernels) for step in (10.0, 5.0)}
+    meng = meng_rates(args.meng, repeats=2)
+    figures = [
+        figure("unit_10nm_per_s", rates[10.0]["unit"], "ours", "{} colours/s at 10 nm"),
+        figure("unit_5nm_per_s", rates[5.0]["unit"], "ours", "{} at 5 nm"),
+        figure("near_10nm_per_s", rates[10.0]["near"], "ours", "{} colours/s at relative depth 1e-9 (10 nm)"),
+    ]
+    if kernels:
+        figures += [figure("unit_numpy_10nm_per_s", rates[10.0]["unit numpy"], "ours",
+                           "NumPy path {} at 10 nm"),
+                    ratio("kernels_over_numpy_path", rates[10.0]["unit"] / rates[10.0]["unit numpy"], "ours",
+                          "kernels {}× faster than the NumPy path")]
+    figures += [
+        ratio("unit_over_colour", meng["unit"] / meng["colour-science"], "colour-science",
+              "{}× slower (Meng 2015, 10 nm)"),
+        figure("colour_per_s", meng["colour-science"], "colour-science",
+               "{} colours/s" + (f" (on {args.meng} colours)" if args.meng > 1 else " (on one colour)")),
+        ratio("closed_form_over_limit_10nm", rates[10.0]["limit"] / rates[10.0]["closed form"], "limit",
+              "certified closed form {}× its time at 10 nm"),
+        ratio("closed_form_over_limit_5nm", rates[5.0]["limit"] / rates[5.0]["closed form"], "limit",
+              "{}× at 5 nm"),
+        figure("limit_10nm_per_s", rates[10.0]["limit"], "limit", "{} colours/s (bare `XYZ @ U`, 10 nm)"),
+    ]
+    record("reflectance", "smoothest reflectance, 0 ≤ ρ ≤ 1, sRGB cube every 5th level, 140 608 colours, "
+           f"every result certified, {path}", figures, script=Path(__file__).name)
 
 
 if __name__ == "__main__":

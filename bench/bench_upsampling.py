@@ -1,15 +1,19 @@
 """Spectral upsampling: table build, apply speed against a bare NumPy limit, and the comparison
 with other upsampling methods. Run by hand:
 
-    .venv/bin/python bench/bench_upsampling.py [--size 4096] [--compare] [--meng 12]
+    .venv/bin/python bench/bench_upsampling.py [--size 1024] [--repeats 5] [--burst 0.2] [--apply-only]
+                                                [--compare] [--meng 12]
 
 1. Build: ``upsampling_table`` for sRGB and Rec. 2020 (17 nodes per axis), with and without the
    measured roughness excess; the exact solver's colours/s beside it.
-2. Apply to a SIZE x SIZE image of random linear sRGB, streamed in blocks of 65 536 pixels:
+2. Apply to a SIZE x SIZE image of random linear sRGB, streamed in blocks of 262 144 pixels:
    (a) spectra (81 samples, float64) by ``upsample_spectra`` vs the bare gather-and-blend limit
    (the same four-node blend with indices and weights precomputed outside the timing);
    (b) colours under illuminant A (relighting) by ``colours_under`` vs the same bare limit on
-   the 3-channel node table. Ratios are measured in this one run.
+   the 3-channel node table; (c) texel coefficients; against colour-science's Mallett (2019) and
+   Smits (1999), one colour per call, on 100 colours. All timed alternately in this one run,
+   warm, best of N each (the NumPy path's spectra and their NumPy limit on one block), and
+   recorded in the results file (bench/results.py).
 3. ``--compare``: ΔE00 under D65 over random colours of the sRGB cube and of Rec. 2020 (wide
    gamut), roughness excess over the exact smoothest reflectance, values < 0 or > 1, and
    speed, for this table, an rgb2spec-style sigmoid-polynomial model (Jakob & Hanika 2019: the
@@ -28,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 import spectrocolor as sc
+from results import figure, ratio, record
 from spectrocolor.upsampling import (
     colours_under,
     lookup,
@@ -37,10 +42,12 @@ from spectrocolor.upsampling import (
     upsampling_table,
 )
 from spectrocolor.upsampling.apply import _blend, node_colours
-from timing import best_of
+from timing import BURST, add_arguments, alternate_best, best_of, clock_name
 
 DOCS_IMAGES = Path(__file__).resolve().parents[1] / "docs" / "images"
 BLOCK = 2**18
+COLOUR_SCIENCE_COLOURS = 100  # colour-science converts one colour per call (Smits 1999: ~450/s)
+SCRIPT = Path(__file__).name
 
 
 def build() -> dict:
@@ -88,7 +95,20 @@ def _engine(name: str) -> None:
     os.environ["SPECTROCOLOR_NUMBA"] = "1" if name == "numba" else "0"
 
 
-def apply_speed(table, size: int) -> None:
+def _on(engine: str, function, blocks, *arguments):
+    """A function of no arguments that calls ``function(block, *arguments)`` for every block, on ``engine``."""
+    def run():
+        _engine(engine)
+        for block in blocks:
+            function(block, *arguments)
+    return run
+
+
+def apply_speed(table, size: int, repeats: int, burst: float = BURST) -> None:
+    """Colours/s of the apply functions, the bare limits and colour-science, timed alternately."""
+    import colour
+    from colour.recovery import RGB_to_sd_Mallett2019, RGB_to_sd_Smits1999
+
     from spectrocolor.upsampling.compiled import kernels
 
     pixels = size * size
@@ -99,82 +119,102 @@ def apply_speed(table, size: int) -> None:
 
         threads = f"numba {numba.__version__}, {numba.get_num_threads()} threads"
     print(f"\n2. Apply to a {size}x{size} image ({pixels / 1e6:.1f} Mpixel), blocks of {BLOCK}; "
-          f"{threads}; OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}")
+          f"{threads}; OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}; "
+          f"warm, best of {repeats}, all timed alternately, {clock_name()}")
     rng = np.random.default_rng(2)
     W_A = np.asarray(sc.weights(table.wavelengths_nm, illuminant="A"))
     nodes_A = node_colours(table, W_A)
     K = table.wavelengths_nm.size
+    blocks = [rng.random((min(BLOCK, pixels - start), 3)) for start in range(0, pixels, BLOCK)]
+    few = blocks[:1]  # the NumPy path's spectra and their NumPy limit: one block is enough for a rate
+    _engine("numpy")
+    found = [lookup(table, block) for block in blocks]
     spectra = np.empty((BLOCK, K))
     relit = np.empty((BLOCK, 3))
+    counts: dict[str, int] = {}
+    functions = {}
+
+    def add(name, run, over):
+        functions[name] = run
+        counts[name] = sum(len(block) for block in over)
+
+    engines = ("numba", "numpy") if compiled else ("numpy",)
+    for engine in engines:
+        add(f"relight {engine}", _on(engine, lambda b: colours_under(table, b, W_A), blocks), blocks)
+        add(f"coefficients {engine}", _on(engine, lambda b: texel_coefficients(table, b), blocks), blocks)
+        over = blocks if engine == "numba" else few
+        add(f"spectra {engine}", _on(engine, lambda b: upsample_spectra(table, b, "toward-grey", spectra[:len(b)]),
+                                     over), over)
+    add("relight numpy limit", _on("numpy", lambda f: _blend(nodes_A, f), found), blocks)
+    add("spectra numpy limit", _on("numpy", lambda f: _blend(table.flat_reflectance, f, spectra[:len(f.nodes)]),
+                                   found[:1]), few)
     limit = _compiled_limit()
-    engines = ("numpy", "numba") if compiled else ("numpy",)
-    if limit is not None:  # compile outside the timing
-        found = lookup(table, rng.random((8, 3)))
-        limit(nodes_A, found.nodes, found.weights, relit[:8])
-        for engine in engines:
-            _engine(engine)
-            upsample_spectra(table, rng.random((8, 3)))
-            colours_under(table, rng.random((8, 3)), W_A)
-            texel_coefficients(table, rng.random((8, 3)))
-    timings: dict[str, float] = {}
-
-    def timed(name, function, *arguments):
-        start = time.perf_counter()
-        function(*arguments)
-        timings[name] = timings.get(name, 0.0) + time.perf_counter() - start
-
-    done = 0
-    while done < pixels:
-        n = min(BLOCK, pixels - done)
-        block = rng.random((n, 3))
-        _engine("numpy")
-        found = lookup(table, block)
-        out, out3 = spectra[:n], relit[:n]
-        for engine in engines:
-            _engine(engine)
-            timed(f"spectra {engine}", upsample_spectra, table, block, "toward-grey", out)
-            timed(f"relight {engine}", colours_under, table, block, W_A)
-            timed(f"coefficients {engine}", texel_coefficients, table, block)
-        timed("spectra numpy limit", _blend, table.flat_reflectance, found, out)
-        timed("relight numpy limit", _blend, nodes_A, found)
-        if limit is not None:
-            timed("spectra compiled limit", limit, table.flat_reflectance, found.nodes,
-                  found.weights, out)
-            timed("relight compiled limit", limit, nodes_A, found.nodes, found.weights, out3)
-        done += n
+    if limit is not None:
+        add("relight compiled limit", _on("numba", lambda f: limit(nodes_A, f.nodes, f.weights,
+                                                                   relit[:len(f.nodes)]), found), blocks)
+        add("spectra compiled limit", _on("numba", lambda f: limit(table.flat_reflectance, f.nodes, f.weights,
+                                                                   spectra[:len(f.nodes)]), found), blocks)
+    sample = np.random.default_rng(4).random((COLOUR_SCIENCE_COLOURS, 3))
+    for name, function in (("Mallett 2019", RGB_to_sd_Mallett2019), ("Smits 1999", RGB_to_sd_Smits1999)):
+        functions[name] = lambda function=function: [function(rgb) for rgb in sample]
+        counts[name] = len(sample)
+    best = alternate_best(functions, repeats=repeats, burst=burst)
     _engine("numba")
+    rates = {name: counts[name] / best[name] for name in best}
 
     def rate(name):
-        return f"{pixels / timings[name]:10.3g}" if name in timings else "         -"
+        return f"{rates[name]:10.3g}" if name in rates else "         -"
 
     print("   colours/s      |      numpy |      numba | NumPy limit | compiled limit | "
           "time: numpy/NumPy limit, numba/compiled limit")
     for what in ("spectra", "relight", "coefficients"):
         ratios = ""
-        if f"{what} numba" in timings and f"{what} numpy limit" in timings:
-            ratios = (f" | {timings[f'{what} numpy'] / timings[f'{what} numpy limit']:5.2f}x, "
-                      f"{timings[f'{what} numba'] / timings[f'{what} compiled limit']:5.2f}x")
+        if f"{what} numba" in rates and f"{what} compiled limit" in rates:
+            ratios = (f" | {rates[f'{what} numpy limit'] / rates[f'{what} numpy']:5.2f}x, "
+                      f"{rates[f'{what} compiled limit'] / rates[f'{what} numba']:5.2f}x")
         print(f"   {what:14s} | {rate(what + ' numpy')} | {rate(what + ' numba')} | "
               f"{rate(what + ' numpy limit')}  | {rate(what + ' compiled limit')}     {ratios}")
     print("   (spectra: 81 float64 samples per colour; relight: colours under A, 3 channels; "
           "coefficients: 4 node indices + 4 weights)")
-    colour_science_rates()
+    for name in ("Mallett 2019", "Smits 1999"):
+        print(f"   colour-science {colour.__version__} {name} (one colour per call, {len(sample)} colours): "
+              f"{rates[name]:10.3g} colours/s")
+    _record(rates, size, compiled)
 
 
-def colour_science_rates(count: int = 400) -> None:
-    """colour-science's RGB -> reflectance functions (one colour per call) on random sRGB."""
-    import colour
-    from colour.recovery import RGB_to_sd_Mallett2019, RGB_to_sd_Smits1999
-
-    rgb = np.random.default_rng(4).random((count, 3))
-    for name, function in (("Mallett 2019", RGB_to_sd_Mallett2019),
-                           ("Smits 1999", RGB_to_sd_Smits1999)):
-        function(rgb[0])  # warm-up
-        start = time.perf_counter()
-        for colour_rgb in rgb:
-            function(colour_rgb)
-        print(f"   colour-science {colour.__version__} {name} (per colour, {count} colours): "
-              f"{count / (time.perf_counter() - start):10.3g} colours/s")
+def _record(rates: dict[str, float], size: int, compiled: bool) -> None:
+    """The README's figures of the apply section, into the results file."""
+    engine = "numba" if compiled else "numpy"
+    figures = [
+        figure("relight_per_s", rates[f"relight {engine}"], "ours", "relit under A {} colours/s"),
+        figure("coefficients_per_s", rates[f"coefficients {engine}"], "ours", "texel coefficients {}/s"),
+        figure("spectra_per_s", rates[f"spectra {engine}"], "ours", "81-sample spectra {}/s"),
+    ]
+    if compiled:
+        figures += [figure(f"{what}_numpy_per_s", rates[f"{what} numpy"], "ours", f"{text} {{}}/s on the NumPy path")
+                    for what, text in (("relight", "relit"), ("coefficients", "coefficients"), ("spectra", "spectra"))]
+    figures += [
+        ratio("spectra_over_mallett", rates[f"spectra {engine}"] / rates["Mallett 2019"], "colour-science",
+              "spectra {}× slower by Mallett 2019"),
+        ratio("relight_over_mallett", rates[f"relight {engine}"] / rates["Mallett 2019"], "colour-science",
+              "relit colours {}× slower by Mallett 2019 (a spectrum per colour)"),
+        ratio("spectra_over_smits", rates[f"spectra {engine}"] / rates["Smits 1999"], "colour-science",
+              "spectra {}× slower by Smits 1999"),
+        figure("mallett_per_s", rates["Mallett 2019"], "colour-science", "Mallett 2019 {} colours/s"),
+        figure("smits_per_s", rates["Smits 1999"], "colour-science", "Smits 1999 {}"),
+    ]
+    limit = "compiled limit" if compiled else "numpy limit"
+    figures += [
+        ratio("relight_over_limit", rates[f"relight {limit}"] / rates[f"relight {engine}"], "limit",
+              "relit: ours {}× its time"),
+        ratio("spectra_over_limit", rates[f"spectra {limit}"] / rates[f"spectra {engine}"], "limit",
+              "spectra: ours {}× its time"),
+        figure("relight_limit_per_s", rates[f"relight {limit}"], "limit", "{} relit/s"),
+        figure("spectra_limit_per_s", rates[f"spectra {limit}"], "limit",
+               f"{{}} spectra/s (bare {'compiled' if compiled else 'NumPy'} gather and blend)"),
+    ]
+    record("upsampling_apply", f"spectral upsampling of a {size}² image through a 17³ sRGB table, "
+           f"{'compiled kernel (extra `fast`)' if compiled else 'NumPy path'}", figures, script=SCRIPT)
 
 
 def _metrics(name, rho, target_lab, W, white, optimum, seconds, count):
@@ -345,7 +385,8 @@ def pictures() -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--size", type=int, default=4096)
+    parser.add_argument("--size", type=int, default=1024)
+    add_arguments(parser)
     parser.add_argument("--compare", action="store_true")
     parser.add_argument("--meng", type=int, default=0)
     parser.add_argument("--apply-only", action="store_true",
@@ -358,10 +399,10 @@ def main() -> None:
         return
     if args.apply_only:
         apply_speed(upsampling_table("sRGB", "D65", resolution=17, measure_excess=False),
-                    args.size)
+                    args.size, args.repeats, args.burst)
         return
     tables = build()
-    apply_speed(tables["sRGB"], args.size)
+    apply_speed(tables["sRGB"], args.size, args.repeats, args.burst)
     if args.compare:
         compare(tables, args.meng)
 
