@@ -41,7 +41,7 @@ def _gradient(rho, step):
 def kkt_violation(W, step, rho, upper=1.0, mu_hint=None):
     """The largest KKT violation of ρ divided by its rounding tolerance (≤ 1: optimal)."""
     g, size_q = _gradient(rho, step)
-    at_low, at_up = rho == 0.0, rho == upper
+    at_low, at_up = rho == 0.0, rho == upper  # exact: a bound is held as the bound value itself (set, not computed)
     free = ~(at_low | at_up)
     F = np.flatnonzero(free)
     m = W.shape[1]

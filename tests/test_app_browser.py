@@ -106,7 +106,7 @@ def test_out_of_gamut_default_shows_the_nearest_colour_with_a_badge(page):
     assert status.startswith("cannot be reproduced")
     for ch in lib["negative"]:
         assert ch in status
-    assert patch_rgb(page, 0) == [0.0, 0.0, 0.0]
+    assert patch_rgb(page, 0) == [0.0, 0.0, 0.0]  # exact: the flagged patch is painted black, codes 0
     card.locator(".badge button").click()  # and back
     settle(page)
     assert state(page)["gamut"] == lib["gamut_applied"]

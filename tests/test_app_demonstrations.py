@@ -86,7 +86,7 @@ def test_every_preset_is_integer_levels_on_spectras_grid(presets):
     levels += [q[s] for q in presets["setting4"]["samples"] for s in ("left", "right")]
     a = np.array(levels)
     assert a.shape[1] == 31
-    np.testing.assert_array_equal(a, np.round(a))
+    np.testing.assert_array_equal(a, np.round(a))  # exact: whole levels are their own rounding
     assert a.min() >= 0 and a.max() <= 30
 
 
@@ -189,7 +189,7 @@ def test_setting3_default2_reaches_the_fig12_metameric_pair(client, presets, dis
 @pytest.mark.parametrize("key", ["3", "4"])
 def test_setting3_yellow_and_blue_complements(client, presets, display, key):
     q = by_key(presets["setting3"])[key]
-    np.testing.assert_array_equal(np.add(q["left"], q["right"]), 30)
+    np.testing.assert_array_equal(np.add(q["left"], q["right"]), 30)  # exact: sums of whole levels
     (a, b), _ = shown(client, [q["left"], q["right"]], display)
     assert_hue(a, 565, 592, "yellow")
     assert_hue(b, 440, 490, "blue")

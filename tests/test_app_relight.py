@@ -68,8 +68,9 @@ def chart() -> tuple[np.ndarray, str]:
 def test_relit_under_its_own_light_is_the_photo(client, adaptation, exposure):
     codes, image = chart()
     answer = relight(client, image, levels("D65"), adaptation=adaptation, exposure=exposure)
+    # exact: 8-bit codes, decoded from lossless PNGs
     assert np.array_equal(decoded(answer["taken_png"]), codes)
-    assert np.array_equal(decoded(answer["relit_png"]), codes)
+    assert np.array_equal(decoded(answer["relit_png"]), codes)  # exact: 8-bit codes
     assert (answer["width"], answer["height"], answer["downscaled"]) == (244, 164, False)
     assert answer["pixels"] == 244 * 164 and answer["colours"] == 25  # 24 patches + the frame
     assert answer["outside_solid"] == 0 and answer["out_of_range"] == "toward-grey"
@@ -118,6 +119,7 @@ def test_white_under_a_without_adaptation_turns_warm(client, exposure):
         assert relit[0] == 255 and 0.4 < answer["exposure_factor"] < 0.7
     else:  # Y = 100 kept: red leaves sRGB and is clipped; still R > G > B
         assert relit[0] == 255 > relit[1] > relit[2], relit
+        # exact: "keep" sets the factor to 1 without arithmetic
         assert answer["exposure_factor"] == 1.0 and answer["out_of_gamut"] == 6
 
 
@@ -130,7 +132,7 @@ def test_an_edited_illuminant_is_the_one_used(client):
     expected = relight_photo.relight_codes(codes, table, sc.Spectrum(WL, red), "none", "clip",
                                            "keep")
     relit = decoded(answer["relit_png"])
-    assert np.array_equal(relit, expected["codes"])
+    assert np.array_equal(relit, expected["codes"])  # exact: 8-bit codes from the same function on the same CPU
     assert answer["out_of_gamut"] == expected["out_of_gamut"] > 0
     white = relit[4 + 3 * 40 + 10, 4 + 10].astype(int)  # patch 19
     assert white[0] > 3 * max(white[1], white[2]), white
@@ -165,8 +167,9 @@ def test_a_jpeg_is_read_as_pillow_decodes_it(client):
     Image.fromarray(codes).save(buffer, "JPEG", quality=95)
     answer = relight(client, base64.b64encode(buffer.getvalue()).decode(), levels("D65"))
     expected = np.asarray(Image.open(io.BytesIO(buffer.getvalue())).convert("RGB"))
+    # exact: 8-bit codes, decoded from lossless PNGs
     assert np.array_equal(decoded(answer["taken_png"]), expected)
-    assert np.array_equal(decoded(answer["relit_png"]), expected)
+    assert np.array_equal(decoded(answer["relit_png"]), expected)  # exact: 8-bit codes
 
 
 def test_options_name_the_choices_and_defaults(client):

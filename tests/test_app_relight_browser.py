@@ -113,6 +113,7 @@ def test_photo_is_the_same_under_d65_and_warmer_under_a(browser, user_server, ar
         settle(page)
         photo = upload(page)
         taken, relit = pictures(photo)
+        # exact: 8-bit codes of a lossless PNG, decoded
         assert np.array_equal(taken, np.asarray(Image.open(CHART).convert("RGB")))
         # the preset is D65 rounded to whole levels: within 3 codes, 1 on average
         assert np.abs(relit - taken).max() <= 3 and np.abs(relit - taken).mean() < 1

@@ -202,6 +202,7 @@ def _fl_lamp_from_360nm(name, value_at_425nm=None):
     table = sc.illuminant(name)
     values = table.values.copy()
     if value_at_425nm is not None:
+        # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
         values[table.wavelengths_nm == 425.0] = value_at_425nm
     wavelengths = np.r_[360.0, 365.0, 370.0, 375.0, table.wavelengths_nm]
     values = np.r_[np.full(4, values[0]), values]
@@ -247,6 +248,7 @@ def test_illuminant_spectrum_on_a_shorter_range_shortens_the_reference_range():
 def test_illuminant_spectrum_at_1nm_equals_the_named_one():
     spd = sc.illuminant("D65", FINE)
     grid = sc.wavelength_grid(400, 700, 20)
+    # exact: D65 is tabulated at 1 nm: both pick the same table values, no interpolation
     np.testing.assert_array_equal(astm_e308_weights(grid, "1931", spd), astm_e308_weights(grid, "1931", "D65"))
 
 
@@ -318,6 +320,7 @@ def test_weights_reproduce_e308_table_5_as_typed_in_by_colour_science(table, obs
     without bandpass correction, E308's Table 5 (docs/astm_e308.md); ours round to the same digits."""
     printed = getattr(pytest.importorskip("colour.colorimetry.tests.test_tristimulus_values"), table)
     W = astm_e308_weights(np.arange(360.0, 831.0, step), observer, illuminant)
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     np.testing.assert_array_equal(np.round(W, 3) + 0.0, np.asarray(printed) + 0.0)
 
 
@@ -374,6 +377,7 @@ def test_table6_is_refused_for_intervals_e308_has_no_table6_for(step):
 
 def test_the_uncorrected_alias_names_table6():
     grid = sc.wavelength_grid(400, 700, 20)
+    # exact: the alias calls the same function with the same arguments
     np.testing.assert_array_equal(
         sc.weights(grid, observer="1931", illuminant="D65", method="astm-e308-uncorrected"),
         astm_e308_table6_weights(grid, "1931", "D65"),
@@ -393,7 +397,8 @@ def test_cli_method_astm_e308_table6_equals_the_library(capsys):
     rows = list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
     XYZ = sc.tristimulus(sc.read_spectra(path), observer="1964", illuminant="D65", method="astm-e308-table6")
     got = np.array([[float(row[c]) for c in "XYZ"] for row in rows])
-    np.testing.assert_array_equal(got, XYZ)  # written as repr: exact
+    # exact: the command runs the same calls on the same file here, and prints repr (17 digits)
+    np.testing.assert_array_equal(got, XYZ)
 
 
 @settings(max_examples=60, deadline=None)

@@ -76,6 +76,7 @@ def test_colour_science_differs_only_by_reusing_already_corrected_neighbours():
 
 def test_matrix_is_symmetric_and_keeps_constants():
     B = stearns_stearns_matrix(9)
+    # exact: the tridiagonal entries are assigned, each from one formula, on both sides
     np.testing.assert_array_equal(B, B.T)
     np.testing.assert_allclose(B.sum(axis=0), 1.0, rtol=0, atol=1e-15)
     np.testing.assert_allclose(B.sum(axis=1), 1.0, rtol=0, atol=1e-15)

@@ -44,6 +44,7 @@ def locus_point(observer: str, wavelength_nm):
 def test_locus_is_trimmed_to_its_monotonic_part(observer, first, last):
     locus = sc.spectral_locus(observer)
     assert locus.wavelengths_nm[0] == first and locus.wavelengths_nm[-1] == last
+    # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
     np.testing.assert_array_equal(np.diff(locus.wavelengths_nm), 1.0)
     offsets = locus.xy - E_XY
     angle = np.unwrap(np.arctan2(offsets[:, 1], offsets[:, 0]))
@@ -58,6 +59,7 @@ def test_locus_is_trimmed_to_its_monotonic_part(observer, first, last):
 def test_locus_is_the_cmf_chromaticity_and_read_only():
     cmfs = sc.observer("1931")
     full = sc.spectral_locus("1931", full=True)
+    # exact: a copy of the observer's wavelengths
     np.testing.assert_array_equal(full.wavelengths_nm, cmfs.wavelengths_nm)
     expected = (cmfs.values[:2] / cmfs.values.sum(axis=0)).T
     np.testing.assert_allclose(full.xy, expected, rtol=1e-15)
@@ -114,11 +116,12 @@ def test_white_point_itself_nan_input_and_shape():
     points = np.array([[[0.3127, 0.3290], [np.nan, 0.3]], [[0.6, 0.3], [0.2, 0.6]]])
     result = sc.dominant_wavelength(points, D65_XY)
     assert result.wavelength_nm.shape == (2, 2)
+    # exact: the white itself has purity set to 0, not computed
     assert np.isnan(result.wavelength_nm[0, 0]) and result.excitation_purity[0, 0] == 0.0
     assert not result.complementary[0, 0] and not result.outside_locus[0, 0]
     assert np.isnan(result.wavelength_nm[0, 1]) and np.isnan(result.excitation_purity[0, 1])
     assert np.all(np.isfinite(result.wavelength_nm[1]))
-    assert sc.colorimetric_purity(D65_XY, D65_XY) == 0.0
+    assert sc.colorimetric_purity(D65_XY, D65_XY) == 0.0  # exact: the white itself has purity set to 0, not computed
 
 
 def test_outside_the_locus_is_flagged_with_purity_above_one():
@@ -134,6 +137,7 @@ def test_illuminant_name_equals_its_white_point():
     white = sc.xy(sc.white_point("C", observer="1964"))
     by_xy = sc.dominant_wavelength(points, white, "1964")
     for a, b in zip(by_name, by_xy, strict=True):
+        # exact: a name is turned into xy(white_point(name, observer)), the same calls as here
         np.testing.assert_array_equal(a, b)
 
 
@@ -203,6 +207,7 @@ def test_seed001_table38_points_are_their_own_dominant_wavelength(white):
 def test_seed001_white_has_zero_purity():
     # "White (point E) is considered to have zero purity" (seed 001 §1.7)
     result = sc.dominant_wavelength(E_XY, E_XY)
+    # exact: the white itself has purity set to 0, not computed
     assert result.excitation_purity == 0.0 and np.isnan(result.wavelength_nm)
 
 
@@ -265,5 +270,6 @@ def test_grey_reflectances_are_neutral_not_a_rounding_artefact():
     XYZ = sc.tristimulus(greys, observer="1931", illuminant="D65")
     result = sc.dominant_wavelength(sc.xy(XYZ), sc.xy(sc.weights(grid, observer="1931", illuminant="D65").sum(0)))
     assert np.all(np.isnan(result.wavelength_nm))
+    # exact: neutral colours (within the library's tolerance of the white) get purity 0, set
     np.testing.assert_array_equal(result.excitation_purity, 0.0)
     assert not result.complementary.any()

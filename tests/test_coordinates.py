@@ -38,9 +38,9 @@ def test_black_has_nan_chromaticity_and_round_trips():
     with np.errstate(all="raise"):  # documented NaN, no floating-point warning
         xyY = sc.xyY([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]])
         uv = sc.uv_1976([0.0, 0.0, 0.0])
-    assert np.isnan(xyY[0, :2]).all() and xyY[0, 2] == 0.0
+    assert np.isnan(xyY[0, :2]).all() and xyY[0, 2] == 0.0  # exact: Y of black is the input's exact 0
     assert np.isnan(uv).all()
-    np.testing.assert_array_equal(sc.XYZ_from_xyY(xyY)[0], [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(sc.XYZ_from_xyY(xyY)[0], [0.0, 0.0, 0.0])  # exact: black (Y = 0) gives exact zeros
 
 
 def test_y_zero_with_luminance_is_an_error():
@@ -127,7 +127,7 @@ def test_lab_white_must_be_positive():
 def test_lch_hue_of_neutral_is_zero_and_range():
     result = sc.lch([[50.0, 0.0, 0.0], [50.0, 1e-300, -1e-310], [50.0, 0.0, -3.0]])
     np.testing.assert_allclose(result[:, 1], [0.0, 1e-300, 3.0], rtol=1e-12)
-    assert result[0, 2] == 0.0
+    assert result[0, 2] == 0.0  # exact: atan2(0, 0) is exactly 0
     assert np.all((result[:, 2] >= 0) & (result[:, 2] < 360))
     assert result[2, 2] == pytest.approx(270.0)
 

@@ -26,3 +26,18 @@ def test_the_line_names_the_channels_and_the_strategy(gamut):
 def test_a_batch_keeps_one_line_per_colour():
     r = sc.render(np.full((2, 3, 3), 20.0), "sRGB")
     assert explain(r) == ["in gamut"] * 6
+
+
+def test_a_colour_whose_display_luminance_is_not_positive_is_said_to_leave_black():
+    """A violet far outside the gamut, adapted in display RGB, can have Y < 0 on the display:
+    keeping its luminance leaves black, and the message says why (not a bare black patch)."""
+    from spectrocolor.display.render import render
+
+    space = sc.rgb_space("sRGB")
+    rgb_unmapped = np.array([0.2, -0.9, 1.0])  # Y = 0.2126·0.2 − 0.7152·0.9 + 0.0722 < 0
+    XYZ = np.asarray(space.matrix_to_XYZ) @ rgb_unmapped * 100 / space.white_XYZ[1]
+    assert XYZ[1] < 0
+    dark, = explain(render(XYZ[None], "sRGB", gamut="desaturate"))
+    assert dark.endswith("its luminance on this display is not positive, so that leaves black")
+    clipped, = explain(render(XYZ[None], "sRGB", gamut="clip"))
+    assert "not positive" not in clipped

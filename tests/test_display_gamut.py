@@ -40,7 +40,7 @@ def _angle(space, rgb):
 @given(rgb=arrays(np.float64, (8, 3), elements=st.floats(0.0, 1.0)))
 def test_in_gamut_colours_pass_unchanged(strategy, name, rgb):
     out = apply_gamut(rgb, strategy, sc.rgb_space(name).luminance_row)
-    np.testing.assert_array_equal(out, rgb)
+    np.testing.assert_array_equal(out, rgb)  # exact: in-gamut colours are returned as they are, without arithmetic
 
 
 @pytest.mark.parametrize("strategy", STRATEGIES)
@@ -57,11 +57,13 @@ def test_every_strategy_lands_in_the_cube(strategy, rgb):
 def test_flag_marks_exactly_the_out_of_gamut_colours_and_blacks_them(rgb):
     in_gamut, negative, over = gamut_flags(rgb, tolerance=0.0)
     expected = np.all((rgb >= 0) & (rgb <= 1), axis=1)
+    # exact: booleans of comparisons with tolerance 0 on the same numbers
     np.testing.assert_array_equal(in_gamut, expected)
     np.testing.assert_array_equal(negative, rgb < 0)
     np.testing.assert_array_equal(over, rgb > 1)
     out = flag_black(rgb, tolerance=0.0)
-    np.testing.assert_array_equal(out[~expected], 0.0)
+    np.testing.assert_array_equal(out[~expected], 0.0)  # exact: flagged colours are set to exact 0
+    # exact: in-gamut colours are returned as they are, without arithmetic
     np.testing.assert_array_equal(out[expected], rgb[expected])
 
 
@@ -151,10 +153,12 @@ def test_desaturate_keeps_Y_and_hue_angle_and_moves_minimally(name, rgb):
 def test_desaturate_unreachable_luminance_goes_to_black_or_white():
     y = sc.rgb_space("sRGB").luminance_row
     out = desaturate(np.array([[1.5, 1.2, 1.1], [-0.2, 0.05, -0.1]]), y)
+    # exact: far outside, every channel is clipped to exactly 1 or 0
     np.testing.assert_array_equal(out, [[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
 
 
 def test_clip_is_per_channel():
+    # exact: clipping returns the bound or the input itself
     np.testing.assert_array_equal(clip([[1.3, -0.2, 0.5]]), [[1.0, 0.0, 0.5]])
 
 

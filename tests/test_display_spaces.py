@@ -21,12 +21,14 @@ IEC_XYZ_TO_RGB = np.array(
 
 def test_srgb_forward_matrix_from_primaries_matches_iec_printed_digits():
     derived = rgb_space("sRGB").matrix_to_XYZ / 100  # XYZ100 -> the standard's XYZ1 scale
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     np.testing.assert_array_equal(np.round(derived, 4), IEC_RGB_TO_XYZ)
 
 
 def test_srgb_inverse_matrix_iec_digits_come_from_its_rounded_forward_matrix():
     # The standard prints the inverse of its 4-digit forward matrix; the exact inverse of the
     # primaries' matrix differs from the printed one by up to 4e-4 (documented in display.md).
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     np.testing.assert_array_equal(np.round(np.linalg.inv(IEC_RGB_TO_XYZ), 4), IEC_XYZ_TO_RGB)
     exact = rgb_space("sRGB").matrix_from_XYZ * 100
     assert np.abs(exact - IEC_XYZ_TO_RGB).max() < 5e-4

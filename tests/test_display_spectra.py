@@ -34,9 +34,11 @@ def test_white_point_and_chromaticities_of_the_table():
     # white-point column: 98.88, 106.83, 121.11 (sums of the rows as printed)
     np.testing.assert_allclose(s.white_XYZ, [98.88, 106.83, 121.11], atol=0.005)
     # x, y rows, printed to 3 decimals
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     np.testing.assert_array_equal(
         np.round(s.primaries_xy, 3), [[0.620, 0.344], [0.283, 0.608], [0.150, 0.066]]
     )
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     np.testing.assert_array_equal(np.round(s.white_xy, 3), [0.303, 0.327])
 
 
@@ -45,6 +47,7 @@ def _bins_cmf():
     cmf = sc.observer("1931")
     grid = np.arange(400.0, 701.0, 10.0)
     idx = np.searchsorted(cmf.wavelengths_nm, grid)
+    # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
     assert np.array_equal(cmf.wavelengths_nm[idx], grid)
     return cmf.values[:, idx].T  # (31, 3)
 
@@ -59,8 +62,10 @@ def test_note_10_white_R_is_1_22_and_max_R_is_1_58(reading):
     W = cmf * k
     space = sc.rgb_space("SPECTRA 7000K")
     white_rgb = space.rgb_linear_from_XYZ(W.sum(axis=0))
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     assert round(float(white_rgb[0]), 2) == 1.22
     max_rgb = sc.max_object_rgb(space, W)
+    # exact: printed digits of a value known to ~1e-13: it moves only at a tie of the last digit
     assert round(float(max_rgb[0]), 2) == 1.58
     assert max_rgb.argmax() == 0  # "R is the one that may reach the highest value"
     # brute force over the 2**31 ideal reflectances is what the closed form replaces; check
@@ -83,6 +88,7 @@ def test_max_object_rgb_bounds_random_reflectances():
 def test_gamma_2204_puts_half_excitation_at_level_46_of_63():
     table = sc.spectra_excitation_table()
     assert table.n_levels == 64
+    # exact: the end levels are 0 ** g and 1 ** g: exactly 0 and 1
     assert table.levels[0] == 0.0 and table.levels[63] == 1.0
     assert int(table.index(0.5)) == 46
     assert abs(table.levels[46] - 0.5) < 1e-3

@@ -74,22 +74,25 @@ def test_power_law_and_level_table_digit_routine():
     assert PowerLaw(2.2).encode(0.5) == pytest.approx(0.5 ** (1 / 2.2), rel=1e-15)
     table = LevelTable([0.0, 0.1, 0.5, 1.0])
     # nearest level, ties to the lower one (SPECTRA's digit(): "finds the nearest value")
+    # exact: integer indices of typed levels
     np.testing.assert_array_equal(
         table.index([0.0, 0.04, 0.06, 0.3, 0.31, 0.74, 0.76, 1.0]), [0, 0, 1, 1, 2, 2, 3, 3]
     )
-    assert table.decode(table.encode(0.49)) == 0.5
+    assert table.decode(table.encode(0.49)) == 0.5  # exact: a level of the table, looked up, not computed
 
 
 def test_spectra_table_nearest_level_is_brute_force_nearest():
     table = spectra_excitation_table()
     x = np.linspace(0, 1, 5001)
     brute = np.abs(x[:, None] - table.levels[None, :]).argmin(axis=1)
+    # exact: integer indices from elementwise, correctly rounded arithmetic only (no sums)
     np.testing.assert_array_equal(table.index(x), brute)
 
 
 def test_integer_codes_any_bit_depth():
     assert to_codes(1.0, 8) == 255 and to_codes(1.0, 10) == 1023 and to_codes(1.0, 16) == 65535
     assert to_codes(1.0, 6) == 63
+    # exact: integer codes of typed values (0.5 · 255 = 127.5 is exact, and rounds up by the rule)
     np.testing.assert_array_equal(to_codes([0.0, 0.5, 0.2], 8), [0, 128, 51])
     np.testing.assert_allclose(from_codes([0, 255], 8), [0.0, 1.0])
 

@@ -40,7 +40,9 @@ def _same(result: SpectralCube, values: np.ndarray, wavelengths=WAVELENGTHS) -> 
     assert result.shape == values.shape
     array = np.asarray(result.values)
     assert array.dtype == values.dtype
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(array, values)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(result.wavelengths_nm, wavelengths)
 
 
@@ -53,7 +55,9 @@ def test_npy_reads_lazily_with_given_wavelengths(tmp_path, cube):
     result = read_cube(path, wavelengths_nm=WAVELENGTHS)
     assert isinstance(result.values, MappedArray)
     _same(result, cube)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(result.values[2:4], cube[2:4])
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(result.values[1:3, 2:5, 4:9], cube[1:3, 2:5, 4:9])
 
 
@@ -111,6 +115,7 @@ def test_multipage_tiff_round_trip(tmp_path, cube, compression):
     result = read_cube(path)
     assert isinstance(result.values, MappedArray) == (compression is None)
     _same(result, cube)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(result.values[3:5, 1:4], cube[3:5, 1:4])
 
 
@@ -120,6 +125,7 @@ def test_tiff_micrometre_metadata_and_big_endian(tmp_path, cube):
                      metadata={"wavelengths": (WAVELENGTHS / 1000).tolist(),
                                "wavelength_units": "micrometers"})
     result = read_cube(path)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(np.asarray(result.values), cube)
     np.testing.assert_allclose(result.wavelengths_nm, WAVELENGTHS, rtol=1e-15)
 
@@ -189,6 +195,7 @@ def test_envi_round_trip(tmp_path, cube, interleave, big_endian):
                       wavelengths=_envi_list(WAVELENGTHS))
     result = read_cube(hdr)
     _same(result, cube)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(result.values[1:4], cube[1:4])  # row reads without mmap
     _same(read_cube(tmp_path / "scene.img"), cube)  # the raw file finds its header
 
@@ -216,8 +223,11 @@ def test_envi_any_layout_round_trips(shape, dtype, interleave, big_endian, offse
         hdr = _write_envi(Path(folder), values, interleave, big_endian=big_endian, offset=offset,
                           wavelengths=_envi_list(wavelengths))
         result = read_cube(hdr)
+        # exact: a copy of the same numbers (written and read back, no arithmetic)
         np.testing.assert_array_equal(np.asarray(result.values), values)
+        # exact: a copy of the same numbers (written and read back, no arithmetic)
         np.testing.assert_array_equal(result.values[shape[0] - 1:], values[shape[0] - 1:])
+        # exact: a copy of the same numbers (written and read back, no arithmetic)
         np.testing.assert_array_equal(result.wavelengths_nm, wavelengths)
 
 
@@ -227,6 +237,7 @@ def test_envi_header_parser(tmp_path, cube):
     fields = read_envi_header(hdr)
     assert fields["description"] == "{synthetic cube, written by the tests}"
     assert fields["interleave"] == "bsq"
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     assert read_cube(hdr, raw=True).metadata["reflectance scale factor"] == 10000.0
 
 
@@ -273,6 +284,7 @@ def test_netcdf_round_trip(tmp_path, cube, suffix, units, factor):
                                                 {"units": units})}, name="radiance")
     array.to_netcdf(path, engine="h5netcdf")
     result = read_cube(path)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(np.asarray(result.values), cube)
     np.testing.assert_allclose(result.wavelengths_nm, WAVELENGTHS, rtol=1e-15)
 
@@ -282,6 +294,7 @@ def test_netcdf_wavelength_first_is_transposed(tmp_path, cube):
     xr.DataArray(np.moveaxis(cube, -1, 0), dims=("wavelength", "y", "x"),
                  coords={"wavelength": ("wavelength", WAVELENGTHS, {"units": "nm"})},
                  name="r").to_netcdf(path, engine="h5netcdf")
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(np.asarray(read_cube(path).values), cube)
 
 
@@ -296,6 +309,7 @@ def test_netcdf_errors(tmp_path, cube):
         read_cube(path)
     with pytest.raises(SpectrumError, match="units are not given"):
         read_cube(path, variable="a")
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(
         np.asarray(read_cube(path, variable="b", wavelength_units="nm").values), cube)
     xr.Dataset({"a": (("y", "x", "band"), cube)}).to_netcdf(tmp_path / "n.nc", engine="h5netcdf")
@@ -326,6 +340,7 @@ def test_folder_of_float_tiffs_in_micrometres(tmp_path, cube):
     for k, wavelength in enumerate(WAVELENGTHS):
         tifffile.imwrite(tmp_path / f"band-{wavelength / 1000:.2f}um.tif", cube[..., k])
     result = read_cube(tmp_path)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(result.values, cube)
     np.testing.assert_allclose(result.wavelengths_nm, WAVELENGTHS, rtol=1e-12)
 
@@ -363,6 +378,7 @@ def test_mapped_array_pickles_as_a_reference(tmp_path):
     mapped = read_cube(tmp_path / "big.npy", wavelengths_nm=np.arange(1000.0) + 1).values
     blob = pickle.dumps(mapped)
     assert len(blob) < 1000  # a path and a layout, not 48 kB of data
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(np.asarray(pickle.loads(blob)), values)
 
 
@@ -374,6 +390,7 @@ def test_png_8_bit(tmp_path):
     write_image(tmp_path / "a.png", codes)
     with Image.open(tmp_path / "a.png") as image:
         assert image.mode == "RGB"
+        # exact: integer codes through an encoder and a decoder: no floating point
         np.testing.assert_array_equal(np.asarray(image), codes)
 
 
@@ -400,6 +417,7 @@ def _decode_png_rgb16(data: bytes) -> np.ndarray:
 def test_png_16_bit_rgb(tmp_path):
     codes = np.random.default_rng(2).integers(0, 65536, (5, 3, 3)).astype(np.uint16)
     path = write_image(tmp_path / "a.png", codes)
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(_decode_png_rgb16(path.read_bytes()), codes)
     with Image.open(path) as image:  # Pillow reads it (as 8-bit: the high bytes)
         assert image.size == (3, 5)
@@ -409,6 +427,7 @@ def test_png_16_bit_rgb(tmp_path):
 def test_float_tiff_with_metadata(tmp_path):
     XYZ = np.random.default_rng(4).random((4, 5, 3)) * 100
     write_image(tmp_path / "xyz.tif", XYZ, metadata={"quantity": "XYZ100", "illuminant": "D65"})
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(tifffile.imread(tmp_path / "xyz.tif"), XYZ)
     with tifffile.TiffFile(tmp_path / "xyz.tif") as tif:
         assert tif.shaped_metadata[0]["quantity"] == "XYZ100"

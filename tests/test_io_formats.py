@@ -52,6 +52,7 @@ def _read(name):
 def test_each_file_reads_to_the_values_it_was_written_with(name):
     _, count, names = FILES[name]
     s = _read(name)
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     np.testing.assert_array_equal(s.wavelengths_nm, GRID)
     assert s.names == names
     # four decimals as fractions or two as percent: equal to 1 ulp of the division by 100
@@ -59,6 +60,7 @@ def test_each_file_reads_to_the_values_it_was_written_with(name):
 
 
 def test_spot_values_typed_from_the_files():
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     assert _read("i1profiler.txt").values[0, 22] == 0.4500  # red tile, SPECTRAL_NM600
     assert _read("argyll.ti3").values[1, 15] == pytest.approx(0.5400, abs=1e-16)  # SPEC_530 54.00 %
     assert _read("semicolon_decimal_comma_percent.csv").values[2, 0] == pytest.approx(0.18, abs=1e-16)  # "18,00"
@@ -111,7 +113,9 @@ def test_tm27_14_agrees_with_colour_science_reader():
     colour = pytest.importorskip("colour")
     theirs = colour.SpectralDistribution_IESTM2714(str(CORPUS / "tm27_14.xml"))
     theirs.read()
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     np.testing.assert_array_equal(theirs.wavelengths, GRID)
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     np.testing.assert_array_equal(theirs.values, _read("tm27_14.xml").values)
 
 
@@ -184,6 +188,7 @@ def test_cgats_comments_after_values_are_ignored():
     text = "CGATS.17 # exported\nBEGIN_DATA_FORMAT\nSPEC_400 SPEC_410 # two bands\nEND_DATA_FORMAT\n"
     text += "BEGIN_DATA\n1 2 # first row\nEND_DATA\n"
     s = parse_spectra(text, "f", percent=False)
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     assert s.values.tolist() == [1.0, 2.0] and s.metadata["file_identifier"] == "CGATS.17"
 
 

@@ -42,6 +42,7 @@ def test_envi_scale_factor_and_ignore_value_are_applied_through_the_api(tmp_path
     assert np.isnan(XYZ[1, 2]).all()
     np.testing.assert_allclose(XYZ[0, 0, 1], 50.0, rtol=1e-6)  # the docs' example: grey, not white
     raw = read_cube(hdr, raw=True)
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     assert raw.values.dtype == np.int16 and raw.metadata["reflectance scale factor"] == 10000.0
 
 
@@ -51,8 +52,10 @@ def test_envi_bad_bands_are_dropped_and_fwhm_kept(tmp_path, codes):
     fwhm = "{" + ", ".join(["10.5"] * WAVELENGTHS.size) + "}"
     hdr = _envi_with_fields(tmp_path, codes, f"bbl = {{{', '.join(bbl)}}}\nfwhm = {fwhm}")
     cube = read_cube(hdr)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(cube.wavelengths_nm, WAVELENGTHS[1:-1])
     assert cube.shape == (3, 4, WAVELENGTHS.size - 2) and cube.metadata["fwhm_nm"].shape == (WAVELENGTHS.size - 2,)
+    # exact: integer codes 5000 read as floats
     np.testing.assert_array_equal(np.asarray(cube.values)[0, 0], np.full(WAVELENGTHS.size - 2, 5000.0))
     assert np.asarray(cube.values[0:2, 1:3, 0:4]).shape == (2, 2, 4)
 
@@ -98,6 +101,8 @@ def test_cli_image_applies_the_same_fields(tmp_path, codes):
     import tifffile
 
     XYZ = tifffile.imread(out)
+    # exact: each image row is the same (W, K) @ (K, 3) call whatever the block (matmul loops over leading axes); the
+    # rest is per pixel
     np.testing.assert_array_equal(XYZ, cube_to_xyz(read_cube(hdr), illuminant="D65").astype(np.float32))
 
 
@@ -117,6 +122,7 @@ def test_masked_pixels_render_black_in_the_api_and_the_cli(tmp_path, codes):
     assert result.returncode == 0, result.stderr
     from PIL import Image
 
+    # exact: integer codes through an encoder and a decoder: no floating point
     np.testing.assert_array_equal(np.asarray(Image.open(out)), rgb8)
 
 
@@ -155,7 +161,9 @@ def test_mat_v5_reads_the_cube_and_its_wavelengths(tmp_path):
     path = tmp_path / "scene.mat"
     scipy.io.savemat(path, {"ref": values, "bands": WAVELENGTHS.reshape(1, -1), "note": "x"})
     cube = read_cube(path, wavelength_units="nm")
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(np.asarray(cube.values), values)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(cube.wavelengths_nm, WAVELENGTHS)
     assert cube.metadata == {"variable": "ref", "mat": "v5"}
     with pytest.raises(SpectrumError, match="units are not given"):
@@ -179,7 +187,9 @@ def test_mat_v73_reads_lazily_in_matlab_order(tmp_path):
     _write_mat73(path, {"rad": values, "wavelengths_nm": WAVELENGTHS})
     cube = read_cube(path)
     assert cube.shape == values.shape and cube.metadata["mat"] == "v7.3"
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(cube.values[1:3, 2:5], values[1:3, 2:5])
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(cube.values[4], values[4])
     XYZ = cube_to_xyz(cube, illuminant="D65", rows_per_block=2)
     np.testing.assert_allclose(XYZ, sc.tristimulus(sc.Spectrum(WAVELENGTHS, values), illuminant="D65"), rtol=1e-12)

@@ -49,6 +49,7 @@ def test_reading_a_table_needs_at_most_two_and_a_half_times_its_size(tmp_path, l
         _, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     np.testing.assert_array_equal(spectra.values, expected)  # 6 decimals: float() gives the same double
     assert spectra.names[-1] == f"s{SAMPLES - 1}"
     assert peak <= 2.5 * size, f"peak {peak / size:.2f} × the file size"
@@ -76,5 +77,6 @@ def test_generated_wide_tables_read_back_exactly(values, delimiter, newline, quo
     lines = [delimiter.join(["name", "400", "500", "600"])]
     lines += [delimiter.join([f"s{i}", *map(cell, row)]) for i, row in enumerate(values)]
     spectra = parse_delimited(newline.join(lines) + newline, "gen.csv")
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     np.testing.assert_array_equal(np.atleast_2d(spectra.values), np.array(values))
     assert spectra.names == tuple(f"s{i}" for i in range(len(values)))

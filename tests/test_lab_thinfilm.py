@@ -20,6 +20,8 @@ def test_the_table_is_the_librarys_film_colours():
     optics = thin_film(d, WL, water(), angle_deg=30.0)
     colours = film_colours(Spectrum(WL, optics.reflectance), illuminant="D65", exposure="global-max",
                            gamut="preserve-luminance")
+    # exact: codes of floats that agree to ~1e-13: a code moves only at a half-code tie, which these inputs do not
+    # reach
     np.testing.assert_array_equal(table["rgb8"], colours.rgb8)
     np.testing.assert_allclose(table["reflectance"], optics.reflectance, rtol=0, atol=5e-7)  # 6 decimals
     np.testing.assert_allclose(table["XYZ"], colours.XYZ100, rtol=0, atol=5e-7)
@@ -33,6 +35,7 @@ def test_two_beam_is_seed_000s_model_for_the_soap_film():
 
 def test_no_film_is_black_and_airy_equals_matrix_for_a_single_free_film():
     table = lab.thinfilm_lab("soap", "airy", 0.0, max_thickness_nm=50)
+    # exact: black and its sentinel chromaticity are set, not computed
     assert table["rgb8"][0] == [0, 0, 0] and table["xy"][0] == [-1.0, -1.0]
     _, airy = lab.reflectance_table("soap", "airy", 20.0, max_thickness_nm=800)
     _, matrix = lab.reflectance_table("soap", "matrix", 20.0, max_thickness_nm=800)
@@ -42,6 +45,7 @@ def test_no_film_is_black_and_airy_equals_matrix_for_a_single_free_film():
 def test_a_quarter_wave_mgf2_layer_is_an_anti_reflection_coating():
     """The lesson of a coating: at d = λ/4n (550 nm, n = 1.38) the glass reflects least."""
     d, R = lab.reflectance_table("mgf2", "airy", 0.0, max_thickness_nm=300)
+    # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
     k550 = int(np.flatnonzero(WL == 550.0)[0])
     n_glass = float(np.real(bk7().refractive_index([550.0])[0]))
     bare = ((n_glass - 1) / (n_glass + 1)) ** 2

@@ -56,7 +56,7 @@ def test_png_round_trip(tmp_path):
     img = swatch_image([[12, 34, 56], [200, 0, 255]], size=5)
     sc.write_swatches([[12, 34, 56], [200, 0, 255]], tmp_path / "s.png", size=5)
     back = np.asarray(Image.open(tmp_path / "s.png").convert("RGB"))
-    np.testing.assert_array_equal(back, img)
+    np.testing.assert_array_equal(back, img)  # exact: integer codes through an encoder and a decoder: no floating point
 
 
 def test_wavelength_tint_anchors_at_unique_hues():

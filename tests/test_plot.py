@@ -37,16 +37,17 @@ def test_horseshoe_colours_inside_srgb_are_exact():
         assert rgb.min() >= 0
         expected = colour.models.eotf_inverse_sRGB(rgb / rgb.max())
         np.testing.assert_allclose(image[row, col, :3], expected, atol=1e-9)
-        assert image[row, col, 3] == 1.0
+        assert image[row, col, 3] == 1.0  # exact: alpha is set to 1 inside the locus
 
 
 def test_horseshoe_outside_srgb_is_on_the_gamut_boundary_and_outside_locus_is_transparent():
     image, extent = horseshoe_image("xy", resolution=300)
     green = _pixel(image, extent, (0.1, 0.7))  # outside sRGB, inside the locus
-    assert green[3] == 1.0
+    assert green[3] == 1.0  # exact: alpha is set to 1 inside the locus
     assert green[:3].max() == pytest.approx(1.0) and green[:3].min() == pytest.approx(0.0)
+    # exact: alpha is set to 0 outside the locus
     assert _pixel(image, extent, (0.7, 0.1))[3] == 0.0  # below the purple line
-    assert _pixel(image, extent, (0.01, 0.01))[3] == 0.0
+    assert _pixel(image, extent, (0.01, 0.01))[3] == 0.0  # exact: alpha is set to 0 outside the locus
 
 
 def test_planckian_locus_against_colour_science():

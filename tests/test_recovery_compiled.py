@@ -2,11 +2,12 @@
 
 With numba installed the closed form, the active-set iterations and the certificate's measures
 run compiled (``spectrocolor.recovery.compiled``); ``SPECTROCOLOR_NUMBA=0`` runs the NumPy path.
-Both must answer every colour the same way (feasible or not, solved by the same method, except
-where the kernel's safeguarded active-set iterations settle a colour on which the NumPy path
-needs its fallbacks; certified), and every certified answer must pass the independent KKT check of
-``tests/kkt_check.py``. The kernels sum in another order than BLAS, so solutions are compared
-to the rounding of the closed form's own product, not bit for bit.
+Both must answer every colour the same way (feasible or not; certified), and every certified
+answer of either must pass the independent KKT check of ``tests/kkt_check.py``. Which solver
+settles a colour (closed form, active set, restart, dense fallback, face) turns on rounding in the
+first iterations, so on the CPU's vector width and BLAS kernel: it is not compared. The kernels
+sum in another order than BLAS, so solutions are compared to the rounding of the closed form's
+own product, not bit for bit.
 """
 
 from __future__ import annotations
@@ -59,12 +60,9 @@ def test_both_paths_answer_every_colour_alike_and_pass_the_independent_check(gri
     XYZ = _colours(grid)
     fast = _solve(XYZ, grid, bounds, monkeypatch, True)
     plain = _solve(XYZ, grid, bounds, monkeypatch, False)
+    # exact: booleans; every colour lies 1e-9 of its size or more from the boundary (_colours),
+    # 1e4 times the rounding of either path's facet test
     np.testing.assert_array_equal(fast.feasible, plain.feasible)
-    # the kernel's safeguarded iterations settle some colours near the boundary on which the
-    # NumPy path's iterations need the interior-point restart or the dense method
-    rescued = (fast.method == "active set") & np.isin(
-        plain.method, ["active set restarted from interior point", "dense primal active set"])
-    np.testing.assert_array_equal(fast.method[~rescued], plain.method[~rescued])
     assert fast.feasible.sum() > len(XYZ) // 2
     for result in (fast, plain):
         assert result.certificate.converged[result.feasible].all()
@@ -72,9 +70,10 @@ def test_both_paths_answer_every_colour_alike_and_pass_the_independent_check(gri
         return
     W = setup_for(grid, "1931", "D65")[0].W
     upper = 1.0 if bounds == "unit" else np.inf
-    for i in np.flatnonzero(fast.feasible)[::3]:
-        ratio = kkt_violation(W, grid[2], fast.spectrum.values[i], upper, fast.multipliers[i])
-        assert ratio <= 1.0, (i, ratio, fast.method[i])
+    for result in (fast, plain):
+        for i in np.flatnonzero(result.feasible)[::3]:
+            ratio = kkt_violation(W, grid[2], result.spectrum.values[i], upper, result.multipliers[i])
+            assert ratio <= 1.0, (i, ratio, result.method[i])
 
 
 @pytest.mark.parametrize("grid", GRIDS)
@@ -101,6 +100,7 @@ def test_certificate_measures_agree_with_the_numpy_path(lower, upper, monkeypatc
         rho = np.clip(rho, lower, upper)
     # perturbations far above rounding, so the measures do not depend on the summation order
     rng = np.random.default_rng(5)
+    # exact: np.clip returns the bound values themselves
     rho = np.where((rho == 0.0) | (rho == 1.0), rho, rho + 1e-7 * rng.normal(size=rho.shape))
     mu = mu + 1e-6 * rng.normal(size=mu.shape)
     rho[3, 4] = np.nan  # measured again by the NumPy path: its NaN semantics
@@ -112,7 +112,9 @@ def test_certificate_measures_agree_with_the_numpy_path(lower, upper, monkeypatc
     for name in ("primal_residual", "multiplier_sign_violation", "stationarity", "rounding_ratio"):
         a, b = getattr(fast, name), getattr(plain, name)
         np.testing.assert_allclose(a, b, rtol=1e-6, atol=0, equal_nan=True, err_msg=name)
+    # exact: maxima of single roundings (lower − ρ, ρ − upper): no sums, alike on both paths
     np.testing.assert_array_equal(fast.bound_violation, plain.bound_violation)
+    # exact: booleans of ratio ≤ 1 where every ratio is ≥ 8e8 (perturbations far above rounding) or NaN
     np.testing.assert_array_equal(fast.converged, plain.converged)
     assert not fast.converged[3] and not fast.converged[5]
 
@@ -169,7 +171,9 @@ def test_the_kernels_run_from_worker_threads(monkeypatch):
     for thread in threads:
         thread.join()
     for got in results:
+        # exact: the same call on the same input (threads of one process)
         np.testing.assert_array_equal(got.spectrum.values, expected.spectrum.values)
+        # exact: the same call on the same input (threads of one process)
         np.testing.assert_array_equal(got.certificate.converged, expected.certificate.converged)
 
 

@@ -56,11 +56,10 @@ def test_previously_flagged_red_end_blocks_are_certified_by_the_exact_solver():
 def test_previously_flagged_red_end_blocks_are_certified_by_smoothest_reflectance():
     W, R = _flagged_colours()
     r = smoothest_reflectance(R @ W, wavelengths=RED_END)
+    # Which solver settles each colour (the compiled active set, the dense fallback, a face
+    # solve, exact rationals) turns on rounding in the first iterations, so on the CPU's BLAS
+    # kernel; what must hold on every CPU is the certificate and the independent KKT check.
     assert np.all(r.feasible) and np.all(r.certificate.converged)
-    # the compiled active-set iterations (with their safeguard) settle some of the colours
-    # inside the solid before any face solve; the certificate and the KKT check decide
-    assert set(r.method) <= {"boundary face", "boundary face, exact rational arithmetic",
-                             "active set"}
     for rho, mu in zip(r.spectrum.values, r.multipliers, strict=True):
         assert_kkt(W, RED_END[2], rho, 1.0, mu_hint=mu)
 
@@ -82,8 +81,8 @@ def test_a_vertex_of_a_three_sample_grid_has_the_multipliers_of_its_gradient():
     """W = I on three samples: b = (1, 0, 0) admits only ρ = (1, 0, 0); every sample's
     constraint is then its own, so μ = Q ρ = (2/h)(1, −1, 0) exactly (h = 10 nm: ±0.2 rounded)."""
     rho, mu = exact_solution(np.eye(3), 10.0, np.array([1.0, 0.0, 0.0]), 0.0, 1.0)
-    assert rho.tolist() == [1.0, 0.0, 0.0]
-    assert mu.tolist() == [0.2, -0.2, 0.0]
+    # exact: exact rational arithmetic, each number rounded once to float (0.2 is 2/h rounded)
+    assert rho.tolist() == [1.0, 0.0, 0.0] and mu.tolist() == [0.2, -0.2, 0.0]
 
 
 def test_a_colour_outside_by_more_than_rounding_is_refused():
@@ -104,9 +103,10 @@ def test_a_colour_with_no_z_keeps_z_exactly_zero():
     rho0 = np.zeros(W.shape[0])
     rho0[7:] = 1.0
     b = rho0 @ W
-    assert b[2] == 0.0
+    assert b[2] == 0.0  # exact: each product is 0·z̄ or 1·0 (z̄ = 0 from 660 nm): any order sums to 0
     rho, mu = exact_solution(W, grid[2], b, 0.0, 1.0)
     assert _certified(W, grid[2], b, rho, mu, 1.0)
+    # exact: ρ is exactly 0 wherever z̄ is not, so every product is 0 and any order sums to 0
     assert rho @ W[:, 2] == 0.0
     assert_kkt(W, grid[2], rho, 1.0, mu_hint=mu)
 

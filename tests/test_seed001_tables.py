@@ -93,6 +93,7 @@ def test_table39_cmfs():
     difference = np.abs(np.where(np.isnan(printed), 0.0, printed) - ours)
     assert len({(w, c) for w, c in wrong if c != "Y"}) == 86
     worst = np.unravel_index(np.argmax(difference), difference.shape)
+    # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
     assert (wavelengths[worst[0]], worst[1]) == (435.0, 2)
     # the printed y-bar sum is the CIE one; our 5 nm sum over 380-770 nm agrees to 1e-4
     assert abs(printed_sums("39")[1] - ours[:, 1].sum()) <= 1.5e-4
@@ -105,6 +106,7 @@ def test_tables40_42_normalisation_and_white(table, name):
     wavelengths, printed, _ = load(table)
     W = sc.weights(wavelengths, observer="1931", illuminant=name)
     # the tables are scaled so that the y weights sum to 100 (the perfect white has Y = 100)
+    # exact: decimal text parsed by float(): correctly rounded, the same double on every CPU
     assert printed_sums(table)[1] == 100.0
     assert W[:, 1].sum() == pytest.approx(100.0, abs=1e-12)
     # white chromaticity from the printed column sums vs ours: within 2e-4 (Le Grand's CMFs)

@@ -15,7 +15,9 @@ def test_csv_round_trip(tmp_path):
     path = sc.write_spectra(s, tmp_path / "s.csv")
     back = sc.read_spectra(path)
     assert back.names == s.names
+    # exact: a copy of the same numbers (written and read back, no arithmetic) (repr keeps 17 digits)
     np.testing.assert_array_equal(back.values, s.values)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.wavelengths_nm, g)
 
 
@@ -23,6 +25,7 @@ def test_json_round_trip(tmp_path):
     s = Spectrum([400, 500, 600], [0.1, 0.2, 0.3], names=["one"])
     back = sc.read_spectra(sc.write_spectra(s, tmp_path / "s.json"))
     assert back.names == ("one",) and back.values.shape == (3,)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(back.values, s.values)
 
 

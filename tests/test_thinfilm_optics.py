@@ -42,6 +42,7 @@ def test_two_beam_extremes_and_beta():
     # s = λ: constructive for the back beam relative to the sign-flipped front beam -> minimum
     assert two_beam_reflectance(500.0, [500.0], beta=0.95)[0] == pytest.approx(0.05**2)
     assert two_beam_reflectance(250.0, [500.0], beta=0.95)[0] == pytest.approx(1.95**2)
+    # exact: β = 0: 1 + 0 − 0 · cos(…) is exactly 1
     assert np.all(two_beam_reflectance(np.linspace(0, 3000, 7), WL, beta=0.0) == 1.0)
     # equal phase changes at both surfaces (β < 0): s = λ is now a maximum, s = λ/2 a minimum
     assert two_beam_reflectance(500.0, [500.0], beta=-0.3)[0] == pytest.approx(1.3**2)

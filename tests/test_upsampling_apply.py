@@ -39,7 +39,7 @@ def test_every_output_reproduces_its_colour_and_lies_in_the_unit_interval(t):
     assert u.exact.all() and not u.moved.any()
     assert u.reflectance.min() >= 0.0 and u.reflectance.max() <= 1.0
     black = np.all(t == 0, axis=-1)
-    assert np.all(u.reflectance[black] == 0.0)
+    assert np.all(u.reflectance[black] == 0.0)  # exact: black nodes are exact zeros, blended with weights ≥ 0
     assert np.all(relative_colour_error(table, t[~black], u.reflectance[~black]) <= EXACT)
 
 
@@ -71,6 +71,7 @@ def test_leading_shape_is_kept_and_a_node_returns_its_spectrum():
     assert upsample(table, image).reflectance.shape == (4, 5, 81)
     assert upsample(table, [0.25, 0.5, 0.75]).reflectance.shape == (81,)
     node = table.reflectance[2, 4, 6]
+    # exact: at a node the weights are exactly 1 and 0 (2/8 · 8 = 2), so the blend is the node
     np.testing.assert_array_equal(upsample(table, [2 / 8, 4 / 8, 6 / 8]).reflectance, node)
 
 
@@ -88,6 +89,7 @@ def test_clip_and_nan_strategies():
     table = srgb_table()
     t = [[1.2, 0.3, -0.4], [0.2, 0.3, 0.4]]
     clipped = upsample(table, t, out_of_range="clip")
+    # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), whatever the batch or block
     np.testing.assert_array_equal(clipped.reflectance[0],
                                   upsample(table, [1.0, 0.3, 0.0]).reflectance)
     refused = upsample(table, t, out_of_range="nan")
@@ -139,6 +141,8 @@ def test_streaming_blocks_of_a_memmap_equal_the_whole(tmp_path):
     assert len(blocks) > 1
     assert sum(b.stop - b.start for b, _ in blocks) == 37
     for rows, spectra in blocks:
+        # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), whatever the batch or
+        # block
         np.testing.assert_array_equal(spectra, whole[rows])
 
 
@@ -150,6 +154,7 @@ def test_dask_equals_numpy():
     image = np.random.default_rng(9).random((30, 20, 3)) * 1.2 - 0.1
     lazy = upsample_dask(table, da.from_array(image, chunks=(7, 9, 3)))
     assert lazy.shape == (30, 20, 81)
+    # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), whatever the batch or block
     np.testing.assert_array_equal(lazy.compute(), upsample_spectra(table, image))
 
 

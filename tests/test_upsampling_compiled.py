@@ -61,7 +61,9 @@ def test_spectra_equal_the_numpy_path(t, strategy, wide):
     ours = upsample(table, t, strategy)
     reference = numpy_path(upsample, table, t, strategy)
     assert_close_in_ulps(ours.reflectance, reference.reflectance)
+    # exact: booleans of the same comparisons on the input in both paths
     assert np.array_equal(ours.exact, reference.exact)
+    # exact: booleans of the same comparisons on the input in both paths
     assert np.array_equal(ours.moved, reference.moved)
     assert np.nanmax(ours.reflectance, initial=0.0) <= 1.0
 
@@ -74,16 +76,19 @@ def test_relighting_and_coefficients_equal_the_numpy_path(t, strategy, wide):
     XYZ, exact = colours_under(table, t, W_A, strategy)
     XYZ_ref, exact_ref = numpy_path(colours_under, table, t, W_A, strategy)
     assert_close_in_ulps(XYZ, XYZ_ref)
-    assert np.array_equal(exact, exact_ref)
+    assert np.array_equal(exact, exact_ref)  # exact: booleans of the same comparisons on the input in both paths
     found, found_ref = lookup(table, t, strategy), numpy_path(lookup, table, t, strategy)
+    # exact: integer indices of the same single roundings (no fastmath) in both paths
     assert np.array_equal(found.nodes, found_ref.nodes)
     assert_close_in_ulps(found.weights, found_ref.weights)
+    # exact: booleans of the same comparisons on the input in both paths
     assert np.array_equal(found.exact, found_ref.exact) and np.array_equal(found.moved, found_ref.moved)
     nodes, weights, exact = texel_coefficients(table, t, strategy)
     nodes_ref, weights_ref, exact_ref = numpy_path(texel_coefficients, table, t, strategy)
+    # exact: integer indices of the same single roundings (no fastmath) in both paths
     assert np.array_equal(nodes, nodes_ref) and nodes.dtype == np.uint32
     assert_close_in_ulps(weights, weights_ref)
-    assert np.array_equal(exact, exact_ref)
+    assert np.array_equal(exact, exact_ref)  # exact: booleans of the same comparisons on the input in both paths
 
 
 def test_shapes_and_out_arrays_as_the_numpy_path():
@@ -111,6 +116,8 @@ def test_worker_threads_use_the_serial_kernel_with_the_same_numbers():
     worker = threading.Thread(target=lambda: results.append(upsample_spectra(table, t)))
     worker.start()
     worker.join()
+    # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), whatever the batch or block
+    # (serial and parallel kernels)
     assert np.array_equal(results[0], main_thread)
 
 

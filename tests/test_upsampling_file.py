@@ -28,10 +28,13 @@ def test_round_trip_is_bit_exact(tmp_path, table_of):
     back = load_table(save_table(table, tmp_path / "t.scup"))
     for name in ("wavelengths_nm", "reflectance", "node_XYZ100", "node_status", "roughness",
                  "multipliers", "cell_excess_bound", "cell_excess_measured", "matrix", "weights"):
+        # exact: a copy of the same numbers (written and read back, no arithmetic)
         np.testing.assert_array_equal(getattr(back, name), getattr(table, name), err_msg=name)
     assert (back.space, back.illuminant, back.observer) == (table.space, table.illuminant,
                                                             table.observer)
     t = np.random.default_rng(1).random((100, 3))
+    # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), whatever the batch or block
+    # (on the same nodes, read back)
     np.testing.assert_array_equal(upsample(back, t).reflectance, upsample(table, t).reflectance)
 
 
@@ -41,9 +44,11 @@ def test_header_layout_is_as_documented(tmp_path):
     magic, version, n, K, J = struct.unpack_from("<8sIIII", data)
     assert (magic, version, n, K) == (b"SCUPTBL\0", 1, 9, 81) and J % 8 == 0
     start, step = struct.unpack_from("<2d", data, 24)
-    assert (start, step) == (380.0, 5.0)
+    assert (start, step) == (380.0, 5.0)  # exact: a copy of the same numbers (written and read back, no arithmetic)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(np.frombuffer(data, "<f8", 9, 40).reshape(3, 3), table.matrix)
     first = np.frombuffer(data, "<f8", 81, HEADER.size + J)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(first, table.reflectance[0, 0, 0])
 
 
@@ -92,6 +97,7 @@ def test_python_reference_reader_agrees(tmp_path):
     table = rec2020_table()
     path = save_table(table, tmp_path / "t.scup")
     wavelengths, nodes = reader.read_table(path)
+    # exact: a copy of the same numbers (written and read back, no arithmetic)
     np.testing.assert_array_equal(wavelengths, table.wavelengths_nm)
     for q in QUERIES:
         np.testing.assert_allclose(reader.spectrum(nodes, q), upsample(table, q).reflectance,
@@ -111,6 +117,7 @@ def test_c_reference_reader_agrees(tmp_path):
         run = subprocess.run([str(exe), str(path), *map(repr, q)], check=True,
                              capture_output=True, text=True)
         got = np.array([line.split() for line in run.stdout.splitlines()], dtype=float)
+        # exact: whole-nanometre wavelengths: small integers, exact in any arithmetic
         np.testing.assert_array_equal(got[:, 0], table.wavelengths_nm)
         np.testing.assert_allclose(got[:, 1], upsample(table, q).reflectance, rtol=0,
                                    atol=READER_TOLERANCE)

@@ -62,6 +62,8 @@ def test_cli_relight_to_the_same_light_returns_the_photo(tmp_path, capsys):
     codes = photo(tmp_path / "in.png")
     assert main(["relight", str(tmp_path / "in.png"), "--to", "D65", "--resolution", "5",
                  "--out", str(tmp_path / "out.png")]) == 0
+    # exact: codes re-encoded from a round trip exact to 1e-9 relative lie within 1e-6 of a code, far from a half-code
+    # tie
     np.testing.assert_array_equal(np.asarray(Image.open(tmp_path / "out.png")), codes)
     assert "0 of 108 pixels not reproduced exactly" in capsys.readouterr().out
 
@@ -113,6 +115,7 @@ def test_cli_never_writes_over_its_input(tmp_path, capsys):
     assert main(["relight", str(tmp_path / "in.png"), "--to", "A", "--force",
                  "--out", str(tmp_path / "in.png")]) == 2
     assert "input" in capsys.readouterr().err
+    # exact: the refused command left the file as it was
     np.testing.assert_array_equal(np.asarray(Image.open(tmp_path / "in.png")), codes)
 
 
@@ -138,6 +141,8 @@ def test_cli_reads_16_bit_png_whole_and_refuses_damaged_files(tmp_path, capsys):
     write_image(tmp_path / "deep.png", codes)
     assert main(["relight", str(tmp_path / "deep.png"), "--to", "D65", "--resolution", "5",
                  "--bit-depth", "16", "--out", str(tmp_path / "o.png")]) == 0
+    # exact: codes re-encoded from a round trip exact to 1e-9 relative lie within 1e-4 of a code, far from a half-code
+    # tie
     np.testing.assert_array_equal(read_png(tmp_path / "o.png"), codes)
     (tmp_path / "cut.png").write_bytes((tmp_path / "deep.png").read_bytes()[:60])
     assert main(["relight", str(tmp_path / "cut.png"), "--to", "A",

@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
+from .spaces import rgb_space
 
 __all__ = ["GAMUT_ACTIONS", "out_of_gamut_channels", "explain"]
 
@@ -81,12 +82,32 @@ white at constant luminance (hue kept)']
             f"{', '.join(GAMUT_ACTIONS)}")
     action = GAMUT_ACTIONS[rendering.gamut]
     inside = np.asarray(rendering.in_gamut, dtype=bool).reshape(-1)
+    dark = _not_positive_luminance(rendering)
     messages = []
-    for ok, neg, over in zip(inside, *out_of_gamut_channels(rendering), strict=True):
+    for ok, neg, over, no_light in zip(inside, *out_of_gamut_channels(rendering), dark, strict=True):
         if ok:
             messages.append("in gamut")
             continue
         what = [f"{', '.join(neg)} negative"] if neg else []
         what += [f"{', '.join(over)} above 1"] if over else []
-        messages.append(f"cannot be reproduced ({'; '.join(what)}): {action}")
+        done = f"{action}; its luminance on this display is not positive, so that leaves black" if no_light else action
+        messages.append(f"cannot be reproduced ({'; '.join(what)}): {done}")
     return messages
+
+
+def _not_positive_luminance(rendering) -> np.ndarray:
+    """Per colour: whether a luminance-keeping strategy met a colour of luminance ≤ 0 (shown black).
+
+    A colour far outside the display's gamut can have a negative luminance in the display's own
+    terms (for example after a von Kries adaptation in display RGB); keeping that luminance leaves
+    nothing to show. Only the strategies that keep luminance are affected.
+    """
+    count = np.asarray(rendering.in_gamut).size
+    if rendering.gamut not in ("desaturate", "preserve-luminance"):
+        return np.zeros(count, bool)
+    try:
+        luminance_row = np.asarray(rgb_space(rendering.space).matrix_to_XYZ)[1]
+    except (ColorimetryError, ValueError, TypeError):
+        return np.zeros(count, bool)
+    luminance = np.asarray(rendering.rgb_unmapped, dtype=float).reshape(-1, 3) @ luminance_row
+    return luminance <= 0
