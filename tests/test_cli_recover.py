@@ -4,24 +4,12 @@ import numpy as np
 import pytest
 
 import spectrocolor as sc
-from spectrocolor.cli import recover
+from spectrocolor import cli
 
 
 def main(argv):
-    """The CLI's own dispatch, with only this sub-command registered (independent of the others)."""
-    import argparse
-    from unittest import mock
-
-    from spectrocolor import cli
-
-    def parser():
-        p = argparse.ArgumentParser(prog="spectrocolor")
-        sub = p.add_subparsers(dest="command", required=True)
-        recover.register(sub)
-        return p
-
-    with mock.patch.object(cli, "build_parser", parser):
-        return cli.main(argv)
+    """The CLI's own dispatch and parser, global options (``--memory-budget``) included."""
+    return cli.main(argv)
 
 
 def test_recover_xyz_round_trip(tmp_path):
