@@ -12,6 +12,8 @@ from __future__ import annotations
 import base64
 import io
 import struct
+import threading
+import time
 import zlib
 from pathlib import Path
 
@@ -245,12 +247,20 @@ def test_a_file_over_the_body_limit_is_refused_before_reading(client):
 
 
 def test_busy_worker_answers_429(client, monkeypatch):
-    monkeypatch.setattr(relight_routes, "RELIGHT_WAIT_S", 0.05)
-    taken = [relight_routes._workers._slots.acquire(timeout=30) for _ in range(relight_routes.RELIGHT_WORKERS)]
+    pool = relight_routes._workers
+    monkeypatch.setattr(pool, "wait_s", 0.05)  # the pool reads its wait, not the module constant
+    # fill every worker with a real job (a sleep in the worker process), then ask for one more
+    holders = [threading.Thread(target=pool.run, args=(time.sleep, 6.0), kwargs={"client": ("holder", i)})
+               for i in range(relight_routes.RELIGHT_WORKERS)]
+    for holder in holders:
+        holder.start()
     try:
+        deadline = time.monotonic() + 60.0
+        while pool.running < relight_routes.RELIGHT_WORKERS and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert pool.running == relight_routes.RELIGHT_WORKERS
         r = client.post("/api/relight", json={"image": png(np.zeros((2, 2, 3))), "illuminant": [30.0] * 31})
     finally:
-        for ok in taken:
-            if ok:
-                relight_routes._workers._slots.release()
+        for holder in holders:
+            holder.join()
     assert r.status_code == 429 and "busy" in r.json()["error"]

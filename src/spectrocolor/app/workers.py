@@ -222,7 +222,6 @@ class WorkerPool:
         self._running_by_client: collections.Counter = collections.Counter()
         self._running = 0
         self._generation = 0  # close() starts a new one: older workers are stopped on return
-        self._held_turns: list[tuple] = []  # turns taken through _slots (tests)
 
     # --- admission -----------------------------------------------------------------------
 
@@ -336,9 +335,10 @@ class WorkerPool:
         threading.Thread(target=job, daemon=True, name="spectrocolor-worker-warm").start()
 
     @property
-    def _slots(self) -> _Turns:
-        """The pool's turns as a semaphore (``acquire``/``release``), for tests that fill it."""
-        return _Turns(self)
+    def running(self) -> int:
+        """How many jobs hold a worker now (at most :attr:`workers`)."""
+        with self._condition:
+            return self._running
 
     def worker_pids(self) -> list[int]:
         """Process ids of the live worker processes (idle and busy)."""
@@ -364,25 +364,3 @@ class WorkerPool:
 
 
 _WARMING = object()  # the client key of warm-up jobs: they count against no real client
-
-
-class _Turns:
-    """A pool's turns seen as a semaphore: ``acquire`` takes a turn without running a job."""
-
-    def __init__(self, pool: WorkerPool) -> None:
-        self._pool = pool
-
-    def acquire(self, timeout: float | None = None) -> bool:
-        """Take a turn (waiting at most ``timeout`` s); False if none came."""
-        key = object()  # a client of its own: the per-client limit does not apply
-        try:
-            worker, generation = self._pool._admit(key, self._pool.wait_s if timeout is None else timeout)
-        except Busy:
-            return False
-        self._pool._held_turns.append((key, worker, generation))
-        return True
-
-    def release(self) -> None:
-        """Give back the turn taken first."""
-        key, worker, generation = self._pool._held_turns.pop(0)
-        self._pool._release(key, worker, generation)
