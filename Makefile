@@ -50,7 +50,8 @@ run: $(APP_STAMP)
 
 test: $(STAMP)
 	$(BIN)/ruff check src tests bench docs tools
-	$(BIN)/python -m spectrocolor.recovery.compiled
+	$(BIN)/mypy src
+	$(BIN)/python -m spectrocolor.recovery.warmup
 	$(BIN)/python -m pytest -q --doctest-modules src tests
 	$(MAKE) --no-print-directory docs
 

@@ -38,8 +38,13 @@ def browser():
         yield b
 
 
+@pytest.hookimpl(tryfirst=True)  # before -m deselects: the slow mark must be there
 def pytest_collection_modifyitems(config, items):
-    """Browser tests need Debian's Chromium; skip them loudly here, fail in CI."""
+    """Browser and cluster tests are slow (``-m "not slow"`` leaves them out); browser tests need
+    Debian's Chromium: skip them loudly here, fail in CI."""
+    for item in items:
+        if "browser" in item.keywords or "cluster" in item.keywords:
+            item.add_marker(pytest.mark.slow)
     if CHROMIUM.exists():
         return
     if os.environ.get("SPECTROCOLOR_REQUIRE_BROWSER"):

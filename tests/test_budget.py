@@ -3,7 +3,7 @@
 Every size from outside is checked before anything is allocated: against the budget, against the
 file's length, against what the file stores on disk (sparse files) and against the compressed
 bytes times the largest expansion deflate reaches. These tests check the module itself and that
-each way of setting the budget reaches a reader; ``tests/test_fuzz_resources.py`` feeds the
+each way of setting the budget reaches a reader; ``tests/fuzz/test_fuzz_resources.py`` feeds the
 readers and options hostile sizes under an address-space limit.
 """
 

@@ -38,7 +38,7 @@ def _alloys() -> sc.Spectrum:
 
 @pytest.fixture(scope="module")
 def report():
-    return measurement_report(_alloys(), "C", "1931")
+    return measurement_report(_alloys(), illuminant="C", observer="1931")
 
 
 def test_against_colour_science(report):
@@ -97,6 +97,7 @@ def _images(text: str) -> list[bytes]:
                                                     text)]
 
 
+@pytest.mark.slow
 def test_html_is_self_contained(report, tmp_path):
     path = write_report(report, tmp_path / "report.html")
     text = path.read_text()
@@ -123,12 +124,13 @@ def test_csv_and_json_hold_every_sample(report, tmp_path):
         write_report(report, tmp_path / "r.txt")
 
 
+@pytest.mark.slow
 def test_many_samples_are_summarised(tmp_path):
     rng = np.random.default_rng(5)
     n = 20_000
     centres = rng.uniform(400, 700, (n, 1))
     values = 0.2 + 0.6 * rng.random((n, 1)) * np.exp(-0.5 * ((GRID - centres) / 40) ** 2)
-    report = measurement_report(sc.Spectrum(GRID, values), "D65", "1931")
+    report = measurement_report(sc.Spectrum(GRID, values), illuminant="D65", observer="1931")
     text = report_html(report, page_rows=100)
     assert "Summary of all samples" in text and "First 100 of 20000 samples" in text
     assert text.count("<tr><td>sample ") == 100
@@ -136,6 +138,7 @@ def test_many_samples_are_summarised(tmp_path):
     assert len(json.loads(write_report(report, tmp_path / "r.json").read_text())["samples"]) == n
 
 
+@pytest.mark.slow
 def test_cli_report(tmp_path, capsys):
     sc.write_spectra(_alloys(), tmp_path / "samples.csv")
     out = tmp_path / "report.html"
@@ -158,17 +161,18 @@ def test_cli_report_percent(tmp_path, capsys):
     assert main(["report", str(tmp_path / "pct.csv"), "--illuminant", "C", "--percent",
                  "--out", str(tmp_path / "r.csv")]) == 0
     rows = (tmp_path / "r.csv").read_text().splitlines()
-    expected = measurement_report(spectra, "C")
+    expected = measurement_report(spectra, illuminant="C")
     assert float(rows[2].split(",")[2]) == pytest.approx(expected.XYZ[0, 1], abs=1e-4)
     assert main(["report", str(tmp_path / "pct.csv"), "--illuminant", "C", "--percent",
                  "--out", str(tmp_path / "r.pdf")]) == 2
 
 
+@pytest.mark.slow
 def test_html_with_more_curves_than_are_drawn_individually(tmp_path):
     # 21-39 samples: more than the 20 drawn one by one, fewer than the 40 picked at random
     rng = np.random.default_rng(7)
     values = 0.2 + 0.6 * rng.random((30, GRID.size))
-    report = measurement_report(sc.Spectrum(GRID, values), "D65", "1931")
+    report = measurement_report(sc.Spectrum(GRID, values), illuminant="D65", observer="1931")
     text = report_html(report)  # raised ValueError: larger sample than population
     assert "<img alt='reflectance curves'" in text and text.count("<tr><td>sample ") == 30
 

@@ -1,4 +1,4 @@
-"""Every inverse pair of the colour trunk, through one harness (tests/round_trip.py).
+"""Every inverse pair of the colour trunk, through one harness (tests/support/round_trip.py).
 
 Gold values and their sources:
 - IEC 61966-2-1:1999 (sRGB): D65 white x = 0.3127, y = 0.3290; the printed RGB → XYZ matrix

@@ -44,7 +44,7 @@ REPO = Path(__file__).resolve().parents[1]
 
 #: pytest selection of the repeat runs (see the module docstring for what is left out and why).
 MARKERS = "not browser and not cluster"
-IGNORED_GLOBS = ("tests/test_fuzz_*.py",)
+IGNORED_GLOBS = ("tests/fuzz/*",)
 
 
 @dataclass(frozen=True)

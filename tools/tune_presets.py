@@ -13,7 +13,7 @@ colour's dominant wavelength λd (relative to the display white; negative = comp
 CIELAB chroma C*ab and lightness L* (relative to the display white), plus "in gamut" where the
 seed says the colour can be shown; the objective is the sum of the distances outside the
 ranges, with small penalties that keep the curves smooth and (where the seed says so)
-monotonic. ``tests/test_app_demonstrations.py`` checks the same properties through the app's
+monotonic. ``tests/app/test_app_demonstrations.py`` checks the same properties through the app's
 own compute path.
 """
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import importlib
 
-__version__ = "0.1.0"
+from ._version import __version__ as __version__
 
 # public name -> module (relative to this package) that defines it
 _PUBLIC: dict[str, str] = {
@@ -30,6 +30,8 @@ _PUBLIC: dict[str, str] = {
     "read_spectra": "io",
     "write_spectra": "io",
     "parse_spectra": "io",
+    "sample_data": "samples",
+    "sample_data_names": "samples",
     # standard data
     "observer": "observers",
     "observer_names": "observers",
@@ -37,6 +39,10 @@ _PUBLIC: dict[str, str] = {
     "illuminant_names": "illuminants",
     "canonical_illuminant": "illuminants",
     "illuminant_label": "illuminants",
+    "Illuminant": "illuminants",
+    "resolve_illuminant": "illuminants",
+    "Observer": "observers",
+    "resolve_observer": "observers",
     "DEFAULT_ILLUMINANT": "illuminants",
     "DEFAULT_OBSERVER": "observers",
     "Registry": "registry",
@@ -48,9 +54,9 @@ _PUBLIC: dict[str, str] = {
     "ADAPTATION_METHODS": "display.adaptation",
     "RGB_SPACES": "display.spaces",
     "TRANSFERS": "display.transfer",
-    "blackbody": "illuminants",
-    "daylight": "illuminants",
-    "daylight_xy": "illuminants",
+    "blackbody": "radiators",
+    "daylight": "radiators",
+    "daylight_xy": "radiators",
     # colorimetry
     "weights": "colorimetry",
     "tristimulus": "colorimetry",

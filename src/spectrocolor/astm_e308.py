@@ -20,7 +20,7 @@ decimal, tests/test_astm_e308.py) when A comes from its formula, D65 from CIE S 
 (the linear interpolation of the 5 nm one) and C, D50, D55, D75 from the 5 nm tables by E2022's own
 Lagrange scheme (cubic inside, quadratic at the ends) — the same interpolator E2022 applies to the
 measured data. Linear interpolation of those 5 nm tables misses the printed white points by up to
-0.06 (C, Z). See :func:`illuminant_at_1nm`.
+0.06 (C, Z). See ``illuminant_at_1nm``.
 
 **Which table.** :func:`astm_e308_weights` reproduces E308 **Table 5**: weights for spectral
 data that have been corrected for the instrument's spectral bandpass (or were measured with a
@@ -64,9 +64,9 @@ import numpy as np
 
 from .bandpass import stearns_stearns_matrix
 from .errors import ColorimetryError
-from .illuminants import ILLUMINANTS, canonical_illuminant
-from .illuminants import illuminant as named_illuminant
-from .sampling import cmfs_on, illuminant_on, reflectance_weights, resolve_observer
+from .illuminants import resolve_illuminant
+from .observers import resolve_observer
+from .sampling import cmfs_on, illuminant_on, reflectance_weights
 from .spectrum import validate_wavelengths
 
 #: Measurement intervals for which ASTM E308 gives (and E2022 computes) weights, nm.
@@ -100,21 +100,22 @@ def _validated_grid(wavelengths_nm) -> tuple[np.ndarray, int]:
 
 def _illuminant_extent(illuminant) -> tuple[float, float]:
     """Wavelength range on which the illuminant is defined, nm (formulas — A, blackbodies — everywhere)."""
-    light = canonical_illuminant(illuminant)
+    light = resolve_illuminant(illuminant)
     if light is None:
         raise ColorimetryError(
             "illuminant: ASTM E308 weights are for reflectance or transmittance factors and need an "
             "illuminant (a CIE name such as 'D65', 'blackbody:T', or a Spectrum at 1 nm), got None"
         )
-    if isinstance(light, str) and (light == "A" or light.startswith("blackbody:")):
+    if light.by_formula:
         return -np.inf, np.inf
-    native = named_illuminant(light).wavelengths_nm
+    native = light.spd().wavelengths_nm
     return float(native[0]), float(native[-1])
 
 
 def _reference_range(grid: np.ndarray, observer, illuminant) -> tuple[float, float]:
     """E308's 360–780 nm, widened to the data, within the observer's and illuminant's range."""
-    observer_name, cmfs = resolve_observer(observer)
+    viewer = resolve_observer(observer)
+    observer_name, cmfs = viewer.name, viewer.cmfs()
     defined_lo = max(np.ceil(cmfs.wavelengths_nm[0]), _illuminant_extent(illuminant)[0])
     defined_hi = min(np.floor(cmfs.wavelengths_nm[-1]), _illuminant_extent(illuminant)[1])
     if grid[0] < defined_lo or grid[-1] > defined_hi:
@@ -228,14 +229,14 @@ def illuminant_at_1nm(fine_nm: np.ndarray, illuminant) -> np.ndarray:
     >>> illuminant_at_1nm(np.array([560.0, 561.0]), "D65").round(4).tolist()
     [100.0, 99.6334]
     """
-    light = canonical_illuminant(illuminant)
-    if isinstance(light, str) and light in ILLUMINANTS and ILLUMINANTS.get(light) == "table" and light != "D65":
-        table = named_illuminant(light)
+    light = resolve_illuminant(illuminant)
+    if light is not None and light.tabulated and light.name != "D65":
+        table = light.spd()
         lo, hi = table.wavelengths_nm[[0, -1]]
         if fine_nm[0] < lo or fine_nm[-1] > hi:
-            raise ColorimetryError(f"illuminant: {light} is tabulated at {lo:g}–{hi:g} nm only")
+            raise ColorimetryError(f"illuminant: {light.name} is tabulated at {lo:g}–{hi:g} nm only")
         return lagrange_matrix(table.wavelengths_nm, fine_nm) @ table.values
-    return illuminant_on(fine_nm, illuminant)
+    return illuminant_on(fine_nm, light)
 
 
 def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.ndarray:
@@ -255,7 +256,7 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
         Observer name or alias (see :func:`spectrocolor.observer`) or a (3, K) :class:`Spectrum`
         of colour-matching functions (used at 1 nm, interpolated linearly if needed).
     illuminant : str or Spectrum
-        CIE illuminant name (evaluated at 1 nm by :func:`illuminant_at_1nm`: A from its formula,
+        CIE illuminant name (evaluated at 1 nm by ``illuminant_at_1nm``: A from its formula,
         D65 linearly as CIE's 1 nm table, the other 5 nm tables by E2022's Lagrange scheme) or a :class:`Spectrum` that
         includes every whole nanometre of the reference range (normally 360–780 nm; a Spectrum
         defined on a shorter range shortens the reference range to it, as for the CIE FL
@@ -285,6 +286,8 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
     ((31, 3), 100.0)
     """
     grid, step = _validated_grid(wavelengths_nm)
+    observer = resolve_observer(observer)  # once: the helpers below take the resolved values
+    illuminant = resolve_illuminant(illuminant)
     lo, hi = _reference_range(grid, observer, illuminant)
     below = int((grid[0] - lo) // step)  # reference wavelengths below the data
     above = int((hi - grid[-1]) // step)

@@ -44,17 +44,15 @@ import numpy as np
 
 from .astm_e308 import astm_e308_table6_weights, astm_e308_weights
 from .errors import ColorimetryError
-from .illuminants import canonical_illuminant
-from .illuminants import illuminant as named_illuminant
+from .illuminants import Illuminant, resolve_illuminant
 from .interpolation import interpolation_matrix
-from .observers import DEFAULT_OBSERVER, canonical_observer_name
+from .observers import DEFAULT_OBSERVER, Observer, resolve_observer
 from .registry import Registry
 from .sampling import (
     cmfs_on,
     illuminant_on,
     interval_weights_nm,
     reflectance_weights,
-    resolve_observer,
 )
 from .spectrum import Spectrum, validate_wavelengths
 
@@ -83,7 +81,9 @@ def _one_nm_weights(grid: np.ndarray, observer, illuminant) -> np.ndarray:
     return projection.T @ _sum_weights(fine, observer, illuminant)
 
 
-#: The summation methods: name → function (grid, observer, illuminant) → (K, 3) weights.
+#: The summation methods: name → function (grid, observer, illuminant) → (K, 3) weights; the
+#: functions take the resolved :class:`~spectrocolor.observers.Observer` and
+#: :class:`~spectrocolor.illuminants.Illuminant` (or ``None`` for lights).
 SUMMATION_METHODS = Registry("method", "a summation method")
 SUMMATION_METHODS.add("sum", _sum_weights, "sum at the spectrum's own samples (the definition; seeds 001, 003)")
 SUMMATION_METHODS.add("1nm", _one_nm_weights, "interpolate linearly to 1 nm, then sum (CIE 015's recommendation)")
@@ -100,16 +100,48 @@ SUMMATION_METHODS.add(
 DEFAULT_METHOD = "sum"
 
 
-def _compute_weights(grid: np.ndarray, observer, illuminant, method: str) -> np.ndarray:
+def _compute_weights(grid: np.ndarray, observer: Observer, illuminant: Illuminant | None, method: str) -> np.ndarray:
     result = np.ascontiguousarray(SUMMATION_METHODS.get(method)(grid, observer, illuminant))
     result.setflags(write=False)
     return result
 
 
 @lru_cache(maxsize=256)
-def _cached_weights(grid_key: bytes, observer_name: str, illuminant_name: str | None, method: str) -> np.ndarray:
+def _cached_weights(grid_key: bytes, observer: Observer, illuminant: Illuminant | None, method: str) -> np.ndarray:
     grid = np.frombuffer(grid_key, dtype=float)
-    return _compute_weights(grid, observer_name, illuminant_name, method)
+    return _compute_weights(grid, observer, illuminant, method)
+
+
+def resolved_weights(grid: np.ndarray, observer: Observer, illuminant: Illuminant | None, method: str) -> np.ndarray:
+    """:func:`weights` for a validated grid and resolved values (cached for named ones).
+
+    Parameters
+    ----------
+    grid : numpy.ndarray, shape (K,)
+        A validated grid of at least two samples, nm.
+    observer : Observer
+        From :func:`spectrocolor.observers.resolve_observer`.
+    illuminant : Illuminant or None
+        From :func:`spectrocolor.illuminants.resolve_illuminant`.
+    method : str
+        A canonical name of :data:`SUMMATION_METHODS`.
+
+    Returns
+    -------
+    numpy.ndarray
+        Read-only (K, 3) weights.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid
+    >>> from spectrocolor.observers import resolve_observer
+    >>> W = resolved_weights(wavelength_grid(400, 700, 10), resolve_observer("1931"), None, "sum")
+    >>> W.shape
+    (31, 3)
+    """
+    if observer.cacheable and (illuminant is None or illuminant.cacheable):
+        return _cached_weights(grid.tobytes(), observer, illuminant, method)
+    return _compute_weights(grid, observer, illuminant, method)
 
 
 def weights(wavelengths_nm, *, observer=DEFAULT_OBSERVER, illuminant=None, method: str = DEFAULT_METHOD) -> np.ndarray:
@@ -119,14 +151,16 @@ def weights(wavelengths_nm, *, observer=DEFAULT_OBSERVER, illuminant=None, metho
     ----------
     wavelengths_nm : array_like, shape (K,)
         The spectra's sampling grid, nm (must lie within the observer's range).
-    observer : str or Spectrum, keyword-only
-        Observer name or alias (see :func:`spectrocolor.observer`; default CIE 1931 2°), or a
+    observer : str, Spectrum or Observer, keyword-only
+        Observer name or alias (see :func:`spectrocolor.observer`; default CIE 1931 2°), a
         user's colour-matching functions as a (3, K) :class:`Spectrum` (used as given, on its own
-        samples).
-    illuminant : None, str, float or Spectrum, keyword-only
+        samples), or an :class:`~spectrocolor.observers.Observer` from
+        :func:`~spectrocolor.observers.resolve_observer`.
+    illuminant : None, str, float, Spectrum or Illuminant, keyword-only
         ``None`` (default) for lights (``W = x̄ȳz̄ · Δλ``, relative units of the light); otherwise
-        any form of :func:`spectrocolor.canonical_illuminant` (a CIE name, ``"blackbody:T"``,
-        ``"D:T"``, a temperature, a Spectrum sampled at the summation grid), and the spectra are
+        any form of :func:`spectrocolor.resolve_illuminant` (a CIE name, ``"blackbody:T"``,
+        ``"D:T"``, a temperature, a Spectrum sampled at the summation grid, an
+        :class:`~spectrocolor.illuminants.Illuminant`), and the spectra are
         reflectance or transmittance factors (0–1): ``W`` is normalised so the perfect white has
         ``Y = 100``.
     method : str, keyword-only
@@ -158,10 +192,7 @@ def weights(wavelengths_nm, *, observer=DEFAULT_OBSERVER, illuminant=None, metho
             f"wavelengths_nm: summation needs at least two samples (Δλ is undefined for one), got {grid.tolist()}"
         )
     method = SUMMATION_METHODS.canonical(method)
-    resolved = canonical_illuminant(illuminant)
-    if isinstance(observer, str) and not isinstance(resolved, Spectrum):
-        return _cached_weights(grid.tobytes(), canonical_observer_name(observer), resolved, method)
-    return _compute_weights(grid, observer, resolved, method)
+    return resolved_weights(grid, resolve_observer(observer), resolve_illuminant(illuminant), method)
 
 
 def apply_weights(values, W: np.ndarray) -> np.ndarray:
@@ -303,14 +334,15 @@ def white_point(
     >>> xy(white_point("D65")).round(5).tolist()
     [0.31272, 0.32903]
     """
-    resolved = canonical_illuminant(illuminant)
-    if resolved is None:
+    light = resolve_illuminant(illuminant)
+    if light is None:
         raise ColorimetryError(
             "illuminant: a white point needs an illuminant; None means lights, which have no perfect white"
         )
+    viewer = resolve_observer(observer)
     if wavelengths_nm is None:
-        spd = named_illuminant(resolved)
-        lo, hi = resolve_observer(observer)[1].wavelengths_nm[[0, -1]]
+        spd = light.spd()
+        lo, hi = viewer.cmfs().wavelengths_nm[[0, -1]]
         wavelengths_nm = spd.restrict(max(lo, 380.0), min(hi, 780.0)).wavelengths_nm
-    W = weights(wavelengths_nm, observer=observer, illuminant=resolved, method=method)
+    W = weights(wavelengths_nm, observer=viewer, illuminant=light, method=method)
     return np.array(W.sum(axis=0))

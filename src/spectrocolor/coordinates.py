@@ -14,6 +14,10 @@ References
 CIE 015:2018, *Colorimetry*, 4th ed., sections 7.1 (chromaticity), 8.1 (CIE 1976 UCS
 u'v'), 8.2.1 (CIELAB, with the exact constants (6/29)^3 and (29/6)^2 / 3) and 8.2.2
 (CIELCh). CIE 1960 UCS: MacAdam (1937), J. Opt. Soc. Am. 27, 294-299.
+
+Why this file is long: it is the one table of coordinate systems derived from tristimulus values
+(xy, xyY, uv, u'v', CIELAB, CIELCh) with their inverses; each function is short, and splitting the
+file would separate each forward transform from its inverse and from the shape checks they share.
 """
 
 from __future__ import annotations

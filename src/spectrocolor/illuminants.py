@@ -1,4 +1,7 @@
-"""CIE illuminants, Planckian radiators and the CIE daylight series.
+"""CIE illuminants: the vocabulary of lights, resolved once into :class:`Illuminant` values.
+
+The formulas of the lights that have one (Planckian radiators, illuminant A, the CIE daylight
+series) are in :mod:`spectrocolor.radiators`.
 
 References
 ----------
@@ -6,31 +9,25 @@ CIE 015:2018 *Colorimetry*, 4th ed.: §4.1 and Table 5 (illuminant A formula wit
 c₂ = 1.435 × 10⁻² m·K), §4.1.2 and Table 6 (daylight basis S0, S1, S2 and the xD, yD, M1, M2
 formulae), Tables 8–10 (FL1–FL12, LED-B1–B5). CODATA 2018 (second radiation constant
 c₂ = 1.438 776 877 × 10⁻² m·K). Sources of the files: ``data/PROVENANCE.md``.
+
+Why this file is long: it is the vocabulary of lights: the registry of CIE names, the typed
+:class:`Illuminant` with its cached SPD, and the one resolver every argument that names a light goes
+through; the formulas were moved to :mod:`spectrocolor.radiators`, and what remains is one concept.
 """
 
 from __future__ import annotations
 
 import re
-from functools import cache
+from dataclasses import dataclass
+from functools import cache, lru_cache
 
 import numpy as np
 
-from .arguments import real_number
 from .data_tables import load_table
 from .errors import ColorimetryError, SpectrumError
+from .radiators import blackbody, daylight, daylight_xy, illuminant_A_values
 from .registry import Registry
 from .spectrum import Spectrum, validate_wavelengths, wavelength_grid
-
-#: Second radiation constant, CODATA 2018, m·K.
-C2_CODATA_M_K = 1.438776877e-2
-#: Second radiation constant with which CIE 015:2018 defines the Planckian locus (correlated
-#: colour temperature), m·K.
-C2_CIE_LOCUS_M_K = 1.4388e-2
-#: Second radiation constant used in the definition of CIE illuminant A, m·K.
-C2_ILLUMINANT_A_M_K = 1.435e-2
-#: Temperature in the defining formula of illuminant A (with c₂ = 1.435e-2 m·K; this is the
-#: 2856 K Planckian radiator of the ITS-68/CODATA constant c₂ = 1.4388e-2 m·K).
-ILLUMINANT_A_TEMPERATURE_K = 2848.0
 
 #: The CIE illuminants by name: value "formula" (A), "constant" (E) or "table" (a CIE table in
 #: data/illuminants/), with one-line descriptions (CIE 015:2018 §4, Tables 5-10).
@@ -129,19 +126,280 @@ _ACCEPTED_SOURCES = (
 _ACCEPTED = f"None (no illuminant: the spectra are lights), {_ACCEPTED_SOURCES}"
 
 
-def canonical_illuminant(illuminant, argument: str = "illuminant"):
-    """The one illuminant vocabulary of spectrocolor, resolved to a canonical form.
+#: The kinds of light an :class:`Illuminant` can be, with what defines each.
+ILLUMINANT_KINDS = {
+    "cie": "a CIE illuminant of ILLUMINANTS: a table, the formula of A, or the constant E",
+    "blackbody": "a Planckian radiator at temperature_K (Planck's law, CODATA 2018 c₂)",
+    "daylight": "the CIE daylight series at correlated colour temperature temperature_K",
+    "spectrum": "a user's Spectrum with one distribution, used on its own samples",
+}
+_REFERENCES = {
+    "A": "CIE 015:2018 §4.1, eq. (4.1) (c₂ = 1.435e-2 m·K, 2848 K)",
+    "E": "CIE 015:2018 §4.1 (equal-energy illuminant)",
+    "blackbody": "Planck's law; CIE 015:2018 §4.1; CODATA 2018 c₂ = 1.438776877e-2 m·K",
+    "daylight": "CIE 015:2018 §4.1.2, eqs. (4.7)–(4.10) and Table 6 (S0, S1, S2)",
+    "spectrum": "user-supplied spectral power distribution",
+}
 
-    Every module, the command line and the app accept the same forms, and ``None`` means the
-    same thing everywhere: no illuminant, so the spectra are lights (sources), not reflectances.
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Illuminant:
+    """A light resolved once: what the colorimetry needs, never parsed again.
+
+    Made by :func:`resolve_illuminant` (do not construct it by hand); every public function
+    that takes an illuminant accepts one, so a value resolved once can be passed on.
+
+    Attributes
+    ----------
+    name : str
+        Canonical name: a CIE name (``"D65"``, ``"FL11"``), ``"blackbody:T"`` or ``"D:T"`` (T in
+        kelvin, as ``%g``); for a Spectrum, its own name or ``"user illuminant"``.
+    label : str
+        Short human-readable name (:func:`illuminant_label`): ``"D65"``, ``"blackbody 3000 K"``,
+        ``"CIE daylight 5000 K"``.
+    kind : str
+        One of :data:`ILLUMINANT_KINDS`: ``"cie"``, ``"blackbody"``, ``"daylight"``, ``"spectrum"``.
+    temperature_K : float or None
+        Temperature of a blackbody or correlated colour temperature of a daylight, K.
+    reference : str
+        Where the distribution is defined (the CIE table, formula or standard; ``data/PROVENANCE.md``
+        for the files).
+    spectrum : Spectrum or None
+        The user's distribution (kind ``"spectrum"`` only).
+
+    Notes
+    -----
+    Two named illuminants are equal when their canonical names are; one made from a Spectrum is
+    equal only to itself. Named ones are hashable cache keys (:attr:`cacheable`).
+
+    Examples
+    --------
+    >>> light = resolve_illuminant("blackbody:3000 K")
+    >>> light.name, light.label, light.kind, light.temperature_K
+    ('blackbody:3000', 'blackbody 3000 K', 'blackbody', 3000.0)
+    >>> light.spd([560.0]).values.tolist()
+    [100.0]
+    >>> resolve_illuminant("d65") == resolve_illuminant("D65")
+    True
+    """
+
+    name: str
+    label: str
+    kind: str
+    temperature_K: float | None = None
+    reference: str = ""
+    spectrum: Spectrum | None = None
+
+    @property
+    def cacheable(self) -> bool:
+        """Whether the light is named (so results computed under it may be cached by it)."""
+        return self.kind != "spectrum"
+
+    @property
+    def canonical(self):
+        """What :func:`canonical_illuminant` returns: the canonical name, or the user's Spectrum."""
+        return self.spectrum if self.kind == "spectrum" else self.name
+
+    @property
+    def by_formula(self) -> bool:
+        """Whether the distribution is a formula defined at every wavelength (A, blackbodies)."""
+        return self.kind == "blackbody" or self.name == "A"
+
+    @property
+    def tabulated(self) -> bool:
+        """Whether the distribution is a CIE table (interpolated, never extrapolated)."""
+        return self.kind == "cie" and ILLUMINANTS.get(self.name) == "table"
+
+    def spd(self, wavelengths_nm=None, method: str = "linear") -> Spectrum:
+        """The relative spectral power distribution, computed on demand and cached.
+
+        Parameters
+        ----------
+        wavelengths_nm : array_like, optional
+            Grid, nm; ``None`` for the light's own grid (as :func:`illuminant`).
+        method : str, default "linear"
+            Interpolation for tabulated lights and user spectra (see :meth:`Spectrum.resample`).
+
+        Returns
+        -------
+        Spectrum
+            Relative SPD, dimensionless (the CIE tables are 100 at 560 nm). For a named light the
+            values are read-only and shared between calls.
+
+        Raises
+        ------
+        ColorimetryError
+            For a grid outside a table's or the user's range (never extrapolated).
+
+        Examples
+        --------
+        >>> resolve_illuminant("D65").spd([560.0, 600.0]).values.tolist()
+        [100.0, 90.0062]
+        """
+        if self.spectrum is not None:  # kind "spectrum"
+            if wavelengths_nm is None:
+                return self.spectrum
+            try:
+                return self.spectrum.resample(wavelengths_nm, method)
+            except SpectrumError as exc:
+                raise ColorimetryError(f"illuminant: {exc}") from None
+        try:
+            key = None if wavelengths_nm is None else validate_wavelengths(wavelengths_nm).tobytes()
+        except SpectrumError as exc:
+            if not self.tabulated:
+                raise
+            raise ColorimetryError(f"illuminant {self.name}: {exc}") from None
+        compute = _named_spd if isinstance(method, str) else _named_spd.__wrapped__  # (resample names a bad one)
+        return compute(self.name, self.kind, self.temperature_K, key, method)
+
+    def _key(self):
+        return (self.kind, id(self.spectrum)) if self.kind == "spectrum" else (self.kind, self.name)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Illuminant) and self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __repr__(self) -> str:
+        return f"Illuminant({self.name!r}, kind={self.kind!r})"
+
+
+@lru_cache(maxsize=128)
+def _named_spd(name: str, kind: str, temperature_K, grid_key: bytes | None, method: str) -> Spectrum:
+    """A named light's SPD on a grid (``None``: its own), read-only and cached."""
+    wavelengths_nm = None if grid_key is None else np.frombuffer(grid_key, dtype=float)
+    if kind == "blackbody":
+        result = blackbody(temperature_K, wavelengths_nm)
+    elif kind == "daylight":
+        result = daylight(temperature_K, wavelengths_nm)
+    elif name == "A":
+        grid = _table("A").wavelengths_nm if wavelengths_nm is None else validate_wavelengths(wavelengths_nm)
+        result = Spectrum(grid, illuminant_A_values(grid), ("A",))
+    elif name == "E":
+        grid = wavelength_grid(*_DEFAULT_GRID) if wavelengths_nm is None else validate_wavelengths(wavelengths_nm)
+        result = Spectrum(grid, np.full(grid.size, 100.0), ("E",))
+    elif wavelengths_nm is None:
+        result = _table(name)
+    else:
+        try:
+            result = _table(name).resample(wavelengths_nm, method)
+        except SpectrumError as exc:
+            raise ColorimetryError(f"illuminant {name}: {exc}") from None
+    result.values.setflags(write=False)
+    return result
+
+
+def _named(name: str, kind: str, temperature_K: float | None = None) -> Illuminant:
+    if kind == "blackbody":
+        label = f"blackbody {temperature_K:g} K"
+    elif kind == "daylight":
+        label = f"CIE daylight {temperature_K:g} K"
+    else:
+        label = name
+    reference = _REFERENCES.get(name) or _REFERENCES.get(kind) or (
+        f"CIE 015:2018 Tables 5–10: {ILLUMINANTS.description(name)} (data/PROVENANCE.md)")
+    return Illuminant(name, label, kind, temperature_K, reference)
+
+
+def resolve_illuminant(illuminant, argument: str = "illuminant") -> Illuminant | None:
+    """The one illuminant resolver: any accepted form → an :class:`Illuminant` (or ``None``).
+
+    Every public function resolves its light arguments here once, at its entry, and passes the
+    resulting value on; inner code never parses a name again. ``None`` means the same thing
+    everywhere: no illuminant, so the spectra are lights (sources), not reflectances.
 
     Parameters
     ----------
-    illuminant : None, str, int, float or Spectrum
+    illuminant : None, str, int, float, Spectrum or Illuminant
         ``None``; a CIE name in any spelling (``"D65"``, ``"d65"``, ``"FL 11"``, ``"led_b1"``);
-        ``"blackbody:T"`` (also ``"planck:T"``) for a Planckian radiator at ``T`` kelvin;
-        ``"D:T"`` (also ``"daylight:T"``) for the CIE daylight series at ``T`` kelvin; a number,
-        taken as a blackbody temperature in kelvin; or a :class:`Spectrum` with one distribution.
+        ``"blackbody:T"`` (also ``"planck:T"``, ``"bb:T"``, with or without ``K``) for a
+        Planckian radiator at ``T`` kelvin (100 K to 10⁶ K); ``"D:T"`` (also ``"daylight:T"``)
+        for the CIE daylight series at ``T`` kelvin (4000–25000 K); a number, taken as a
+        blackbody temperature in kelvin; a :class:`Spectrum` with one distribution; or an
+        :class:`Illuminant` (returned as it is).
+    argument : str, default "illuminant"
+        The name of the caller's argument, used in the error message.
+
+    Returns
+    -------
+    Illuminant or None
+        ``None`` for ``None``; else the resolved light.
+
+    Raises
+    ------
+    ColorimetryError
+        For anything else, naming ``argument`` and listing the accepted forms.
+
+    References
+    ----------
+    CIE 015:2018 §4.1 and Tables 5–10 (the CIE illuminants); see the module docstring.
+
+    Examples
+    --------
+    >>> resolve_illuminant("fl 11").name, resolve_illuminant(6504).name, resolve_illuminant("daylight:5000K").label
+    ('FL11', 'blackbody:6504', 'CIE daylight 5000 K')
+    >>> try:
+    ...     resolve_illuminant("blackbody:cold", "second_illuminant")
+    ... except ColorimetryError as error:
+    ...     print(str(error)[:55])
+    second_illuminant: 'blackbody:cold' needs a temperature
+    """
+    if illuminant is None or isinstance(illuminant, Illuminant):
+        return illuminant
+    return _parse_illuminant(illuminant, argument)
+
+
+def _parse_illuminant(illuminant, argument: str) -> Illuminant:
+    """The parsing step of :func:`resolve_illuminant` (one call per argument per public call)."""
+    if isinstance(illuminant, Spectrum):
+        if illuminant.values.ndim != 1:
+            raise ColorimetryError(
+                f"{argument}: expected one spectral distribution, got a batch of shape {illuminant.batch_shape}"
+            )
+        label = illuminant.names[0] if illuminant.names and illuminant.names[0] else "user illuminant"
+        return Illuminant(label, label, "spectrum", None, _REFERENCES["spectrum"], illuminant)
+    if isinstance(illuminant, int | float | np.integer | np.floating) and not isinstance(illuminant, bool):
+        temperature = _temperature(illuminant, argument)
+        return _named(f"blackbody:{temperature:g}", "blackbody", float(f"{temperature:g}"))
+    if isinstance(illuminant, str):
+        match = _temperature_key(illuminant)
+        if match:
+            kind = match[0].lower()
+            try:
+                value = float(match[1])
+            except ValueError:
+                raise ColorimetryError(
+                    f"{argument}: {illuminant!r} needs a temperature in kelvin after the colon, e.g. 'blackbody:6504'"
+                ) from None
+            temperature = _temperature(value, argument)
+            if kind in ("d", "daylight"):
+                try:
+                    daylight_xy(temperature)  # validates the 4000–25000 K range
+                except ColorimetryError as exc:  # name the caller's argument, not daylight's
+                    raise ColorimetryError(f"{argument}: {illuminant!r:.40}: {exc}") from None
+                return _named(f"D:{temperature:g}", "daylight", float(f"{temperature:g}"))
+            return _named(f"blackbody:{temperature:g}", "blackbody", float(f"{temperature:g}"))
+        try:
+            return _named(canonical_illuminant_name(illuminant), "cie")
+        except ColorimetryError:
+            raise ColorimetryError(
+                f"{argument}: {illuminant!r:.80} is not a CIE illuminant name ({', '.join(ILLUMINANTS)}); "
+                "other forms: 'blackbody:T', 'D:T', a temperature in kelvin, a Spectrum, or None for lights"
+            ) from None
+    raise ColorimetryError(f"{argument}: expected {_ACCEPTED}; got {illuminant!r:.80}")
+
+
+def canonical_illuminant(illuminant, argument: str = "illuminant"):
+    """The one illuminant vocabulary of spectrocolor, resolved to a canonical form.
+
+    A thin wrapper over :func:`resolve_illuminant` for callers that want a plain value (a
+    hashable name) rather than an :class:`Illuminant`.
+
+    Parameters
+    ----------
+    illuminant : None, str, int, float, Spectrum or Illuminant
+        Any form :func:`resolve_illuminant` accepts.
     argument : str
         The name of the caller's argument, used in the error message.
 
@@ -161,42 +419,8 @@ def canonical_illuminant(illuminant, argument: str = "illuminant"):
     >>> canonical_illuminant("fl 11"), canonical_illuminant(6504), canonical_illuminant("daylight:5000K")
     ('FL11', 'blackbody:6504', 'D:5000')
     """
-    if illuminant is None:
-        return None
-    if isinstance(illuminant, Spectrum):
-        if illuminant.values.ndim != 1:
-            raise ColorimetryError(
-                f"{argument}: expected one spectral distribution, got a batch of shape {illuminant.batch_shape}"
-            )
-        return illuminant
-    if isinstance(illuminant, int | float | np.integer | np.floating) and not isinstance(illuminant, bool):
-        return f"blackbody:{_temperature(illuminant, argument):g}"
-    if isinstance(illuminant, str):
-        match = _temperature_key(illuminant)
-        if match:
-            kind = match[0].lower()
-            try:
-                value = float(match[1])
-            except ValueError:
-                raise ColorimetryError(
-                    f"{argument}: {illuminant!r} needs a temperature in kelvin after the colon, e.g. 'blackbody:6504'"
-                ) from None
-            temperature = _temperature(value, argument)
-            if kind in ("d", "daylight"):
-                try:
-                    daylight_xy(temperature)  # validates the 4000–25000 K range
-                except ColorimetryError as exc:  # name the caller's argument, not daylight's
-                    raise ColorimetryError(f"{argument}: {illuminant!r:.40}: {exc}") from None
-                return f"D:{temperature:g}"
-            return f"blackbody:{temperature:g}"
-        try:
-            return canonical_illuminant_name(illuminant)
-        except ColorimetryError:
-            raise ColorimetryError(
-                f"{argument}: {illuminant!r:.80} is not a CIE illuminant name ({', '.join(ILLUMINANTS)}); "
-                "other forms: 'blackbody:T', 'D:T', a temperature in kelvin, a Spectrum, or None for lights"
-            ) from None
-    raise ColorimetryError(f"{argument}: expected {_ACCEPTED}; got {illuminant!r:.80}")
+    resolved = resolve_illuminant(illuminant, argument)
+    return None if resolved is None else resolved.canonical
 
 
 def _temperature(value, argument: str) -> float:
@@ -213,144 +437,28 @@ def illuminant_label(illuminant) -> str:
 
     Parameters
     ----------
-    illuminant : None, str, int, float or Spectrum
-        Any form :func:`canonical_illuminant` accepts.
+    illuminant : None, str, int, float, Spectrum or Illuminant
+        Any form :func:`resolve_illuminant` accepts.
 
     Returns
     -------
     str
         The canonical CIE name, ``"blackbody T K"``, ``"CIE daylight T K"``, the Spectrum's name
-        (``"user illuminant"`` when it has none), or ``"none (lights)"`` for ``None``.
+        (``"user illuminant"`` when it has none), or ``"none (lights)"`` for ``None``
+        (:attr:`Illuminant.label`).
 
     Raises
     ------
     ColorimetryError
-        As :func:`canonical_illuminant`.
+        As :func:`resolve_illuminant`.
 
     Examples
     --------
     >>> illuminant_label("d50"), illuminant_label(3000), illuminant_label(None)
     ('D50', 'blackbody 3000 K', 'none (lights)')
     """
-    resolved = canonical_illuminant(illuminant)
-    if resolved is None:
-        return "none (lights)"
-    if isinstance(resolved, Spectrum):
-        return resolved.names[0] if resolved.names and resolved.names[0] else "user illuminant"
-    kind, _, value = resolved.partition(":")
-    if not value:
-        return resolved
-    return f"blackbody {value} K" if kind == "blackbody" else f"CIE daylight {value} K"
-
-
-def _grid_or_default(wavelengths_nm, default: tuple[float, float, float]) -> np.ndarray:
-    if wavelengths_nm is None:
-        return wavelength_grid(*default)
-    return validate_wavelengths(wavelengths_nm)
-
-
-def planck(wavelengths_nm, temperature_K, c2_m_K: float) -> np.ndarray:
-    """Relative Planck spectral radiance ``1 / (λ⁵ (exp(c₂/λT) − 1))`` with λ in m, arbitrary scale.
-
-    ``wavelengths_nm`` and ``temperature_K`` broadcast against each other (e.g. (K,) and (N, 1)).
-
-    Parameters
-    ----------
-    wavelengths_nm : array_like
-        Wavelengths, nm.
-    temperature_K : array_like
-        Temperatures, K.
-    c2_m_K : float
-        Second radiation constant c₂, m·K (e.g. :data:`C2_CODATA_M_K`).
-
-    Returns
-    -------
-    numpy.ndarray
-        The broadcast shape; proportional to spectral radiance (the constant ``2hc²`` omitted).
-
-    Examples
-    --------
-    >>> p = planck([400.0, 560.0, 700.0], 6504.0, C2_CODATA_M_K)
-    >>> (100 * p / p[1]).round(3).tolist()  # as blackbody(6504, [400, 560, 700])
-    [109.067, 100.0, 73.951]
-    """
-    wavelength_m = np.asarray(wavelengths_nm, dtype=float) * 1e-9
-    return 1.0 / (wavelength_m**5 * np.expm1(c2_m_K / (wavelength_m * temperature_K)))
-
-
-def blackbody(
-    temperature_K: float,
-    wavelengths_nm=None,
-    normalise_at_nm: float = 560.0,
-    c2_m_K: float = C2_CODATA_M_K,
-) -> Spectrum:
-    """Planckian radiator at ``temperature_K``, relative SPD equal to 100 at ``normalise_at_nm``.
-
-    Defaults: 360–830 nm at 1 nm and the CODATA 2018 second radiation constant. CIE 015 defines
-    the Planckian locus for correlated colour temperature with c₂ = 1.4388e-2 m·K (pass
-    ``c2_m_K=C2_CIE_LOCUS_M_K`` to match it; the two differ by 1.6e-5 in temperature). Seed 000
-    (Zawischa) lights its soap films with ``blackbody(6504)``.
-
-    Parameters
-    ----------
-    temperature_K : float
-        Temperature of the radiator, K (positive).
-    wavelengths_nm : array_like, shape (K,), optional
-        The grid, nm; default 360–830 nm at 1 nm.
-    normalise_at_nm : float, default 560.0
-        Wavelength at which the SPD is 100, nm.
-    c2_m_K : float, default C2_CODATA_M_K
-        Second radiation constant c₂, m·K (1.438776877e-2, CODATA 2018).
-
-    Returns
-    -------
-    Spectrum
-        Relative spectral power ``100 · M(λ, T) / M(normalise_at_nm, T)`` (Planck's law),
-        dimensionless, named ``"blackbody"``.
-
-    Raises
-    ------
-    ColorimetryError
-        For a temperature that is not a positive number, or one so low that the ratio
-        overflows on the grid.
-
-    References
-    ----------
-    CIE 015:2018 §4.1 (Planckian radiators; illuminant A); CODATA 2018 for c₂.
-
-    Examples
-    --------
-    >>> blackbody(6504, [400, 560, 700]).values.round(3).tolist()
-    [109.067, 100.0, 73.951]
-    """
-    if not (isinstance(temperature_K, int | float) and np.isfinite(temperature_K) and temperature_K > 0):
-        raise ColorimetryError(f"temperature_K: expected a positive temperature in kelvin, got {temperature_K!r}")
-    normalise_at_nm = real_number(normalise_at_nm, "normalise_at_nm", "a wavelength in nm",
-                                  positive=True)
-    grid = _grid_or_default(wavelengths_nm, (360.0, 830.0, 1.0))
-    # the ratio in logarithms: at a few tens of kelvin both radiances underflow to 0 (0/0 = NaN)
-    log_ratio = _log_planck(grid, temperature_K, c2_m_K) - _log_planck(
-        np.array(normalise_at_nm, dtype=float), temperature_K, c2_m_K)
-    with np.errstate(over="ignore"):
-        values = 100.0 * np.exp(log_ratio)
-    if not np.all(np.isfinite(values)):
-        raise ColorimetryError(
-            f"temperature_K, normalise_at_nm: a blackbody at {temperature_K:g} K relative to "
-            f"{normalise_at_nm:g} nm exceeds the floating-point range on this grid; use a higher "
-            "temperature or normalise at a longer wavelength")
-    return Spectrum(grid, values, ("blackbody",))
-
-
-def _log_planck(wavelengths_nm, temperature_K, c2_m_K: float) -> np.ndarray:
-    """Natural logarithm of :func:`planck`, finite where the radiance itself under/overflows."""
-    wavelength_m = np.asarray(wavelengths_nm, dtype=float) * 1e-9
-    x = c2_m_K / (wavelength_m * temperature_K)
-    return -5.0 * np.log(wavelength_m) - (x + np.log(-np.expm1(-x)))  # log(e^x - 1), stable
-
-
-def _illuminant_A(grid: np.ndarray) -> np.ndarray:
-    """CIE 015:2018 eq. (4.1): S_A(λ) = 100 (560/λ)⁵ (e^{c₂/(560·2848)} − 1)/(e^{c₂/(λ·2848)} − 1)."""
-    return blackbody(ILLUMINANT_A_TEMPERATURE_K, grid, c2_m_K=C2_ILLUMINANT_A_M_K).values
+    resolved = resolve_illuminant(illuminant)
+    return "none (lights)" if resolved is None else resolved.label
 
 
 @cache
@@ -400,129 +508,7 @@ def illuminant(name, wavelengths_nm=None, method: str = "linear") -> Spectrum:
     >>> float(illuminant("blackbody:2856", [560.0]).values[0])
     100.0
     """
-    canonical = canonical_illuminant(name, "name")
-    if canonical is None:
+    light = resolve_illuminant(name, "name")
+    if light is None:
         raise ColorimetryError(f"name: expected {_ACCEPTED_SOURCES}; got None")
-    if isinstance(canonical, Spectrum):
-        if wavelengths_nm is None:
-            return canonical
-        try:
-            return canonical.resample(wavelengths_nm, method)
-        except SpectrumError as exc:
-            raise ColorimetryError(f"illuminant: {exc}") from None
-    kind, _, value = canonical.partition(":")
-    if kind == "blackbody":
-        return blackbody(float(value), wavelengths_nm)
-    if kind == "D" and value:
-        return daylight(float(value), wavelengths_nm)
-    if canonical == "A":
-        grid = _table("A").wavelengths_nm if wavelengths_nm is None else validate_wavelengths(wavelengths_nm)
-        return Spectrum(grid, _illuminant_A(grid), ("A",))
-    if canonical == "E":
-        grid = _grid_or_default(wavelengths_nm, _DEFAULT_GRID)
-        return Spectrum(grid, np.full(grid.size, 100.0), ("E",))
-    table = _table(canonical)
-    if wavelengths_nm is None:
-        return table
-    try:
-        return table.resample(wavelengths_nm, method)
-    except SpectrumError as exc:
-        raise ColorimetryError(f"illuminant {canonical}: {exc}") from None
-
-
-def daylight_xy(cct_K: float) -> np.ndarray:
-    """Chromaticity (xD, yD) of the CIE daylight illuminant of correlated colour temperature ``cct_K``.
-
-    CIE 015:2018 eqs. (4.7)–(4.9); valid for 4000 K ≤ T ≤ 25 000 K.
-
-    Parameters
-    ----------
-    cct_K : float
-        Correlated colour temperature, K, 4000–25000.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``[xD, yD]``, CIE 1931 chromaticity, shape (2,).
-
-    Raises
-    ------
-    ColorimetryError
-        For a non-number or a temperature outside 4000–25000 K.
-
-    References
-    ----------
-    CIE 015:2018 §4.1.2, eqs. (4.7)–(4.9).
-
-    Examples
-    --------
-    >>> daylight_xy(6504).round(5).tolist()
-    [0.31271, 0.32912]
-    """
-    if not isinstance(cct_K, int | float | np.number) or isinstance(cct_K, bool):
-        raise ColorimetryError(f"cct_K: expected a temperature in kelvin (4000–25000), got {cct_K!r}")
-    T = float(cct_K)
-    if not 4000.0 <= T <= 25000.0:
-        raise ColorimetryError(f"cct_K: the CIE daylight series is defined for 4000–25000 K, got {cct_K!r}")
-    if T <= 7000.0:
-        x = -4.6070e9 / T**3 + 2.9678e6 / T**2 + 0.09911e3 / T + 0.244063
-    else:
-        x = -2.0064e9 / T**3 + 1.9018e6 / T**2 + 0.24748e3 / T + 0.237040
-    y = -3.000 * x**2 + 2.870 * x - 0.275
-    return np.array([x, y])
-
-
-def daylight(cct_K: float, wavelengths_nm=None, round_coefficients: bool = True) -> Spectrum:
-    """CIE daylight illuminant of correlated colour temperature ``cct_K`` from S0, S1, S2.
-
-    ``S(λ) = S0(λ) + M1 S1(λ) + M2 S2(λ)`` with M1, M2 from (xD, yD) (CIE 015:2018 eq. 4.10).
-    With ``round_coefficients`` (default) M1 and M2 are rounded to three decimals, as the CIE
-    did for the tabulated D50–D75; so ``daylight(6500 * 1.4388 / 1.4380)`` reproduces the D65
-    table. The basis is tabulated at 5 nm (300–830 nm) and interpolated linearly.
-
-    Parameters
-    ----------
-    cct_K : float
-        Correlated colour temperature, K, 4000–25000.
-    wavelengths_nm : array_like, shape (K,), optional
-        The grid, nm, within 300–830 nm; default the basis's own 5 nm grid, 300–830 nm.
-    round_coefficients : bool, default True
-        Round M1 and M2 to three decimals (CIE practice for the tabulated D illuminants).
-
-    Returns
-    -------
-    Spectrum
-        Relative SPD (100 near 560 nm, like the CIE tables), named ``"D<cct_K>K"``.
-
-    Raises
-    ------
-    ColorimetryError
-        For a temperature outside 4000–25000 K or a grid outside 300–830 nm.
-
-    References
-    ----------
-    CIE 015:2018 §4.1.2, eqs. (4.7)–(4.10) and Table 6 (S0, S1, S2).
-
-    Examples
-    --------
-    >>> d65 = daylight(6500 * 1.4388 / 1.4380, [400, 560, 700])
-    >>> d65.values.round(3).tolist()
-    [82.755, 100.0, 71.609]
-    >>> illuminant("D65", [400, 560, 700]).values.tolist()
-    [82.7549, 100.0, 71.6091]
-    """
-    x, y = daylight_xy(cct_K)
-    m = 0.0241 + 0.2562 * x - 0.7341 * y
-    m1 = (-1.3515 - 1.7703 * x + 5.9114 * y) / m
-    m2 = (0.0300 - 31.4424 * x + 30.0717 * y) / m
-    if round_coefficients:
-        m1, m2 = round(m1, 3), round(m2, 3)
-    header, table = load_table("illuminants/D_series_basis.csv")
-    basis = Spectrum(table[:, 0], table[:, 1:].T.copy())
-    if wavelengths_nm is not None:
-        try:
-            basis = basis.resample(wavelengths_nm, "linear")
-        except SpectrumError as exc:
-            raise ColorimetryError(f"daylight: {exc}") from None
-    s0, s1, s2 = basis.values
-    return Spectrum(basis.wavelengths_nm, s0 + m1 * s1 + m2 * s2, (f"D{cct_K:g}K",))
+    return light.spd(wavelengths_nm, method)

@@ -56,7 +56,7 @@ def _grid_of(values, arguments) -> np.ndarray | None:
     return grid
 
 
-def _wrapped(result: np.ndarray, grid: np.ndarray | None):
+def _wrapped(result: np.ndarray | float, grid: np.ndarray | None):
     """``result`` as a Spectrum on ``grid`` when the inputs were Spectra, else the array."""
     return result if grid is None else Spectrum(grid, result)
 

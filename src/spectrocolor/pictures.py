@@ -13,31 +13,23 @@ P. Sällström (1999), USIP Report 99-05, "Can you really display a pure spectru
 anchored at the unique hues).
 Netpbm PPM format specification, https://netpbm.sourceforge.net/doc/ppm.html
 
-:func:`write_image` is the package's one image writer (every picture, swatch, strip, thickness
-map and converted cube goes through it or :func:`save_image`):
-
-* PNG, 8-bit: Pillow.
-* PNG, 16-bit RGB: Pillow cannot write 16-bit RGB PNG, so it is encoded here (the PNG format:
-  signature, IHDR, one zlib-compressed IDAT of unfiltered rows, IEND; samples big-endian).
-  16-bit grey goes through Pillow.
-* TIFF, float32 or float64 (e.g. XYZ100, CIELAB, linear RGB): tifffile, with a JSON
-  description holding the metadata you pass (quantity, illuminant, ...).
+:func:`write_image` writes every picture, swatch, strip, thickness map and converted cube (it
+or :func:`save_image`); the files themselves are written by :mod:`spectrocolor.imagefiles`
+(PNG 8-bit and 16-bit grey: Pillow; 16-bit RGB: ``imagecodecs``; float TIFF: tifffile, with a
+JSON description holding the metadata you pass), atomically.
 
 OpenEXR is not written: float TIFF carries the same data losslessly and every HDR tool reads it.
-The PNG layout follows W3C, *Portable Network Graphics (PNG) Specification*, 3rd ed., 2025,
-sections 5 and 11.2.
 """
 
 from __future__ import annotations
 
-import struct
-import zlib
 from pathlib import Path
 
 import numpy as np
 
+from . import imagefiles
 from .errors import ColorimetryError, SpectrumError
-from .safe_write import atomic_path, verify_png, verify_size, verify_tiff, write_bytes
+from .safe_write import verify_size, write_bytes
 
 __all__ = [
     "write_image",
@@ -446,15 +438,7 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
     if suffix == ".png":
         if metadata:
             raise SpectrumError("metadata is stored in TIFF files only; PNG gets none")
-        height, width = array.shape[:2]
-        if array.dtype == np.uint8 or (array.dtype == np.uint16 and array.ndim == 2):
-            from PIL import Image
-
-            with atomic_path(path, verify=lambda p: verify_png(p, width, height)) as temporary:
-                Image.fromarray(array).save(temporary, format="PNG")
-        elif array.dtype == np.uint16:
-            write_bytes(path, _png16_rgb(array), verify=lambda p: verify_png(p, width, height))
-        else:
+        if array.dtype not in (np.uint8, np.uint16):
             raise SpectrumError(
                 f"PNG needs uint8 or uint16 codes; got {array.dtype} (render with bit_depth=8 or"
                 " 16, or write floats to .tif)"
@@ -465,32 +449,9 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
                 f"TIFF output is for float32/float64 values; got {array.dtype} (write codes "
                 "to .png)"
             )
-        import tifffile
-
-        photometric = "rgb" if array.ndim == 3 else "minisblack"
-        with atomic_path(path, verify=lambda p: verify_tiff(p, array.shape, array.nbytes)) as temporary:
-            tifffile.imwrite(temporary, array, photometric=photometric, metadata=metadata or {})
     else:
         raise SpectrumError(
             f"{path}: unknown image format {suffix!r}; accepted: .png (8/16-bit codes), "
             ".tif/.tiff (float)"
         )
-    return path
-
-
-def _chunk(kind: bytes, data: bytes) -> bytes:
-    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-
-def _png16_rgb(codes: np.ndarray) -> bytes:
-    """A 16-bit RGB PNG datastream of ``codes`` (H, W, 3) uint16."""
-    height, width, _ = codes.shape
-    header = struct.pack(">IIBBBBB", width, height, 16, 2, 0, 0, 0)
-    rows = codes.astype(">u2").reshape(height, width * 3).view(np.uint8)  # (H, 6 W) bytes
-    filtered = np.concatenate([np.zeros((height, 1), np.uint8), rows], axis=1)  # filter 0: none
-    return (
-        b"\x89PNG\r\n\x1a\n"
-        + _chunk(b"IHDR", header)
-        + _chunk(b"IDAT", zlib.compress(filtered.tobytes(), 6))
-        + _chunk(b"IEND", b"")
-    )
+    return imagefiles.write_image(path, array, metadata=metadata)

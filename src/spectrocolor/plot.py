@@ -12,6 +12,10 @@ primaries; they are painted with the nearest displayable chromaticity *on the li
 display's white point* (the ``"desaturate"`` gamut strategy: same hue angle about the white,
 less saturation), so the colours outside the triangle are honest about hue and wrong about
 saturation -- the triangle drawn on top marks where exactness ends.
+
+Why this file is long: the chromaticity diagram is one feature with three parts that only it uses
+(the filled horseshoe, the loci, and the collision-free placement of point labels); a module per
+part would export helpers nobody else calls.
 """
 
 from __future__ import annotations
@@ -147,7 +151,7 @@ def planckian_locus_xy(temperatures_K, observer=DEFAULT_OBSERVER) -> np.ndarray:
     """
     from .colorimetry import tristimulus
     from .coordinates import xy
-    from .illuminants import blackbody
+    from .radiators import blackbody
     from .spectrum import Spectrum
 
     temps = np.atleast_1d(np.asarray(temperatures_K, dtype=float))
@@ -296,12 +300,39 @@ def chromaticity_diagram(
     >>> import matplotlib.pyplot as plt
     >>> plt.close(ax.figure)
     """
-    from .chromaticity import spectral_locus
-    from .colorimetry import white_point
     from .display.spaces import rgb_space
 
     kind = _kind(kind)
     ax = axes_or_new(ax, (6.4, 6.4))
+    _draw_spectral_locus(ax, kind, observer, fill)
+    for i, spec in enumerate(spaces or ()):
+        sp = rgb_space(spec)
+        tri = _to_kind(sp.primaries_xy, kind)
+        ax.fill(tri[:, 0], tri[:, 1], fill=False, lw=1.2, zorder=4, label=sp.name,
+                color=f"C{i}")
+    markers: list[tuple[np.ndarray, float]] = []  # (anchor, diameter in points): labels keep off every marker
+    white_labels = _draw_whites(ax, kind, observer, whites, markers)
+    planck_labels = _draw_planckian_locus(ax, kind, observer, markers) if planckian else []
+    for i, curve in enumerate(curves or ()):
+        c = _to_kind(_as_xy(curve, "curves"), kind)
+        name = None if curve_labels is None else curve_labels[i]
+        ax.plot(c[:, 0], c[:, 1], lw=1.2, zorder=7, color=f"C{i + 3}", label=name)
+    pts = None
+    if points is not None:
+        pts = _to_kind(_as_xy(points, "points"), kind)
+        if labels is not None and len(labels) != len(pts):
+            raise ColorimetryError(f"labels must name each of the {len(pts)} points")
+        ax.plot(pts[:, 0], pts[:, 1], "o", mfc="none", mec="black", ms=5, zorder=8)
+        markers.extend((c, 5.0) for c in pts)
+    _frame(ax, kind, observer, title)
+    _place_labels(ax, kind, markers, white_labels + planck_labels, pts, labels)
+    return ax
+
+
+def _draw_spectral_locus(ax, kind: str, observer, fill: bool) -> None:
+    """The horseshoe (filled in sRGB if asked), the purple line and the wavelength ticks."""
+    from .chromaticity import spectral_locus
+
     locus_all = spectral_locus(observer)
     wl = np.asarray(locus_all.wavelengths_nm)
     locus = _to_kind(np.asarray(locus_all.xy), kind)
@@ -319,44 +350,41 @@ def chromaticity_diagram(
         out = (p - centre) / np.hypot(*(p - centre))
         ax.plot(*np.column_stack([p, p + 0.012 * out]), color="black", lw=0.8, zorder=3)
         ax.annotate(f"{nm}", p + 0.03 * out, ha="center", va="center", fontsize=7, zorder=4)
-    for i, spec in enumerate(spaces or ()):
-        sp = rgb_space(spec)
-        tri = _to_kind(sp.primaries_xy, kind)
-        ax.fill(tri[:, 0], tri[:, 1], fill=False, lw=1.2, zorder=4, label=sp.name,
-                color=f"C{i}")
+
+
+def _draw_whites(ax, kind: str, observer, whites, markers: list) -> list:
+    """Mark the white points (names or a dict label -> XYZ); their labels are returned, unplaced."""
+    from .colorimetry import white_point
+
     if isinstance(whites, dict):
         named_whites = {k: np.asarray(v, float) for k, v in whites.items()}
     else:
         named_whites = {name: white_point(name, observer=observer) for name in (whites or ())}
-    markers = []  # (anchor, diameter in points): labels keep off every marker
     white_labels = []
     for label, XYZ in named_whites.items():
         c = _to_kind(_as_xy(XYZ, "whites"), kind)[0]
         ax.plot(*c, marker="o", mfc="white", mec="black", ms=6, zorder=6, ls="none")
         markers.append((c, 6.0))
         white_labels.append(_Label(str(label), c, _ring_offsets(6.0), {"fontsize": 8}, 6))
+    return white_labels
+
+
+def _draw_planckian_locus(ax, kind: str, observer, markers: list) -> list:
+    """The Planckian locus 1000-20000 K with ticks; the temperature labels are returned, unplaced."""
+    temps = np.geomspace(1000, 20000, 60)
+    pl = _to_kind(planckian_locus_xy(temps, observer), kind)
+    ax.plot(pl[:, 0], pl[:, 1], color="0.25", lw=0.9, zorder=5, label="Planckian locus")
+    marks = _to_kind(planckian_locus_xy(_PLANCK_LABELS_K, observer), kind)
+    ax.plot(marks[:, 0], marks[:, 1], "|", color="0.25", ms=6, zorder=5)
     planck_labels = []
-    if planckian:
-        temps = np.geomspace(1000, 20000, 60)
-        pl = _to_kind(planckian_locus_xy(temps, observer), kind)
-        ax.plot(pl[:, 0], pl[:, 1], color="0.25", lw=0.9, zorder=5, label="Planckian locus")
-        marks = _to_kind(planckian_locus_xy(_PLANCK_LABELS_K, observer), kind)
-        ax.plot(marks[:, 0], marks[:, 1], "|", color="0.25", ms=6, zorder=5)
-        for t, c in zip(_PLANCK_LABELS_K, marks, strict=True):
-            markers.append((c, 6.0))
-            planck_labels.append(_Label(f"{t} K", c, (), {"fontsize": 6, "color": "0.2"}, 5,
-                                        across=pl))
-    for i, curve in enumerate(curves or ()):
-        c = _to_kind(_as_xy(curve, "curves"), kind)
-        name = None if curve_labels is None else curve_labels[i]
-        ax.plot(c[:, 0], c[:, 1], lw=1.2, zorder=7, color=f"C{i + 3}", label=name)
-    pts = None
-    if points is not None:
-        pts = _to_kind(_as_xy(points, "points"), kind)
-        if labels is not None and len(labels) != len(pts):
-            raise ColorimetryError(f"labels must name each of the {len(pts)} points")
-        ax.plot(pts[:, 0], pts[:, 1], "o", mfc="none", mec="black", ms=5, zorder=8)
-        markers.extend((c, 5.0) for c in pts)
+    for t, c in zip(_PLANCK_LABELS_K, marks, strict=True):
+        markers.append((c, 6.0))
+        planck_labels.append(_Label(f"{t} K", c, (), {"fontsize": 6, "color": "0.2"}, 5, across=pl))
+    return planck_labels
+
+
+def _frame(ax, kind: str, observer, title: str | None) -> None:
+    """Axis names, equal aspect, the diagram's limits, the grid and the title."""
     names = ("x", "y") if kind == "xy" else ("u′", "v′")
     ax.set_xlabel(names[0])
     ax.set_ylabel(names[1])
@@ -367,19 +395,27 @@ def chromaticity_diagram(
     ax.grid(True, lw=0.3, color="0.85", zorder=-1)
     diagram = "CIE 1931 xy" if kind == "xy" else "CIE 1976 u′v′"
     ax.set_title(title if title is not None else f"{diagram} chromaticity diagram, observer {observer}")
+
+
+def _place_labels(ax, kind: str, markers: list, fixed_labels: list, pts, labels) -> None:
+    """Lay out the legend, then place the labels of whites, temperatures and points without overlap.
+
+    The figure is laid out once with the longest legend the labels can lead to; labels are placed
+    in display coordinates around it, the markers and the wavelength labels. Points closer than a
+    marker share one label (``name +k``); a label with no free place is omitted and counted in the
+    legend.
+    """
     legend_loc = "upper right" if kind == "xy" else "lower right"
     point_handle = None
     if pts is not None and labels is not None:
         from matplotlib.lines import Line2D
 
         point_handle = Line2D([], [], ls="none", marker="o", mfc="none", mec="black", ms=5)
-    # Lay the figure out once with the longest legend the labels can lead to; the labels are
-    # placed in display coordinates around it, the markers and the wavelength labels.
     count = 0 if pts is None else len(pts)
     _legend(ax, legend_loc, point_handle, _points_legend_text(count, count, count))
     ax.figure.draw_without_rendering()
     placer = _LabelPlacer(ax, markers)
-    for item in white_labels + planck_labels:
+    for item in fixed_labels:
         placer.place(item)
     merged = omitted = 0
     if pts is not None and labels is not None:
@@ -392,8 +428,7 @@ def chromaticity_diagram(
             omitted += not placer.place(_Label(text, pts[members[0]], offsets,
                                                {"fontsize": 7}, 8))
     if point_handle is not None:
-        _legend(ax, legend_loc, point_handle, _points_legend_text(len(pts), merged, omitted))
-    return ax
+        _legend(ax, legend_loc, point_handle, _points_legend_text(count, merged, omitted))
 
 
 def _legend(ax, loc, point_handle, point_text):

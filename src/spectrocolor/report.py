@@ -16,6 +16,10 @@ References
 R. F. Visser, *Colour measurement*, Council for Mineral Technology, Technical Memorandum
 19065 (1986), sections 1.5-1.8 and Appendix A (seed 001). CIE 015:2018 *Colorimetry*,
 sections 7 (tristimulus values), 8.2.1 (CIELAB) and 9.1 (dominant wavelength, purity).
+
+Why this file is long: one report: the computation of the measurement record and its three writers
+(CSV, JSON, HTML) share the column table and the conditions block, so a change to a column is made
+in one file.
 """
 
 from __future__ import annotations
@@ -31,9 +35,10 @@ from pathlib import Path
 import numpy as np
 
 from . import notebook_hooks
+from .colorimetry import DEFAULT_METHOD
 from .errors import ColorimetryError, SpectrumError
-from .illuminants import DEFAULT_ILLUMINANT, illuminant_label
-from .observers import DEFAULT_OBSERVER, canonical_observer_name
+from .illuminants import DEFAULT_ILLUMINANT, illuminant_label, resolve_illuminant
+from .observers import DEFAULT_OBSERVER, resolve_observer
 from .plot import plain_text
 from .safe_write import write_text
 from .spectrum import Spectrum
@@ -180,22 +185,23 @@ class MeasurementReport:
         }
 
 
-def measurement_report(spectra: Spectrum, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER,
-                       method: str = "sum") -> MeasurementReport:
+def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER,
+                       method: str = DEFAULT_METHOD) -> MeasurementReport:
     """Colorimetry of reflectance samples for a measurement report.
 
     Parameters
     ----------
     spectra : Spectrum
         Reflectance factors (0-1) of N samples, values (N, K) or (K,) for one.
-    illuminant : str, float or Spectrum
-        Any form of :func:`spectrocolor.canonical_illuminant` except ``None`` (default D65; seed
+    illuminant : str, float, Spectrum or Illuminant, keyword-only
+        Any form of :func:`spectrocolor.resolve_illuminant` except ``None`` (default D65; seed
         001 uses C). The white point for dominant wavelength and purity is the perfect reflector
         under it (Visser section 1.8).
-    observer : str
-        Default CIE 1931 2° (seed 001), or another observer name.
-    method : str
-        Summation method of :func:`spectrocolor.weights`.
+    observer : str or Observer, keyword-only
+        Default CIE 1931 2° (seed 001), or another observer name (any form of
+        :func:`spectrocolor.resolve_observer`).
+    method : str, keyword-only
+        Summation method of :func:`spectrocolor.weights` (default ``"sum"``).
 
     Returns
     -------
@@ -241,11 +247,12 @@ def measurement_report(spectra: Spectrum, illuminant=DEFAULT_ILLUMINANT, observe
         raise SpectrumError("spectra contain NaN or infinite reflectances")
     samples = Spectrum(spectra.wavelengths_nm, values, spectra.names)
     names = samples.names or tuple(f"sample {i + 1}" for i in range(values.shape[0]))
-    XYZ = np.atleast_2d(tristimulus(samples, observer=observer, illuminant=illuminant, method=method))
-    white = white_point(illuminant, observer=observer, wavelengths_nm=samples.wavelengths_nm, method=method)
+    viewer, light = resolve_observer(observer), resolve_illuminant(illuminant)  # once, here
+    XYZ = np.atleast_2d(tristimulus(samples, observer=viewer, illuminant=light, method=method))
+    white = white_point(light, observer=viewer, wavelengths_nm=samples.wavelengths_nm, method=method)
     chromaticity = xy(XYZ)
     try:
-        dominant = dominant_wavelength(chromaticity, xy(white), observer)
+        dominant = dominant_wavelength(chromaticity, xy(white), viewer)
     except ColorimetryError as exc:  # e.g. a very cold blackbody: name this function's argument
         raise ColorimetryError(f"illuminant: {illuminant!r:.40} has a white where {exc}") from None
     purity = np.asarray(dominant.excitation_purity, dtype=float)
@@ -258,8 +265,8 @@ def measurement_report(spectra: Spectrum, illuminant=DEFAULT_ILLUMINANT, observe
     return MeasurementReport(
         names=tuple(names),
         spectra=samples,
-        illuminant=illuminant_label(illuminant),
-        observer=canonical_observer_name(observer) if isinstance(observer, str) else "custom observer",
+        illuminant=illuminant_label(light),
+        observer=viewer.name,
         method=method,
         XYZ=XYZ,
         xy=chromaticity,
@@ -283,9 +290,9 @@ def write_report(report: MeasurementReport, path, format: str | None = None, *,
     """Write a report as HTML (self-contained), CSV or JSON.
 
     The file is written beside ``path`` and renamed over it once complete
-    (:func:`spectrocolor.safe_write.write_text`): a failed write leaves any previous file
+    (``spectrocolor.safe_write.write_text``): a failed write leaves any previous file
     unchanged. CSV names that a spreadsheet would execute (``=``, ``+``, ``-``, ``@``) get a
-    leading apostrophe (:func:`spectrocolor.spreadsheet.neutralise_cell`).
+    leading apostrophe (``spectrocolor.spreadsheet.neutralise_cell``).
 
     Parameters
     ----------

@@ -26,6 +26,10 @@ References
 POSIX.1-2017, ``rename()``: "If the link named by the *new* argument exists, it shall be removed
 and *old* renamed to *new* ... a link named *new* shall remain visible to other threads
 throughout the renaming operation and refer either to the file referred to by *new* or *old*."
+
+Why this file is long: it is the one place that decides how a file is written (temporary file,
+fsync, rename, read back, the overwrite policy); each writer of the package calls it, and a split
+would let the policy drift between them.
 """
 
 from __future__ import annotations
@@ -40,7 +44,7 @@ from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 __all__ = ["OutputError", "atomic_path", "write_bytes", "write_text", "verify_size", "verify_png",
-           "verify_tiff", "check_outputs"]
+           "verify_image", "verify_tiff", "check_outputs"]
 
 
 class OutputError(OSError):
@@ -322,7 +326,8 @@ def verify_size(path: Path, expected: int) -> None:
 def verify_png(path: Path, width: int, height: int) -> None:
     """Raise :class:`OutputError` unless ``path`` is a complete PNG of ``width`` x ``height``.
 
-    Pillow's ``verify`` checks every chunk's CRC, so a truncated or damaged file is caught.
+    Pillow's ``verify`` checks every chunk's CRC, so a truncated or damaged file is caught
+    (:func:`verify_image` with the message naming a PNG).
 
     Parameters
     ----------
@@ -345,17 +350,56 @@ def verify_png(path: Path, width: int, height: int) -> None:
     ...     path = save_image(np.zeros((2, 3, 3), np.uint8), pathlib.Path(folder) / "a.png")
     ...     verify_png(path, 3, 2)  # silent when right
     """
+    verify_image(path, width, height, kind="PNG")
+
+
+def verify_image(path: Path, width: int, height: int, *, frames: int | None = None,
+                 kind: str = "image") -> None:
+    """Raise :class:`OutputError` unless Pillow reads ``path`` back as ``width`` x ``height``.
+
+    Pillow's ``verify`` checks the file's structure (every chunk's CRC for a PNG), so a
+    truncated or damaged file is caught; the frames of an animation are counted.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The picture written (PNG, JPEG, GIF, ...).
+    width, height : int
+        Its size in pixels.
+    frames : int, keyword-only, optional
+        Frames written (an animated GIF): between 1 and this many must read back (a GIF writer
+        merges identical consecutive frames into one shown longer); not checked when None.
+    kind : str, keyword-only, default "image"
+        What to call the file in the message.
+
+    Raises
+    ------
+    OutputError
+        If the file does not read back as a picture of that size (and frame count).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from spectrocolor.imagefiles import write_gif
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_gif(pathlib.Path(folder) / "a.gif", [np.zeros((2, 3, 3), np.uint8),
+    ...                                                         np.ones((2, 3, 3), np.uint8)])
+    ...     verify_image(path, 3, 2, frames=2)  # silent when right
+    """
     from PIL import Image
 
     try:
         with Image.open(path) as image:
-            size = image.size
+            size, found = image.size, int(getattr(image, "n_frames", 1))
             image.verify()
     except (OSError, SyntaxError, ValueError) as exc:
-        raise OutputError(errno.EIO, f"{path}: the PNG written does not read back ({exc})") from None
+        raise OutputError(errno.EIO, f"{path}: the {kind} written does not read back ({exc})") from None
     if size != (width, height):
-        raise OutputError(errno.EIO, f"{path}: PNG of {size[0]} x {size[1]} read back, "
+        raise OutputError(errno.EIO, f"{path}: {kind} of {size[0]} x {size[1]} read back, "
                           f"{width} x {height} written")
+    if frames is not None and not 1 <= found <= frames:
+        raise OutputError(errno.EIO, f"{path}: {kind} of {found} frames read back, {frames} written")
 
 
 def verify_tiff(path: Path, shape: tuple[int, ...], nbytes: int) -> None:

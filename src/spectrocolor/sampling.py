@@ -9,11 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import ColorimetryError, SpectrumError
-from .illuminants import canonical_illuminant
-from .illuminants import illuminant as named_illuminant
+from .illuminants import resolve_illuminant
 from .interpolation import resample_linear
-from .observers import canonical_observer_name
-from .observers import observer as named_observer
+from .observers import resolve_observer as resolve_observer_value
 from .spectrum import Spectrum
 
 
@@ -48,12 +46,16 @@ def interval_weights_nm(wavelengths_nm: np.ndarray) -> np.ndarray:
 
 
 def resolve_observer(observer) -> tuple[str, Spectrum]:
-    """(label, colour-matching functions) for a name/alias or a user's (3, K) Spectrum.
+    """(label, colour-matching functions) for a name/alias, a user's (3, K) Spectrum or an Observer.
+
+    A thin wrapper over :func:`spectrocolor.observers.resolve_observer`, the one observer
+    resolver, for callers that want the pair.
 
     Parameters
     ----------
-    observer : str or Spectrum
-        An observer name or alias, or colour-matching functions of shape (3, K).
+    observer : str, Spectrum or Observer
+        An observer name or alias, colour-matching functions of shape (3, K), or a resolved
+        :class:`~spectrocolor.observers.Observer`.
 
     Returns
     -------
@@ -71,14 +73,8 @@ def resolve_observer(observer) -> tuple[str, Spectrum]:
     >>> name, cmfs.values.shape
     ('CIE 1964 10°', (3, 471))
     """
-    if isinstance(observer, Spectrum):
-        if observer.values.shape[:-1] != (3,):
-            raise ColorimetryError(
-                f"observer: a custom observer must be a Spectrum of shape (3, K) (x̄, ȳ, z̄), got {observer.values.shape}"
-            )
-        return "custom observer", observer
-    name = canonical_observer_name(observer)
-    return name, named_observer(name)
+    resolved = resolve_observer_value(observer)
+    return resolved.name, resolved.cmfs()
 
 
 def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
@@ -88,8 +84,8 @@ def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
     ----------
     grid : numpy.ndarray, shape (K,)
         The summation grid, nm.
-    observer : str or Spectrum
-        As :func:`resolve_observer`.
+    observer : str, Spectrum or Observer
+        As :func:`spectrocolor.observers.resolve_observer` (public callers pass the resolved value).
 
     Returns
     -------
@@ -107,7 +103,8 @@ def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
     >>> cmfs_on(np.array([555.0]), "1931").round(4).tolist()
     [[0.5121, 1.0, 0.0057]]
     """
-    observer_name, cmfs = resolve_observer(observer)
+    resolved = resolve_observer_value(observer)
+    observer_name, cmfs = resolved.name, resolved.cmfs()
     try:
         table = resample_linear(cmfs.wavelengths_nm, cmfs.values, grid)  # (3, K), banded
     except SpectrumError:
@@ -120,7 +117,7 @@ def cmfs_on(grid: np.ndarray, observer) -> np.ndarray:
 
 
 def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
-    """Relative SPD (K,) at ``grid`` (nm) of an illuminant in any form of :func:`canonical_illuminant`.
+    """Relative SPD (K,) at ``grid`` (nm) of an illuminant in any form of :func:`~.illuminants.resolve_illuminant`.
 
     A name (CIE, ``"blackbody:T"``, ``"D:T"``) is evaluated at ``grid``; a Spectrum must contain
     every grid sample (its own samples are used, never interpolated behind the caller's back).
@@ -129,8 +126,9 @@ def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
     ----------
     grid : numpy.ndarray, shape (K,)
         The summation grid, nm.
-    illuminant : str, float or Spectrum
-        Any form of :func:`~spectrocolor.canonical_illuminant` except ``None``.
+    illuminant : str, float, Spectrum or Illuminant
+        Any form of :func:`~spectrocolor.illuminants.resolve_illuminant` except ``None`` (public
+        callers pass the resolved value).
 
     Returns
     -------
@@ -148,11 +146,12 @@ def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
     >>> illuminant_on(np.array([560.0, 600.0]), "D65").round(3).tolist()
     [100.0, 90.006]
     """
-    resolved = canonical_illuminant(illuminant)
-    if resolved is None:
+    light = resolve_illuminant(illuminant)
+    if light is None:
         raise ColorimetryError("illuminant: weights for reflectances need an illuminant, got None (lights)")
-    if isinstance(resolved, str):
-        return named_illuminant(resolved, grid).values
+    resolved = light.spectrum
+    if resolved is None:  # a named light: evaluated (or interpolated) at the grid
+        return light.spd(grid).values
     source = resolved.wavelengths_nm
     position = np.clip(np.searchsorted(source, grid), 0, source.size - 1)
     if not np.allclose(source[position], grid, rtol=0, atol=1e-9):

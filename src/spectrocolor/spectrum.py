@@ -4,6 +4,10 @@ A ``Spectrum`` is one spectral distribution or a whole batch of them (a list of 
 an image cube) sampled on a single strictly increasing wavelength grid in nanometres.
 It never guesses: combining spectra on different grids is an error until one of them is
 explicitly resampled, and resampling never extrapolates.
+
+Why this file is long: it holds the central value type, :class:`Spectrum`, whose methods
+(arithmetic, resampling, slicing, conversion to and from JSON and arrays) are its behaviour; a class
+split across modules hides what it can do.
 """
 
 from __future__ import annotations
@@ -11,6 +15,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from numbers import Real
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -256,7 +261,7 @@ class Spectrum:
         return self._names
 
     @property
-    def metadata(self) -> Mapping[str, object]:
+    def metadata(self) -> Mapping[str, Any]:
         """Read-only facts about the data's origin (empty unless a reader or the caller set them)."""
         return self._metadata
 
@@ -460,7 +465,7 @@ class Spectrum:
         method : str, default "linear"
             ``"linear"``, ``"sprague"`` (CIE 167:2005 Sprague interpolation; at least 6 uniformly
             spaced source samples) or ``"cubic"`` (not-a-knot cubic spline, any spacing); see
-            :mod:`spectrocolor.interpolation`.
+            ``spectrocolor.interpolation``.
 
         Returns
         -------
@@ -555,7 +560,7 @@ class Spectrum:
         if self._names is not None and self._values.ndim == 2:
             picked = np.asarray(self._names, dtype=object)[index]
             names = tuple(np.atleast_1d(picked)) if values.ndim == 2 else (str(picked),)
-        metadata = dict(self._metadata)
+        metadata: dict[str, Any] = dict(self._metadata)
         fields = metadata.pop("sample_fields", None)  # one entry per sample: select them too
         if fields and self._values.ndim == 2:
             metadata["sample_fields"] = {
@@ -626,7 +631,8 @@ class Spectrum:
             and bool(np.array_equal(self._values, other.values))
         )
 
-    __hash__ = None  # mutable-looking array payload: not hashable
+    # mutable-looking array payload: not hashable (typeshed declares __hash__ a method, hence the ignore)
+    __hash__ = None  # type: ignore[assignment]
 
     # ------------------------------------------------------------------ conversion
     def to_dict(self) -> dict:

@@ -42,9 +42,9 @@ import numpy as np
 from .arguments import real_array
 from .coordinates import uv_1960, xy_from_uv_1960
 from .errors import ColorimetryError
-from .illuminants import C2_CIE_LOCUS_M_K, planck
 from .observers import DEFAULT_OBSERVER, canonical_observer_name
 from .observers import observer as named_observer
+from .radiators import C2_CIE_LOCUS_M_K, planck
 
 __all__ = ["CCT", "cct", "xy_from_cct"]
 

@@ -10,60 +10,75 @@ illuminant of setting 4 (the samples are reflectances; the perfect white has Y =
 
 from __future__ import annotations
 
+from typing import get_args
+
 import numpy as np
 
-import spectrocolor as sc
-from spectrocolor.display.explain import out_of_gamut_channels
-from spectrocolor.display.gamut import DEFAULT_GAMUT, DEFAULT_TOLERANCE, GAMUT_STRATEGIES
-from spectrocolor.display.spectra_exact import spectra_channel_factors, spectra_scale
-from spectrocolor.display.transfer import LevelTable, PowerLaw, SRGBCurve
-from spectrocolor.display_emission import emission_sources, excitation_function, primary_emission
-
+from ..chromaticity import dominant_wavelength, spectral_locus
+from ..colorimetry import tristimulus, weights
+from ..coordinates import lab, xy
+from ..differences import delta_e_2000
+from ..display.chain import DEFAULT_CHAIN_NORMALISATION, DEFAULT_WHITE_ADAPTATION, DisplayChain, display_chain
+from ..display.explain import out_of_gamut_channels
+from ..display.gamut import DEFAULT_GAMUT, DEFAULT_TOLERANCE
+from ..display.spaces import rgb_space
+from ..display.transfer import LevelTable, PowerLaw, SRGBCurve
+from ..display_emission import emission_sources, excitation_function, primary_emission
+from ..errors import ColorimetryError, SpectrumError
+from ..illuminants import illuminant
+from ..io import read_spectra, write_spectra
+from ..observers import observer as observer_cmfs
+from ..pictures import wavelength_tint
+from ..recovery.smoothest import smoothest_reflectance
+from ..registry import Registry
+from ..spectrum import Spectrum, wavelength_grid
+from ..temperature import cct
 from . import presets as P
+from .choices import ADAPTATIONS, DISPLAYS, GAMUTS, NORMALISATIONS, Step, observer_labels
+
+__all__ = ["ADAPTATIONS", "DISPLAYS", "GAMUTS", "NORMALISATIONS", "DEFAULT_GAMUT", "DEFAULT_NORMALISE",
+           "DEFAULT_ADAPTATION", "FULL_LEVEL", "STEPS_NM", "grid", "pipeline", "model", "evaluate",
+           "metamer", "presets", "import_spectra", "export_spectra", "light_metrics"]
 
 FULL_LEVEL = P.FULL_LEVEL
 START_NM, STOP_NM = P.START_NM, P.STOP_NM
-STEPS_NM = (10.0, 5.0, 2.0, 1.0)
-OBSERVERS = {"1931": "CIE 1931 2°", "1964": "CIE 1964 10°", "2015-2": "CIE 2015 2°",
-             "2015-10": "CIE 2015 10°"}
-DISPLAYS = ("sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy")
-#: Gamut strategies, the library's default first (never a bare black patch); "flag" is
-#: SPECTRA's strict one.
-GAMUTS = (DEFAULT_GAMUT, *(g for g in GAMUT_STRATEGIES if g != DEFAULT_GAMUT))
-#: Normalisations: A exact (largest object channel), B per colour ("Optimised!"), and A as the
-#: program computed it (one k per channel, 1.32 × R_white; display/spectra_exact.py).
-NORMALISATIONS = ("fixed", "per-colour", "spectra-exact")
-#: How the reference white E is shown, the default first: adapted to the display's white
-#: (Bradford, or SPECTRA's matris.equ way: scaling the display's own R, G, B), or as it is.
-ADAPTATIONS = {
-    "bradford": ("Bradford (E → display white)",
-                 "the equal-energy white E is shown as the display's white; colours adapted by "
-                 "the Bradford transform, so a neutral looks neutral"),
-    "display rgb": ("SPECTRA matris.equ",
-                    "the display's own R, G, B scaled so that E gives R = G = B (seed 002, "
-                    "'Why not include the effect of chromatic adaptation?')"),
-    "none": ("none (unadapted)",
-             "colorimetrically exact for a viewer adapted to E, not to the screen: E looks "
-             "pinkish on a D65 display"),
-}
-DEFAULT_NORMALISE, DEFAULT_ADAPTATION = NORMALISATIONS[0], "bradford"
+#: The bin widths, nm, from :data:`spectrocolor.app.choices.Step`.
+STEPS_NM = tuple(float(s) for s in get_args(Step))
+#: The observers offered, ``{key: label}`` (from the observer registry, read at import; the
+#: request models and ``/api/options`` read the registry live).
+OBSERVERS = observer_labels()
+DEFAULT_NORMALISE, DEFAULT_ADAPTATION = DEFAULT_CHAIN_NORMALISATION, DEFAULT_WHITE_ADAPTATION
+#: How an imported file's values become levels (:func:`import_spectra`), the default first.
+IMPORT_SCALES = Registry("scale", "a scaling of imported values", SpectrumError)
+IMPORT_SCALES.add("peak", "peak", "each spectrum scaled so that its peak in 400-700 nm is the full level",
+                  label=f"peak → {FULL_LEVEL:g}")
+IMPORT_SCALES.add("unit", "unit", f"the values are factors 0-1 (times {FULL_LEVEL:g})", label="factors 0–1")
+IMPORT_SCALES.add("levels", "levels", f"the values are levels 0-{FULL_LEVEL:g} already",
+                  label=f"levels 0–{FULL_LEVEL:g}")
 
 
 def grid(step_nm: float) -> np.ndarray:
     """The explorer's wavelength grid, 400-700 nm at ``step_nm`` (10 nm = SPECTRA's 31 bins)."""
-    return sc.wavelength_grid(START_NM, STOP_NM, step_nm)
+    return wavelength_grid(START_NM, STOP_NM, step_nm)
+
+
+def step_label(step_nm: float) -> str:
+    """The page's name of a bin width: ``"31 × 10 nm (SPECTRA)"``, ``"61 × 5 nm"``, ...
+
+    Examples
+    --------
+    >>> step_label(10.0), step_label(1.0)
+    ('31 × 10 nm (SPECTRA)', '301 × 1 nm')
+    """
+    text = f"{len(grid(step_nm))} × {step_nm:g} nm"
+    return text + " (SPECTRA)" if len(grid(step_nm)) == 31 else text
 
 
 def _reference(wavelengths_nm: np.ndarray, illuminant_levels):
     """The illuminant argument for the library: E, or the page's illuminant levels."""
     if illuminant_levels is None:
         return "E"
-    return sc.Spectrum(wavelengths_nm, np.asarray(illuminant_levels, dtype=float))
-
-
-def fixed_scale(space, W: np.ndarray) -> float:
-    """SPECTRA's alternative A: the largest channel any 0 <= f <= full can drive (note 10)."""
-    return float(sc.max_object_rgb(space, W).max())
+    return Spectrum(wavelengths_nm, np.asarray(illuminant_levels, dtype=float))
 
 
 def _none_nan(v: float):
@@ -81,44 +96,17 @@ def _transfer_description(space) -> dict:
     return {"kind": "server", "name": getattr(t, "name", type(t).__name__)}
 
 
-def pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels=None) -> dict:
+def pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels=None) -> DisplayChain:
     """The linear part of the display chain for one set of choices, shared by the API answers.
 
-    Returns ``W`` (K x 3 weights, the reference white has Y = 100), ``to_display`` (3 x 3: the
-    page's XYZ -> the XYZ the display is asked to show: SPECTRA's per-channel k for
-    ``"spectra-exact"``, then the adaptation of E to the display's white), ``matrix`` (the
-    effective XYZ -> linear RGB, display matrix @ to_display), ``scale`` (the divisor of
-    normalisation A, None for per-colour) and ``space``.
+    The page's grid and lights made into summation weights (the page's light, and E), then
+    :func:`spectrocolor.display.chain.display_chain`: its ``weights`` (K x 3, the reference white
+    has Y = 100), ``to_display``, ``matrix_from_XYZ``, ``scale`` and ``space``.
     """
-    if adaptation not in ADAPTATIONS:
-        raise sc.ColorimetryError(
-            f"adaptation {adaptation!r} is unknown; accepted: {', '.join(ADAPTATIONS)}")
-    if normalise not in NORMALISATIONS:
-        raise sc.ColorimetryError(
-            f"normalise {normalise!r} is unknown; accepted: {', '.join(NORMALISATIONS)}")
     wl = grid(step_nm)
-    space = sc.rgb_space(display)
-    W = np.asarray(sc.weights(wl, observer=observer,
-                              illuminant=_reference(wl, illuminant_levels)))
-    W_E = np.asarray(sc.weights(wl, observer=observer, illuminant="E"))
-    factors = spectra_channel_factors(W_E) if normalise == "spectra-exact" else np.ones(3)
-    source_white = factors * W_E.sum(axis=0)  # E on the page's scale (Y = 100)
-    if adaptation == "none":
-        adapt = np.eye(3)
-    else:
-        target = space.white_XYZ * (source_white[1] / space.white_XYZ[1])
-        adapt = sc.adaptation_matrix(source_white, target, adaptation,
-                                     space if adaptation == "display rgb" else None)
-    to_display = adapt @ np.diag(factors)
-    matrix = np.asarray(space.matrix_from_XYZ) @ to_display
-    if normalise == "fixed":
-        scale = fixed_scale(space, W @ to_display.T)
-    elif normalise == "spectra-exact":
-        scale = spectra_scale(np.asarray(space.matrix_from_XYZ) @ adapt)
-    else:
-        scale = None
-    return {"W": W, "to_display": to_display, "adaptation_matrix": adapt,
-            "channel_factors": factors, "matrix": matrix, "scale": scale, "space": space}
+    W = weights(wl, observer=observer, illuminant=_reference(wl, illuminant_levels))
+    W_E = weights(wl, observer=observer, illuminant="E")
+    return display_chain(rgb_space(display), W, W_E, normalise=normalise, adaptation=adaptation)
 
 
 def model(step_nm: float, observer: str, display: str, illuminant_levels=None,
@@ -133,18 +121,16 @@ def model(step_nm: float, observer: str, display: str, illuminant_levels=None,
     ``excitation`` the function γ (Fig. 10). The locus, gamut triangle, white and bar tints are
     for drawing only.
     """
-    from spectrocolor.pictures import wavelength_tint
-
     wl = grid(step_nm)
     chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
-    W, space = chain["W"], chain["space"]
+    W, space = chain.weights, chain.space
     white_XYZ = np.ones(len(wl)) @ W
-    locus = sc.spectral_locus(observer)
+    locus = spectral_locus(observer)
     keep = (locus.wavelengths_nm >= 380) & (locus.wavelengths_nm <= 700)
     tints = np.asarray(wavelength_tint(wl), dtype=float) / 255.0  # rgb8 → 0–1 for the canvas
-    temperature = sc.cct(space.white_xy)
+    temperature = cct(space.white_xy)
     codes, gamma = excitation_function(space)
-    ybar = np.asarray(sc.observer("1931").resample(wl).values)[1]
+    ybar = np.asarray(observer_cmfs("1931").resample(wl).values)[1]
     return {
         "wavelengths_nm": wl.tolist(),
         "full_level": FULL_LEVEL,
@@ -154,16 +140,16 @@ def model(step_nm: float, observer: str, display: str, illuminant_levels=None,
         "adaptation": adaptation,
         "weights": (W / FULL_LEVEL).tolist(),
         "weights_per": "level",
-        "matrix_from_XYZ": chain["matrix"].tolist(),
+        "matrix_from_XYZ": chain.matrix_from_XYZ.tolist(),
         "display_matrix_from_XYZ": np.asarray(space.matrix_from_XYZ).tolist(),
-        "adaptation_matrix": chain["adaptation_matrix"].tolist(),
-        "channel_factors": chain["channel_factors"].tolist(),
-        "fixed_scale": chain["scale"],
+        "adaptation_matrix": chain.adaptation_matrix.tolist(),
+        "channel_factors": chain.channel_factors.tolist(),
+        "fixed_scale": chain.scale,
         "tolerance": DEFAULT_TOLERANCE,
         "transfer": _transfer_description(space),
         "bit_depth": 6 if isinstance(space.transfer, LevelTable) else 8,
         "white_XYZ": white_XYZ.tolist(),
-        "white_xy": sc.xy(white_XYZ).tolist(),
+        "white_xy": xy(white_XYZ).tolist(),
         "display_white_xy": np.asarray(space.white_xy).tolist(),
         "display_white": {"XYZ": np.asarray(space.white_XYZ).tolist(),
                           "xy": np.asarray(space.white_xy).tolist(),
@@ -182,16 +168,16 @@ def model(step_nm: float, observer: str, display: str, illuminant_levels=None,
     }
 
 
-def _dominant(xy: np.ndarray, white_xy: np.ndarray, observer: str, lit: np.ndarray):
+def _dominant(xy_: np.ndarray, white_xy: np.ndarray, observer: str, lit: np.ndarray):
     """Dominant wavelengths and purities, or None and the reason where they are undefined."""
-    n = len(xy)
+    n = len(xy_)
     dom_nm, purity = np.full(n, np.nan), np.full(n, np.nan)
     dom_comp = np.zeros(n, bool)
     if not lit.any():
         return dom_nm, dom_comp, purity, None
     try:
-        d = sc.dominant_wavelength(xy[lit], white_xy, observer)
-    except sc.ColorimetryError as exc:  # e.g. a single-line illuminant: its white is on the locus
+        d = dominant_wavelength(xy_[lit], white_xy, observer)
+    except ColorimetryError as exc:  # e.g. a single-line illuminant: its white is on the locus
         return dom_nm, dom_comp, purity, f"dominant wavelength undefined: {exc}"
     dom_nm[lit], dom_comp[lit], purity[lit] = d.wavelength_nm, d.complementary, \
         d.excitation_purity
@@ -213,22 +199,21 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     levels = np.asarray(spectra, dtype=float)
-    XYZ = sc.tristimulus(sc.Spectrum(wl, levels / FULL_LEVEL), observer=observer,
-                         illuminant=reference)
-    white_XYZ = sc.tristimulus(sc.Spectrum.constant(1.0, wl), observer=observer,
-                               illuminant=reference)
-    xy = sc.xy(XYZ)
-    white_xy = sc.xy(white_XYZ)
+    XYZ = tristimulus(Spectrum(wl, levels / FULL_LEVEL), observer=observer,
+                      illuminant=reference)
+    white_XYZ = tristimulus(Spectrum.constant(1.0, wl), observer=observer,
+                            illuminant=reference)
+    xy_ = xy(XYZ)
+    white_xy = xy(white_XYZ)
     lit = XYZ[:, 1] > 0
-    dom_nm, dom_comp, purity, dom_note = _dominant(xy, white_xy, observer, lit)
+    dom_nm, dom_comp, purity, dom_note = _dominant(xy_, white_xy, observer, lit)
     chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
-    space = chain["space"]
-    shown_XYZ = XYZ @ chain["to_display"].T
+    space = chain.space
+    shown_XYZ = chain.shown_XYZ(XYZ)
     # the X Y Z row: SPECTRA's step-1 values (one k per channel, the full spectrum 100/100/100)
     # in "spectra-exact", else CIE's (one k); xy, CIELAB and λd are always CIE's
-    row_XYZ = XYZ * chain["channel_factors"]
-    r = sc.render(shown_XYZ, space, normalise="per-colour" if normalise == "per-colour"
-                  else "fixed", gamut=gamut, scale=chain["scale"])
+    row_XYZ = XYZ * chain.channel_factors
+    r = chain.render(XYZ, gamut)
     explanations = r.explain()
     negative, over = out_of_gamut_channels(r)
     scales = np.broadcast_to(np.asarray(r.scale, dtype=float), (len(levels),))
@@ -239,9 +224,9 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     emitted_XYZ = scales[:, None] * (drive @ np.asarray(space.matrix_to_XYZ).T)
     lab_note = None
     if np.all(white_XYZ > 0):
-        lab = sc.lab(XYZ, white_XYZ)
+        lab_ = lab(XYZ, white_XYZ)
     else:  # e.g. a single line beyond 650 nm: its white has Z = 0, CIELAB is undefined
-        lab = np.full_like(XYZ, np.nan)
+        lab_ = np.full_like(XYZ, np.nan)
         lab_note = (f"CIELAB and ΔE00 undefined: the reference white has X, Y, Z = "
                     f"{np.round(white_XYZ, 3).tolist()} (CIELAB needs all three > 0)")
     colours = []
@@ -256,12 +241,12 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
             status = "ok"
         colours.append({
             "XYZ": XYZ[i].tolist(),
-            "xy": [_none_nan(v) for v in xy[i]],
+            "xy": [_none_nan(v) for v in xy_[i]],
             "dominant_nm": _none_nan(dom_nm[i]),
             "complementary": bool(dom_comp[i]),
             "purity": _none_nan(purity[i]),
             "dominant_note": dom_note if lit[i] else None,
-            "lab": [_none_nan(v) for v in lab[i]],
+            "lab": [_none_nan(v) for v in lab_[i]],
             "XYZ_displayed": shown_XYZ[i].tolist(),
             "XYZ_row": row_XYZ[i].tolist(),
             "rgb_unmapped": r.rgb_unmapped[i].tolist(),
@@ -278,12 +263,12 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
             "emitted_XYZ": emitted_XYZ[i].tolist(),
             "status": status,
         })
-    delta = [_none_nan(float(sc.delta_e_2000(lab[a], lab[b]))) if lab_note is None else None
+    delta = [_none_nan(float(delta_e_2000(lab_[a], lab_[b]))) if lab_note is None else None
              for a, b in pairs]
     # The lights as the display is asked to show them (after normalisation A or B, before any
     # gamut strategy), relative to the display's own white: what the split patch compares.
-    shown_lab = sc.lab(space.XYZ_from_rgb_linear(r.rgb_unmapped), space.white_XYZ)
-    delta_shown = [float(sc.delta_e_2000(shown_lab[a], shown_lab[b])) for a, b in pairs]
+    shown_lab = lab(space.XYZ_from_rgb_linear(r.rgb_unmapped), space.white_XYZ)
+    delta_shown = [float(delta_e_2000(shown_lab[a], shown_lab[b])) for a, b in pairs]
     return {
         "colours": colours,
         "delta_e_2000": delta,
@@ -336,7 +321,7 @@ def light_metrics(wavelengths_nm, illuminant_levels) -> dict:
     values[inside] = np.interp(fine[inside], wavelengths_nm, np.asarray(illuminant_levels, dtype=float))
     if not values.any():
         return {"note": "a light with no energy has no colour rendering"}
-    metrics = summary(sc.Spectrum(fine, values))
+    metrics = summary(Spectrum(fine, values))
     plain = {k: (v if isinstance(v, bool) else _none_nan(v)) for k, v in metrics.items()}
     return {**plain, "note": LIGHT_METRICS_NOTE}
 
@@ -350,12 +335,12 @@ def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     target = np.asarray(target_levels, dtype=float) / FULL_LEVEL
-    XYZ = sc.tristimulus(sc.Spectrum(wl, target), observer=observer, illuminant=reference)
-    result = sc.smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
+    XYZ = tristimulus(Spectrum(wl, target), observer=observer, illuminant=reference)
+    result = smoothest_reflectance(XYZ, illuminant=reference, observer=observer,
                                       wavelengths=(START_NM, STOP_NM, float(step_nm)),
                                       bounds="unit")
     if not bool(result.certificate.converged):
-        raise sc.ColorimetryError(
+        raise ColorimetryError(
             "target: the smoothest metamer of this distribution could not be found exactly "
             f"(residual {float(result.certificate.primal_residual):.3g} XYZ); try a finer step")
     rho = result.spectrum
@@ -363,7 +348,7 @@ def metamer(step_nm, observer, target_levels, illuminant_levels=None) -> dict:
     if rho.wavelengths_nm.shape != wl.shape or not np.allclose(rho.wavelengths_nm, wl):
         values = rho.resample(wl).values
     levels = values * FULL_LEVEL
-    got = sc.tristimulus(sc.Spectrum(wl, values), observer=observer, illuminant=reference)
+    got = tristimulus(Spectrum(wl, values), observer=observer, illuminant=reference)
     return {"levels": levels.tolist(), "XYZ_target": XYZ.tolist(), "XYZ_metamer": got.tolist()}
 
 
@@ -384,14 +369,14 @@ def resolve(values, wavelengths_nm: np.ndarray) -> list:
     step, E, a constant level)."""
     if isinstance(values, str):
         if values in ("D65", "A"):
-            s = sc.illuminant(values, wavelengths_nm).values
+            s = illuminant(values, wavelengths_nm).values
             return quantise(s * FULL_LEVEL / s.max(), wavelengths_nm).tolist()
         if values == "E":
             return [float(FULL_LEVEL)] * len(wavelengths_nm)
-        raise sc.ColorimetryError(
+        raise ColorimetryError(
             f"values: unknown generated preset {values!r}; expected 'D65', 'A', 'E' or a list of "
             "31 levels at 10 nm")
-    coarse = sc.Spectrum(grid(10.0), np.asarray(values, dtype=float))
+    coarse = Spectrum(grid(10.0), np.asarray(values, dtype=float))
     return coarse.resample(wavelengths_nm, "linear").values.tolist()
 
 
@@ -442,20 +427,20 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
     ``max_spectra`` spectra (the page lets the user choose which to edit), as one spectrum (K,)
     or a list (N, K).
     """
-    s = sc.read_spectra(path)
+    s = read_spectra(path)
     if s.values.ndim > 2:
-        raise sc.SpectrumError(
+        raise SpectrumError(
             f"values: expected one spectrum or a list of spectra (N, K), got an array of shape "
             f"{s.values.shape}")
     count = 1 if s.values.ndim == 1 else s.values.shape[0]
     if count > max_spectra:
-        raise sc.SpectrumError(
+        raise SpectrumError(
             f"the file holds {count} spectra; the explorer reads at most {max_spectra} from "
             "one file: import a file with fewer")
     wl = grid(step_nm)
     lo, hi = float(s.wavelengths_nm[0]), float(s.wavelengths_nm[-1])
     if lo > START_NM or hi < STOP_NM:
-        raise sc.SpectrumError(
+        raise SpectrumError(
             f"file covers {lo:g}-{hi:g} nm; the explorer needs {START_NM:g}-{STOP_NM:g} nm and "
             "never extrapolates")
     r = s.resample(wl, method)
@@ -463,12 +448,12 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
     if scale == "peak":
         peak = values.max(axis=-1, keepdims=True)
         if np.any(peak <= 0):
-            raise sc.SpectrumError("a spectrum is zero everywhere in 400-700 nm; cannot scale")
+            raise SpectrumError("a spectrum is zero everywhere in 400-700 nm; cannot scale")
         values = values / peak * FULL_LEVEL
     elif scale == "unit":
         values = values * FULL_LEVEL
     if values.min() < 0 or values.max() > FULL_LEVEL * (1 + 1e-9):
-        raise sc.SpectrumError(
+        raise SpectrumError(
             f"after scaling '{scale}' the levels run from {values.min():.4g} to "
             f"{values.max():.4g}; "
             f"they must lie in 0-{FULL_LEVEL} (choose scale 'peak' or 'unit')")
@@ -488,5 +473,5 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
 def export_spectra(step_nm: float, names, spectra, path) -> None:
     """Write the page's distributions (levels 0..30) to ``path``: CSV or JSON by its suffix."""
     wl = grid(step_nm)
-    s = sc.Spectrum(wl, np.asarray(spectra, dtype=float), names=list(names))
-    sc.write_spectra(s, path)
+    s = Spectrum(wl, np.asarray(spectra, dtype=float), names=list(names))
+    write_spectra(s, path)

@@ -132,7 +132,7 @@ class JSONDepthScanner:
         self.in_string = False
         self.odd_backslashes = False
 
-    def feed(self, piece: bytes) -> int:
+    def feed(self, piece: bytes | memoryview) -> int:
         """Scan the next piece of the text; returns the deepest nesting seen so far."""
         if not piece:
             return self.deepest

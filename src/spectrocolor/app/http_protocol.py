@@ -17,6 +17,7 @@ RFC 9112 (HTTP/1.1), sections 3 (request line), 7.1 (chunked coding); RFC 9110, 
 
 from __future__ import annotations
 
+import asyncio
 import json
 
 import h11
@@ -127,7 +128,7 @@ class JSONErrorH11Protocol(H11Protocol):
     def connection_made(self, transport) -> None:  # noqa: D102 - asyncio.Protocol
         super().connection_made(transport)
         self._idle_since = self.loop.time()
-        self._head_timer = None
+        self._head_timer: asyncio.TimerHandle | None = None
         self._arm_head_timer()
         if len(self.connections) > self.max_connections:
             self._make_room()

@@ -1,7 +1,7 @@
 """The explorer's compiled kernels: compiled in the background, the NumPy path meanwhile.
 
 On a fresh machine numba takes about a minute (longer under load) to compile the library's
-kernels (:mod:`spectrocolor.recovery.compiled`, :mod:`spectrocolor.upsampling.compiled`); a
+kernels (:mod:`spectrocolor.recovery.warmup`, :mod:`spectrocolor.upsampling.warmup`); a
 server that compiled them before serving, or in the first request that needs them, would look
 hung. Instead ``spectrocolor app`` starts a :class:`BackgroundCompilation`: a child process, at
 a lower priority so that requests keep the processor, compiles every kernel into numba's cache
@@ -56,8 +56,8 @@ def compile_every_kernel() -> bool:
     bool
         Whether the kernels are in use (False without numba or with ``SPECTROCOLOR_NUMBA=0``).
     """
-    from ..recovery import compiled as recovery_kernels
-    from ..upsampling import compiled as upsampling_kernels
+    from ..recovery import warmup as recovery_kernels
+    from ..upsampling import warmup as upsampling_kernels
 
     recovery = recovery_kernels.warm_up()
     upsampling = upsampling_kernels.warm_up()

@@ -27,6 +27,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from ..errors import ColorimetryError
 from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
+from .choices import LabObserver, choice
 from .responses import FiniteJSONResponse
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
@@ -75,7 +76,7 @@ class ThinFilmRequest(BaseModel):
     model: Annotated[str, Field(max_length=20)] = "airy"
     angle_deg: Annotated[float, Field(ge=0.0, lt=89.0)] = 0.0
     illuminant: Annotated[str, Field(max_length=40)] = thinfilm_lab.DEFAULT_LIGHT
-    observer: Literal["1931", "1964"] = "1931"
+    observer: LabObserver = "1931"
     display: Annotated[str, Field(max_length=40)] = "sRGB"
 
 
@@ -152,8 +153,8 @@ class ReflectanceRequest(BaseModel):
     y: Annotated[float, Field(ge=1e-6, le=1.0)]
     Y: Annotated[float, Field(ge=1e-6, le=100.0)]
     illuminant: Annotated[str, Field(max_length=40)] = "D65"
-    observer: Literal["1931", "1964"] = "1931"
-    step_nm: Literal["5", "10"] = "5"
+    observer: LabObserver = "1931"
+    step_nm: Annotated[str, choice(reflectance_lab.STEPS_NM.names_view())] = "5"
 
 
 @router.get("/labs/reflectance", include_in_schema=False)
@@ -196,8 +197,13 @@ class SolidRequest(BaseModel):
 
 @router.get("/labs/solid", include_in_schema=False)
 def solid_page():
-    _workers.warm(_ready)  # the solid lab has no options route: start a worker with the page
+    _workers.warm(_ready)  # its options route needs no worker: start one with the page
     return _page("solid")
+
+
+@router.get("/api/lab/solid/options")
+def solid_options():
+    return solid_lab.solid_lab_options()
 
 
 @router.post("/api/lab/solid")

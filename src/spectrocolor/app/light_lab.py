@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
-from ..illuminants import canonical_illuminant, illuminant_label
+from ..illuminants import resolve_illuminant
 
 WAVELENGTHS_NM = np.arange(380.0, 781.0, 5.0)
 MAX_PRIMARIES = 4
@@ -62,7 +62,7 @@ def led_mixture(peaks_nm, widths_nm, powers) -> np.ndarray:
     from ..spectrum import Spectrum
 
     primaries = zip(peaks, widths, powers, strict=True)
-    spd = sum(Spectrum.gaussian(p, w, WAVELENGTHS_NM, peak=a).values for p, w, a in primaries)
+    spd = np.asarray(sum(Spectrum.gaussian(p, w, WAVELENGTHS_NM, peak=a).values for p, w, a in primaries))
     return spd / spd.max()
 
 
@@ -79,15 +79,13 @@ def light_spd(source: dict):
     >>> label, float(spd.max())
     ('blackbody 2700 K', 1.0)
     """
-    from ..illuminants import illuminant
-
     kind = source.get("kind") if isinstance(source, dict) else None
     if kind == "named":
-        name = canonical_illuminant(source.get("name"), "name")
-        if name is None or not isinstance(name, str):
+        light = resolve_illuminant(source.get("name"), "name")
+        if light is None or not light.cacheable:
             raise ColorimetryError("name: the lab takes a named light, e.g. 'FL2', 'blackbody:3000' or 'D:5000'")
-        values = illuminant(name, WAVELENGTHS_NM).values
-        return values / values.max(), illuminant_label(name)
+        values = light.spd(WAVELENGTHS_NM).values
+        return values / values.max(), light.label
     if kind == "leds":
         spd = led_mixture(source.get("peaks_nm", ()), source.get("widths_nm", ()), source.get("powers", ()))
         peaks = ", ".join(f"{p:g}" for p in np.asarray(source["peaks_nm"], dtype=float).reshape(-1))
@@ -171,7 +169,7 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
     reference_spd = np.asarray(cri_reference(float(cri.cct_K), WAVELENGTHS_NM)) if np.isfinite(cri.cct_K) else None
     circle, test = normalised_graphic(fidelity) if np.isfinite(fidelity.Rf) else (None, None)
     graphic_note = "" if circle is not None else "no colour vector graphic: Rf is not defined for this light"
-    if circle is not None and not (np.all(np.isfinite(circle)) and np.all(np.isfinite(test))):
+    if circle is not None and test is not None and not (np.all(np.isfinite(circle)) and np.all(np.isfinite(test))):
         empty = [j + 1 for j in range(len(circle)) if not np.all(np.isfinite([*circle[j], *test[j]]))]
         circle = test = None
         graphic_note = (f"no colour vector graphic: hue bin(s) {', '.join(map(str, empty))} hold no "
@@ -189,7 +187,7 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
                     for k, v in headline.items()},
         "Ri": plain(cri.Ri),
         "hue_bins": {"Rf_h": plain(fidelity.Rf_h), "Rcs_h": plain(fidelity.Rcs_h), "Rhs_h": plain(fidelity.Rhs_h)},
-        "graphic": None if circle is None else {"reference": np.round(circle, 5).tolist(),
+        "graphic": None if circle is None or test is None else {"reference": np.round(circle, 5).tolist(),
                                                 "test": np.round(test, 5).tolist()},
         "graphic_note": graphic_note,
         "bin_rgb8": bin_colours_rgb8().tolist(),

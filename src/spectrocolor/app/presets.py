@@ -14,7 +14,7 @@ promise on the default display (sRGB and SPECTRA's monitor, E adapted to the dis
 normalisation A), the levels were retuned by the integer search in ``tools/tune_presets.py``
 (objectives and every difference from the seed's words: ``docs/app.md``, "Presets"); the
 metameric pairs minimise CIEDE2000 under the stated illuminant (CIE 1931 observer, summation
-at the 31 samples). ``tests/test_app_demonstrations.py`` and ``tests/test_app_api.py`` check
+at the 31 samples). ``tests/app/test_app_demonstrations.py`` and ``tests/app/test_app_api.py`` check
 every property claimed here through the app's compute path. CIE D65 and A are not data here:
 they are the CIE tables, evaluated on the requested grid by :func:`spectrocolor.illuminant`,
 scaled to a peak of 30 and rounded to whole levels (SPECTRA's model has no fractions).

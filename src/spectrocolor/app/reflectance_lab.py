@@ -20,13 +20,13 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import ColorimetryError
-from ..illuminants import canonical_illuminant, illuminant_label
+from ..illuminants import canonical_illuminant, illuminant_label, resolve_illuminant
 from ..registry import Registry
 
 #: The grids the lab offers (380-780 nm): name → step in nm.
 STEPS_NM = Registry("step_nm", "a grid step of the reflectance lab")
-STEPS_NM.add("5", 5.0, "380-780 nm at 5 nm (81 samples)")
-STEPS_NM.add("10", 10.0, "380-780 nm at 10 nm (41 samples, SPECTRA-like)")
+STEPS_NM.add("5", 5.0, "380-780 nm at 5 nm (81 samples)", label="5 nm (81 samples)")
+STEPS_NM.add("10", 10.0, "380-780 nm at 10 nm (41 samples, SPECTRA-like)", label="10 nm (41 samples)")
 BOUNDS = (("unconstrained", None), ("nonnegative", "nonnegative"), ("unit", "unit"))
 DOMAIN_GRID = 72  # chromaticity cells per side of the domain picture
 
@@ -106,8 +106,8 @@ def reflectance_lab(x: float, y: float, Y: float, illuminant="D65", observer: st
     values = np.array([x, y, Y], dtype=float)
     if not (np.all(np.isfinite(values)) and y > 0 and x >= 0 and x + y <= 1 and 0 < Y <= 100):
         raise ColorimetryError(f"x, y, Y: expected 0 ≤ x, 0 < y, x + y ≤ 1 and 0 < Y ≤ 100; got {x!r}, {y!r}, {Y!r}")
-    light = canonical_illuminant(illuminant)
-    if light is None or not isinstance(light, str):
+    light = resolve_illuminant(illuminant)
+    if light is None or not light.cacheable:
         raise ColorimetryError(f"illuminant: the lab takes a named light (e.g. 'D65', 'A'), got {illuminant!r:.60}")
     step = STEPS_NM.get(str(step_nm))
     grid = (380.0, 780.0, step)
@@ -162,7 +162,7 @@ def reflectance_lab(x: float, y: float, Y: float, illuminant="D65", observer: st
 
 
 @lru_cache(maxsize=16)
-def _domain(light: str, observer: str, grid: tuple):
+def _domain(light, observer: str, grid: tuple):
     from ..recovery.validity import domain_of_validity
 
     return domain_of_validity(light, observer=observer, wavelengths=grid)
@@ -198,4 +198,5 @@ def reflectance_lab_options() -> dict:
     """
     from ..illuminants import ILLUMINANTS
 
-    return {"illuminants": ILLUMINANTS.names(), "steps_nm": list(STEPS_NM.names())}
+    return {"illuminants": ILLUMINANTS.names(), "steps_nm": list(STEPS_NM.names()),
+            "steps": [[e.name, e.label] for e in STEPS_NM.entries()]}

@@ -157,7 +157,7 @@ def _open_photo(data: bytes):
     width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
     if width * height > MAX_PHOTO_PIXELS:  # before any pixel is decoded
         raise _bad(f"{width} x {height} pixels; at most {MAX_PHOTO_PIXELS} are read")
-    from ..upsampling.png_reader import iter_png_rows, png_header
+    from ..imagefiles import iter_png_rows, png_header
 
     header = png_header(data, "the upload")
     rgb8 = np.empty((header.height, header.width, 3), np.uint8)

@@ -13,7 +13,7 @@ server's guard (``MAX_BODY_BYTES``, 413 beyond), so a photo file may have up to
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated
 
 from fastapi import APIRouter
 from fastapi.responses import JSONResponse
@@ -22,6 +22,7 @@ from pydantic import Field, model_validator
 from ..errors import SpectrumError
 from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import compute
+from .choices import Gamut, Observer, Step, choice
 from .relight_photo import (
     ADAPTATIONS,
     DEFAULT_ADAPTATION,
@@ -51,12 +52,12 @@ class RelightRequest(StrictRequest):
 
     image: Annotated[str, Field(min_length=1, max_length=_MAX_BASE64)]
     illuminant: Annotated[list[Level], Field(min_length=31, max_length=301)]
-    step_nm: Literal[10, 5, 2, 1] = 10
-    observer: Literal["1931", "1964", "2015-2", "2015-10"] = "1931"
-    source: Literal[SOURCES] = SOURCES[0]  # type: ignore[valid-type]
-    adaptation: Literal[tuple(ADAPTATIONS)] = DEFAULT_ADAPTATION  # type: ignore[valid-type]
-    gamut: Literal["flag", "clip", "preserve-luminance", "desaturate"] = "clip"
-    exposure: Literal[tuple(EXPOSURES)] = DEFAULT_EXPOSURE  # type: ignore[valid-type]
+    step_nm: Step = 10
+    observer: Observer = "1931"
+    source: Annotated[str, choice(SOURCES)] = SOURCES[0]
+    adaptation: Annotated[str, choice(tuple(ADAPTATIONS))] = DEFAULT_ADAPTATION
+    gamut: Gamut = "clip"
+    exposure: Annotated[str, choice(tuple(EXPOSURES))] = DEFAULT_EXPOSURE
 
     @model_validator(mode="after")
     def _check(self):

@@ -29,11 +29,29 @@ from fastapi.staticfiles import StaticFiles
 from pydantic import Field, model_validator
 from starlette.exceptions import HTTPException
 
-from spectrocolor.display.explain import GAMUT_ACTIONS
-from spectrocolor.errors import ColorimetryError, SpectrumError
-from spectrocolor.spreadsheet import neutralise_cell
-
+from ..display.chain import CHAIN_NORMALISATIONS, WHITE_ADAPTATIONS
+from ..display.explain import GAMUT_ACTIONS
+from ..display.gamut import GAMUT_STRATEGIES
+from ..display.spaces import RGB_SPACES
+from ..errors import ColorimetryError, SpectrumError
+from ..interpolation import METHODS as INTERPOLATION_METHODS
+from ..spreadsheet import neutralise_cell
 from . import compute
+from .choices import (
+    ADAPTATIONS,
+    DISPLAYS,
+    GAMUTS,
+    NORMALISATIONS,
+    Adaptation,
+    Display,
+    Gamut,
+    Normalise,
+    Observer,
+    Step,
+    choice,
+    observer_labels,
+    select_options,
+)
 from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
 from .kernels import KernelStatusHeader
 from .lab_routes import router as lab_router
@@ -57,12 +75,8 @@ MAX_SPECTRA = 4
 MAX_IMPORT_SPECTRA = 64
 MAX_BINS = 301  # 400-700 nm at 1 nm
 
-Step = Literal[10, 5, 2, 1]
-Observer = Literal["1931", "1964", "2015-2", "2015-10"]
-Display = Literal["sRGB", "SPECTRA 7000K", "Display P3", "SPECTRA equal-energy"]
-Gamut = Literal["flag", "clip", "preserve-luminance", "desaturate"]
-Normalise = Literal["fixed", "per-colour", "spectra-exact"]
-Adaptation = Literal["bradford", "display rgb", "none"]
+# Observer, Display, Gamut, Normalise and Adaptation (spectrocolor.app.choices) are checked
+# against the library's registries when a request arrives: a name registered there is accepted.
 Levels = Annotated[list[Level], Field(min_length=31, max_length=MAX_BINS)]
 
 
@@ -127,8 +141,8 @@ class ImportRequest(StrictRequest):
     filename: Annotated[str, Field(min_length=1, max_length=200)]
     content: Annotated[str, Field(min_length=1, max_length=1_000_000)]
     step_nm: Step = 10
-    method: Literal["linear", "sprague", "cubic"] = "linear"
-    scale: Literal["peak", "unit", "levels"] = "peak"
+    method: Annotated[str, choice(INTERPOLATION_METHODS)] = "linear"
+    scale: Annotated[str, choice(compute.IMPORT_SCALES.names_view())] = "peak"
 
 
 class ExportRequest(StrictRequest):
@@ -225,25 +239,35 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
 
     @app.get("/api/options")
     def options():
+        # read from the registries at every request: an entry registered there is offered
         return {
             "steps_nm": list(compute.STEPS_NM),
-            "observers": compute.OBSERVERS,
-            "displays": list(compute.DISPLAYS),
-            "gamuts": list(compute.GAMUTS),
-            "normalisations": list(compute.NORMALISATIONS),
-            "adaptations": [[k, label, why] for k, (label, why) in compute.ADAPTATIONS.items()],
-            "gamut_actions": GAMUT_ACTIONS,
+            "steps": [[str(int(s)), compute.step_label(s)] for s in compute.STEPS_NM],
+            "observers": observer_labels(),
+            "displays": list(DISPLAYS),
+            "gamuts": list(GAMUTS),
+            "normalisations": list(NORMALISATIONS),
+            "adaptations": select_options(WHITE_ADAPTATIONS, ADAPTATIONS),
+            "gamut_actions": dict(GAMUT_ACTIONS),
+            # [name, label, tooltip] rows of the page's select boxes
+            "choices": {
+                "gamut": select_options(GAMUT_STRATEGIES, GAMUTS, help_key="action"),
+                "normalise": select_options(CHAIN_NORMALISATIONS, NORMALISATIONS, help_key="help"),
+                "display": [[d, d, RGB_SPACES.description(d)] for d in DISPLAYS],
+                "scale": select_options(compute.IMPORT_SCALES, compute.IMPORT_SCALES.names()),
+            },
             "defaults": {"gamut": compute.DEFAULT_GAMUT, "normalise": compute.DEFAULT_NORMALISE,
                          "adaptation": compute.DEFAULT_ADAPTATION,
-                         "display": compute.DISPLAYS[0]},
+                         "display": DISPLAYS[0]},
             "full_level": compute.FULL_LEVEL,
         }
 
     @app.get("/api/presets")
     def presets(step_nm: str = "10"):
-        if step_nm not in ("10", "5", "2", "1"):
+        steps = [f"{s:g}" for s in compute.STEPS_NM]
+        if step_nm not in steps:
             return JSONResponse(
-                {"error": f"step_nm: {step_nm[:20]!r} is not one of 10, 5, 2, 1 (nm)"},
+                {"error": f"step_nm: {step_nm[:20]!r} is not one of {', '.join(steps)} (nm)"},
                 status_code=422)
         return compute.presets(float(step_nm))
 

@@ -22,7 +22,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import ColorimetryError
-from ..illuminants import canonical_illuminant, illuminant_label
+from ..illuminants import illuminant_label, resolve_illuminant
 
 GRID = (380.0, 780.0, 10.0)
 LEVELS_Y = tuple(float(y) for y in range(5, 100, 5))
@@ -31,10 +31,29 @@ CUBE_EDGE_SAMPLES = 16
 
 
 def _light(illuminant, argument: str = "illuminant") -> str:
-    light = canonical_illuminant(illuminant, argument)
-    if light is None or not isinstance(light, str):
+    light = resolve_illuminant(illuminant, argument)
+    if light is None or not light.cacheable:
         raise ColorimetryError(f"{argument}: the lab takes a named light (e.g. 'D65', 'A'), got {illuminant!r:.60}")
-    return light
+    return light.name
+
+
+#: The displays the solid lab offers, a selection of :data:`~spectrocolor.display.spaces.RGB_SPACES`
+#: (checked there by :func:`solid_lab_options`).
+DISPLAYS = ("sRGB", "Display P3", "Adobe RGB (1998)", "Rec. 2020", "SPECTRA 7000K")
+
+
+def solid_lab_options() -> dict:
+    """The lab's lights and displays (from the registries).
+
+    Examples
+    --------
+    >>> solid_lab_options()["displays"][:2]
+    ['sRGB', 'Display P3']
+    """
+    from ..display.spaces import RGB_SPACES
+    from ..illuminants import ILLUMINANTS
+
+    return {"illuminants": ILLUMINANTS.names(), "displays": [RGB_SPACES.canonical(d) for d in DISPLAYS]}
 
 
 def _shown(XYZ100: np.ndarray, white: np.ndarray, display: str) -> np.ndarray:

@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError, SpectrumError
-from ..illuminants import canonical_illuminant, illuminant_label
+from ..illuminants import illuminant_label, resolve_illuminant
 from ..registry import Registry
 
 WAVELENGTHS_NM = np.arange(380.0, 781.0, 5.0)
@@ -187,8 +187,8 @@ def thinfilm_lab(film: str = "soap", model: str = "airy", angle_deg: float = 0.0
     from ..spectrum import Spectrum
     from ..thinfilm.colour import film_colours
 
-    light = canonical_illuminant(illuminant)
-    if light is None or not isinstance(light, str):
+    light = resolve_illuminant(illuminant)
+    if light is None or not light.cacheable:
         raise ColorimetryError(
             f"illuminant: the lab takes a named light (e.g. 'D65', 'blackbody:6504'), got {illuminant!r:.60}"
         )

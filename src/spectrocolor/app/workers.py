@@ -141,7 +141,8 @@ def _start_process(process) -> None:
             _starter = threading.Thread(target=_starter_loop, daemon=True,
                                         name="spectrocolor-worker-starter")
             _starter.start()
-    done, failure = threading.Event(), []
+    done = threading.Event()
+    failure: list[BaseException] = []
     _starts.put((process, done, failure))
     done.wait()
     if failure:
@@ -307,6 +308,7 @@ class WorkerPool:
                     self._busy.add(worker)
             ok, value = worker.call(function, args, self.timeout_s)
         except WorkerTimeout:
+            assert worker is not None  # only worker.call times out
             worker.kill()  # the job is abandoned: nobody else may wait for it
             worker = None
             raise

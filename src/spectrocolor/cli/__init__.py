@@ -18,7 +18,7 @@ import importlib
 import os
 import sys
 
-from .. import __version__
+from .._version import __version__
 from ..budget import ENVIRONMENT_VARIABLE, parse_size
 from ..errors import BudgetError, ColorimetryError, SpectrumError
 

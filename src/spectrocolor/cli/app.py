@@ -160,7 +160,12 @@ def run(args) -> int:
     if remote:
         print(f"warning: serving on {args.host}: anyone who can reach this port can use the "
               "explorer (no accounts, no encryption)", file=sys.stderr, flush=True)
+    from ..app.http_protocol import ACCEPT_BACKLOG, JSONErrorH11Protocol
+
     sock = _bind(args.host.strip("[]"), args.port)
+    # listen before the address is announced: a browser opened at once (ours, or the user's
+    # click) then waits in the backlog until the server accepts, instead of being refused
+    sock.listen(ACCEPT_BACKLOG)
     host, port = sock.getsockname()[:2]
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{port}/"
@@ -177,8 +182,6 @@ def run(args) -> int:
     try:
         app = create_app(port=port, check_host=not remote)
         # malformed HTTP: the JSON error shape too; bounded connections (see http_protocol)
-        from ..app.http_protocol import ACCEPT_BACKLOG, JSONErrorH11Protocol
-
         config = uvicorn.Config(app, log_level="warning", http=JSONErrorH11Protocol,
                                 backlog=ACCEPT_BACKLOG)
         server = uvicorn.Server(config)

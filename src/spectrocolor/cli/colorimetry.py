@@ -15,7 +15,7 @@ from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import illuminant_label
 from ..spectrum import Spectrum
 from . import UserError
-from .options import add_illuminant, add_observer
+from .options import add_encoding, add_illuminant, add_observer
 
 #: Reflectance factors above this are almost surely percentages.
 _PERCENT_SUSPICION = 1.5
@@ -39,6 +39,7 @@ def add_spectral_options(parser: argparse.ArgumentParser, *, lights: bool) -> No
     from ..colorimetry import SUMMATION_METHODS
 
     parser.add_argument("file", help=FILE_HELP)
+    add_encoding(parser)
     add_illuminant(parser, lights=lights, what="the reflectance/transmittance samples (seed 001's examples use C)")
     add_observer(parser)
     parser.add_argument(
@@ -71,7 +72,7 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
 
     check_files(args, (), ("file",), MAX_SPECTRAL_FILE_BYTES)  # a regular file, bounded: never /dev/zero
 
-    spectra = read_spectra(args.file, percent=True if args.percent else None)
+    spectra = read_spectra(args.file, percent=True if args.percent else None, encoding=args.encoding)
     if spectra.names is None:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
     if args.range:
@@ -199,6 +200,7 @@ def _xyz_command(args: argparse.Namespace) -> int:
     spectra = load_samples(args)
     XYZ = compute_XYZ(spectra, args)
     chromaticity = xy(XYZ)
+    assert spectra.names is not None  # load_samples names every sample
     rows = [
         {"name": name, "X": float(X[0]), "Y": float(X[1]), "Z": float(X[2]), "x": float(c[0]), "y": float(c[1])}
         for name, X, c in zip(spectra.names, XYZ, chromaticity, strict=True)
@@ -223,7 +225,7 @@ def describe_rows(spectra: Spectrum, illuminant: str, observer: str, method: str
     """
     from ..report import measurement_report
 
-    report = measurement_report(spectra, illuminant, observer, method)
+    report = measurement_report(spectra, illuminant=illuminant, observer=observer, method=method)
     rows = []
     for i, name in enumerate(report.names):
         wavelength = float(report.dominant_wavelength_nm[i])

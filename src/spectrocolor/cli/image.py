@@ -7,13 +7,10 @@ import sys
 
 import numpy as np
 
-from ..display.adaptation import ADAPTATION_METHODS
 from ..illuminants import illuminant_label
 from . import UserError
 from .files import add_force, check_files
-from .options import add_gamut, add_illuminant, add_observer
-
-_ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
+from .options import adapt_choices, add_gamut, add_illuminant, add_observer
 
 
 def register(subparsers) -> None:
@@ -51,7 +48,7 @@ def register(subparsers) -> None:
     add_gamut(p)
     p.add_argument("--exposure", type=float, default=1.0,
                    help="multiplier on XYZ before display (default 1)")
-    p.add_argument("--adapt", choices=_ADAPT_CHOICES, default="bradford",
+    p.add_argument("--adapt", choices=adapt_choices(), default="bradford",
                    help="adapt the illuminant's white to the display white (default bradford)")
     p.add_argument("--bit-depth", type=int, choices=(8, 16), default=8,
                    help="PNG bits per channel (default 8)")
@@ -174,11 +171,12 @@ def _image(args: argparse.Namespace) -> int:
         if plan.channels == 4:
             metadata["alpha"] = "0 where masked, 1 elsewhere"
     if args.scheduler:  # the cluster returns the whole result; write it as one block
-        from ..images.stream import write_png_blocks, write_tiff_blocks
+        from ..imagefiles import write_png_blocks, write_tiff_blocks
 
         result = _on_cluster(cube, plan, args)
         if suffix == "png":
-            write_png_blocks(args.out, [result], *result.shape, plan.dtype.itemsize * 8)
+            height, width, channels = result.shape
+            write_png_blocks(args.out, [result], height, width, channels, plan.dtype.itemsize * 8)
         else:
             write_tiff_blocks(args.out, [result], result.shape, result.shape[0], metadata)
     else:  # streamed: one block of rows in memory, written as it is made

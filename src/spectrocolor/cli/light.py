@@ -11,6 +11,7 @@ import numpy as np
 from . import UserError
 from .colorimetry import FILE_HELP
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files
+from .options import add_encoding
 
 _FORMATS = ("html", "csv", "json")
 _RESAMPLE = ("linear", "sprague", "cubic")
@@ -35,6 +36,7 @@ def register(subparsers) -> None:
         ),
     )
     p.add_argument("file", metavar="FILE", help=FILE_HELP)
+    add_encoding(p)
     p.add_argument("--out", required=True, help="output file (.html, .csv or .json)")
     p.add_argument("--format", choices=_FORMATS, default=None, help="output format (default: from the --out suffix)")
     p.add_argument("--resample", choices=_RESAMPLE, default=None,
@@ -88,7 +90,7 @@ def _light(args: argparse.Namespace) -> int:
 
     fmt = _output_format(args)
     check_files(args, ("out", "graphic"), ("file",), MAX_SPECTRAL_FILE_BYTES)
-    spectra = _resampled(read_spectra(args.file), args.resample, args.file)
+    spectra = _resampled(read_spectra(args.file, encoding=args.encoding), args.resample, args.file)
     report = light_report(spectra, resample_hint=_RESAMPLE_HINT)
     write_light_report(report, args.out, fmt, title=args.title)
     if args.graphic is not None:

@@ -4,15 +4,17 @@
 and, where a command reads lights, ``none``: the one way to say "these spectra are lights". The
 defaults are the library's (:data:`spectrocolor.DEFAULT_ILLUMINANT`,
 :data:`spectrocolor.DEFAULT_OBSERVER`, :data:`DEFAULT_GAMUT`), and the choices and help texts of
-``--observer``, ``--gamut`` and ``--method`` come from the registries, so a new entry there is a
-new choice here.
+``--observer``, ``--gamut``, ``--method``, ``--normalise`` and ``--adapt`` come from the registries,
+read when the parser is built (each run), so a new entry there is a new choice here.
 """
 
 from __future__ import annotations
 
 import argparse
 
+from ..display.adaptation import ADAPTATION_METHODS
 from ..display.gamut import DEFAULT_GAMUT, GAMUT_STRATEGIES
+from ..display.normalise import NORMALISATIONS
 from ..errors import ColorimetryError
 from ..illuminants import DEFAULT_ILLUMINANT, canonical_illuminant
 from ..observers import OBSERVERS, canonical_observer_name
@@ -68,3 +70,35 @@ def add_gamut(parser: argparse.ArgumentParser, default: str = DEFAULT_GAMUT) -> 
     """``--gamut``: the strategy for colours a display cannot show, from :data:`GAMUT_STRATEGIES`."""
     parser.add_argument("--gamut", choices=GAMUT_STRATEGIES.names(), default=default,
                         help=f"colours the display cannot show: {GAMUT_STRATEGIES.help()} (default {default})")
+
+
+def adapt_choices() -> tuple[str, ...]:
+    """``--adapt``'s choices: ``none`` and every transform of :data:`ADAPTATION_METHODS`."""
+    return ("none", *ADAPTATION_METHODS.names())
+
+
+def normalise_choices() -> tuple[str, ...]:
+    """``--normalise``'s choices: the names of :data:`NORMALISATIONS`."""
+    return NORMALISATIONS.names()
+
+
+def _encoding_type(text: str) -> str:
+    from ..errors import SpectrumError
+    from ..io.text import codec_name
+
+    try:
+        return codec_name(text)
+    except SpectrumError as exc:
+        raise argparse.ArgumentTypeError(str(exc).removeprefix("encoding: ")) from None
+
+
+_encoding_type.__name__ = "encoding"
+
+
+def add_encoding(parser: argparse.ArgumentParser) -> None:
+    """``--encoding``: the spectral file's text encoding, overriding detection (every command that reads one)."""
+    parser.add_argument(
+        "--encoding", type=_encoding_type, default=None,
+        help="the file's text encoding, e.g. cp1252, latin-1, utf-16 (default: detected: a byte-order mark, "
+             "else UTF-8, else cp1252 when every byte is a printable cp1252 character; the encoding used is "
+             "in the result's metadata)")

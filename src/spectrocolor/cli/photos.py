@@ -1,7 +1,7 @@
 """Photos and textures read in blocks of rows, for ``relight`` and ``upsample``.
 
 8- and 16-bit PNG (grey, grey + alpha, RGB, RGBA; not interlaced) are decoded block by block
-by :func:`spectrocolor.upsampling.png_reader.iter_png_rows`, so a photo of any size allowed
+by :func:`spectrocolor.imagefiles.iter_png_rows`, so a photo of any size allowed
 (:data:`MAX_PIXELS`) is read in bounded memory, whatever the few kilobytes of zeros it may be
 made of. Other files -- palette or interlaced PNG and JPEG through Pillow, TIFF through
 tifffile -- are decoded whole, after their size in memory is checked against the memory budget
@@ -17,7 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import BudgetError
+from ..errors import BudgetError, SpectrumError
+from ..imagefiles import image_header, iter_png_rows, read_image
 from . import UserError
 
 #: Largest photo read, in pixels (a 24-megapixel photo is 2.4e7).
@@ -76,35 +77,33 @@ def open_photo(path: Path) -> Photo:
     """
     path = Path(path)
     try:
-        with open(path, "rb") as handle:
-            head = handle.read(29)
-    except OSError as exc:
-        raise UserError(f"{path}: cannot be read ({exc.strerror or exc})") from None
-    if head[:8] == b"\x89PNG\r\n\x1a\n" and _streamable_png(head):
-        return _png(path)
-    if path.suffix.lower() in (".tif", ".tiff"):
-        return _whole(path, _tiff_codes(path))
-    return _whole(path, _pillow_codes(path))
-
-
-def _streamable_png(head: bytes) -> bool:
-    """What the library's streaming reader takes: 8-bit grey/RGB(A) without interlacing, and every
-    16-bit PNG (Pillow would cut it to 8 bits, so the reader's refusal is the answer there)."""
-    if len(head) < 29:
-        return False
-    return head[24] == 16 or (head[24] == 8 and head[25] in (0, 2, 4, 6) and head[28] == 0)
-
-
-def _png(path: Path) -> Photo:
-    from ..errors import SpectrumError
-    from ..upsampling.png_reader import iter_png_rows, png_header
-
-    try:
-        header = png_header(path)
+        header = image_header(path)
     except SpectrumError as exc:
-        raise UserError(f"cannot be read as an image: {exc}") from None
+        raise UserError(_unreadable(exc)) from None
     _check_pixels(path, header.width, header.height)
+    if header.streamed:  # 8/16-bit PNG, not interlaced: imagefiles.iter_png_rows
+        return _png(path, header)
+    if header.format == "TIFF":
+        if header.dtype not in (np.uint8, np.uint16) or header.channels > 4:
+            raise UserError(f"{path}: expected an RGB image of 8- or 16-bit codes; got "
+                            f"{header.dtype} with {header.channels} channels")
+        _check_memory(path, header.width, header.height, header.nbytes, "a TIFF")
+    else:  # the decoded image and its RGB conversion are held together
+        _check_memory(path, header.width, header.height, header.width * header.height * (header.channels + 3),
+                      "a JPEG or palette PNG")
+    try:
+        return _whole(path, read_image(path))
+    except BudgetError:
+        raise
+    except SpectrumError as exc:
+        raise UserError(_unreadable(exc)) from None
 
+
+def _unreadable(exc: SpectrumError) -> str:
+    return str(exc) if "cannot be read" in str(exc) else f"cannot be read as an image: {exc}"
+
+
+def _png(path: Path, header) -> Photo:
     def read(rows: int) -> Iterator[np.ndarray]:
         try:
             for _, block in iter_png_rows(path, rows_per_block=rows):
@@ -112,7 +111,7 @@ def _png(path: Path) -> Photo:
         except SpectrumError as exc:
             raise UserError(f"cannot be read as an image: {exc}") from None
 
-    return Photo(path, header.width, header.height, header.bit_depth, read)
+    return Photo(path, header.width, header.height, header.dtype.itemsize * 8, read)
 
 
 def _check_pixels(path: Path, width: int, height: int) -> None:
@@ -123,50 +122,8 @@ def _check_pixels(path: Path, width: int, height: int) -> None:
 def _check_memory(path: Path, width: int, height: int, nbytes: int, how: str) -> None:
     from ..budget import check_bytes
 
-    _check_pixels(path, width, height)
     check_bytes(nbytes, f"{path}: {width} x {height} pixels ({how} is decoded whole; a PNG is "
                 "streamed)")
-
-
-def _pillow_codes(path: Path) -> np.ndarray:
-    from PIL import Image
-
-    try:
-        with Image.open(path) as image:
-            width, height = image.size
-            bands = len(image.getbands())
-            # the decoded image and its RGB conversion are held together
-            _check_memory(path, width, height, width * height * (bands + 3), "a JPEG or palette PNG")
-            return np.asarray(image.convert("RGB"))
-    except (UserError, BudgetError):
-        raise
-    except Exception as exc:  # Pillow raises many types for damaged files
-        raise UserError(f"{path}: cannot be read as an image ({exc})") from None
-
-
-def _tiff_codes(path: Path) -> np.ndarray:
-    import tifffile
-
-    from ..budget import claimed_bytes
-
-    try:
-        with tifffile.TiffFile(path) as tif:
-            series = tif.series[0]
-            shape = tuple(series.shape)
-            if len(shape) not in (2, 3):
-                raise UserError(f"{path}: expected an RGB image of 8- or 16-bit codes; got shape {shape}")
-            nbytes = claimed_bytes(shape, np.dtype(series.dtype).itemsize, f"{path}: shape")
-            _check_memory(path, shape[1], shape[0], nbytes, "a TIFF")
-            codes = np.asarray(series.asarray())
-    except (UserError, BudgetError):
-        raise
-    except Exception as exc:  # tifffile raises many types for damaged files
-        raise UserError(f"{path}: cannot be read as an image ({exc})") from None
-    if codes.ndim not in (2, 3) or (codes.ndim == 3 and codes.shape[-1] not in (1, 2, 3, 4)) \
-            or codes.dtype not in (np.uint8, np.uint16):
-        raise UserError(f"{path}: expected an RGB image of 8- or 16-bit codes; got {codes.dtype} "
-                        f"{codes.shape}")
-    return codes
 
 
 def _whole(path: Path, codes: np.ndarray) -> Photo:

@@ -40,7 +40,10 @@ def register(subparsers) -> None:
 
 
 def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.ndarray:
-    from .. import adapt, rgb_space, wavelength_grid, white_point
+    from ..colorimetry import white_point
+    from ..display.adaptation import adapt
+    from ..display.spaces import rgb_space
+    from ..spectrum import wavelength_grid
 
     rgb8 = []
     for code in codes:

@@ -4,7 +4,7 @@ Every pixel's colour is upsampled to the exact smoothest reflectance of an upsam
 (:mod:`spectrocolor.upsampling`) built for the light the photo was taken under (``--from``),
 seen under ``--to`` and shown on the display, optionally after chromatic adaptation to the
 new light (``--adapt``). Photos are read, relit and written in blocks of rows sized by the
-memory budget (:mod:`spectrocolor.cli.photos`, :func:`spectrocolor.images.stream.write_png_blocks`):
+memory budget (:mod:`spectrocolor.cli.photos`, :func:`spectrocolor.imagefiles.write_png_blocks`):
 memory stays bounded whatever the photo's size.
 """
 
@@ -17,13 +17,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..display.adaptation import ADAPTATION_METHODS
 from ..upsampling.apply import OUT_OF_RANGE_STRATEGIES
 from . import UserError
 from .files import add_force, check_files
-from .options import add_gamut
+from .options import adapt_choices, add_gamut
 
-_ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 #: NaN spectra cannot be displayed, so the command offers the strategies that give colours.
 _OUT_OF_RANGE = tuple(name for name in OUT_OF_RANGE_STRATEGIES if name != "nan")
 _INPUT_SUFFIXES = (".png", ".tif", ".tiff", ".jpg", ".jpeg")
@@ -46,8 +44,8 @@ def register(subparsers) -> None:
     p.add_argument("--out", required=True,
                    help="output .png (or an existing folder when INPUT is a folder)")
     p.add_argument("--to", required=True, dest="to_illuminant",
-                   help="the new light, e.g. A, F11, D50")
-    p.add_argument("--adapt", choices=_ADAPT_CHOICES, default="none",
+                   help="the new light: a CIE name (A, F11, D50, …), blackbody:T or D:T (T in kelvin)")
+    p.add_argument("--adapt", choices=adapt_choices(), default="none",
                    help="chromatic adaptation to the new light (default none)")
     add_table_options(p, taken="the light the photo was taken under",
                       space="RGB space of the photo and the output", out_of_range=_OUT_OF_RANGE)
@@ -161,13 +159,14 @@ def relit_blocks(table, photo, args: argparse.Namespace, counts: dict) -> Iterat
 
 
 def _relight(args: argparse.Namespace) -> int:
-    from ..images.stream import write_png_blocks
+    from ..imagefiles import write_png_blocks
     from .photos import open_photo
 
     check_table_options(args)
-    from ..illuminants import canonical_illuminant
+    from ..illuminants import resolve_illuminant
 
-    canonical_illuminant(args.to_illuminant, "--to")  # a clear error before any work
+    # resolved once (every form --illuminant takes), a clear error before any work
+    args.to_illuminant = resolve_illuminant(args.to_illuminant, "--to")
     pairs = _pairs(args)
     table = None
     for photo_path, target in pairs:
@@ -178,7 +177,7 @@ def _relight(args: argparse.Namespace) -> int:
                          photo.width, 3, args.bit_depth)
         pixels = photo.width * photo.height
         print(f"wrote {target}: {photo.width} x {photo.height} pixels, {table.space} under "
-              f"{table.illuminant} -> {args.to_illuminant} (adaptation {args.adapt}); "
+              f"{table.illuminant} -> {args.to_illuminant.label} (adaptation {args.adapt}); "
               f"{counts['inexact']} of {pixels} pixels not reproduced exactly ({args.out_of_range}), "
               f"{counts['clipped']} outside the display gamut ({args.gamut})", file=sys.stdout)
     return 0

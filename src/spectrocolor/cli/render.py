@@ -6,13 +6,11 @@ import argparse
 
 import numpy as np
 
-from ..display.adaptation import ADAPTATION_METHODS
 from . import UserError
 from .colorimetry import FILE_HELP
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files, save_figure
-from .options import add_gamut, add_illuminant, add_observer
+from .options import adapt_choices, add_encoding, add_gamut, add_illuminant, add_observer, normalise_choices
 
-_ADAPT_CHOICES = ("none", *ADAPTATION_METHODS)
 #: Largest swatch side in pixels (the image is about 8 swatches wide).
 _MAX_SWATCH_PX = 1024
 #: Reflectance samples with Y above this (white = 100) are almost surely percentages.
@@ -34,7 +32,7 @@ def register(subparsers) -> None:
     r.add_argument("--space", default="sRGB", help="RGB space (default sRGB)")
     r.add_argument(
         "--normalise",
-        choices=("none", "fixed", "per-colour", "global-max"),
+        choices=normalise_choices(),
         default=None,
         help="scale to the display: default 'none' for reflectances (perfect white = display "
         "white), 'global-max' for lights",
@@ -48,7 +46,7 @@ def register(subparsers) -> None:
     add_gamut(r)
     r.add_argument(
         "--adapt",
-        choices=_ADAPT_CHOICES,
+        choices=adapt_choices(),
         default="bradford",
         help="reflectances: adapt the illuminant's white to the display white (default "
         "bradford); 'none' shows the scene as the light colours it (SPECTRA's choice)",
@@ -76,6 +74,7 @@ def register(subparsers) -> None:
 
 def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", metavar="FILE", help=FILE_HELP)
+    add_encoding(parser)
     add_illuminant(parser, lights=True)
     add_observer(parser)
 
@@ -88,7 +87,7 @@ def _tristimulus(args):
     from ..colorimetry import tristimulus, weights
     from ..spectrum_io import read_spectra
 
-    spectra = read_spectra(args.file)
+    spectra = read_spectra(args.file, encoding=args.encoding)
     illuminant = _illuminant(args)
     if illuminant is not None and np.min(spectra.values) < 0:
         raise UserError(

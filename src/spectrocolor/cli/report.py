@@ -8,7 +8,7 @@ from pathlib import Path
 from . import UserError
 from .colorimetry import FILE_HELP, PERCENT_HELP, reflectance_factors
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files
-from .options import add_illuminant, add_observer
+from .options import add_encoding, add_illuminant, add_observer
 
 
 def register(subparsers) -> None:
@@ -25,6 +25,7 @@ def register(subparsers) -> None:
         ),
     )
     p.add_argument("file", metavar="FILE", help=FILE_HELP)
+    add_encoding(p)
     add_illuminant(p, what="the reflectance samples (seed 001 uses C)")
     add_observer(p)
     p.add_argument("--method", choices=_methods(), default="sum",
@@ -55,7 +56,8 @@ def _report(args: argparse.Namespace) -> int:
     from ..spectrum_io import read_spectra
 
     check_files(args, ("out",), ("file",), MAX_SPECTRAL_FILE_BYTES)
-    spectra = reflectance_factors(read_spectra(args.file, percent=True if args.percent else None), args.file)
+    spectra = reflectance_factors(
+        read_spectra(args.file, percent=True if args.percent else None, encoding=args.encoding), args.file)
     if args.page_rows < 1:
         raise UserError(f"--page-rows must be at least 1; got {args.page_rows}")
     suffix = Path(args.out).suffix.lstrip(".").lower()
@@ -65,7 +67,7 @@ def _report(args: argparse.Namespace) -> int:
         raise UserError(f"--out {args.out!r}: give a .html, .csv, .json or .cgats file, or --format")
     if args.format and suffix in _FORMATS and suffix != args.format:
         raise UserError(f"--format {args.format} would write {args.format.upper()} into {args.out!r}; make them agree")
-    report = measurement_report(spectra, args.illuminant, args.observer, args.method)
+    report = measurement_report(spectra, illuminant=args.illuminant, observer=args.observer, method=args.method)
     if fmt == "cgats":
         from ..io.writers import table_to_cgats
         from ..safe_write import write_text

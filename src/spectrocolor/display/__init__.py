@@ -2,10 +2,12 @@
 
 Modules: :mod:`.spaces` (RGB spaces), :mod:`.transfer` (transfer functions, integer codes),
 :mod:`.normalise` (scales), :mod:`.gamut` (out-of-gamut strategies), :mod:`.render` (the whole
-chain) and :mod:`.adaptation` (chromatic adaptation). Needs only NumPy.
+chain), :mod:`.adaptation` (chromatic adaptation) and :mod:`.chain` (the explorer's linear chain:
+SPECTRA's k, the adaptation of E, normalisation A). Needs only NumPy.
 """
 
 from .adaptation import adapt, adaptation_matrix
+from .chain import CHAIN_NORMALISATIONS, WHITE_ADAPTATIONS, DisplayChain, display_chain
 from .gamut import GAMUT_STRATEGIES, gamut_flags
 from .normalise import NORMALISATIONS, max_object_rgb, white_scale
 from .render import Rendering, render
@@ -25,6 +27,10 @@ from .transfer import (
 __all__ = [
     "adapt",
     "adaptation_matrix",
+    "CHAIN_NORMALISATIONS",
+    "WHITE_ADAPTATIONS",
+    "DisplayChain",
+    "display_chain",
     "GAMUT_STRATEGIES",
     "gamut_flags",
     "NORMALISATIONS",

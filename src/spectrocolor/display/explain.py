@@ -13,20 +13,39 @@ P. Sällström (1999), USIP Report 99-05, STEP 3 and "Some questions", 4.
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Mapping
+
 import numpy as np
 
 from ..errors import ColorimetryError
+from .gamut import GAMUT_STRATEGIES
 from .spaces import rgb_space
 
 __all__ = ["GAMUT_ACTIONS", "out_of_gamut_channels", "explain"]
 
-#: What each gamut strategy does to a colour the display cannot show (one line each).
-GAMUT_ACTIONS = {
-    "flag": "shown black",
-    "clip": "each channel clipped to 0-1",
-    "preserve-luminance": "negative channels set to 0 at constant luminance",
-    "desaturate": "desaturated toward the white at constant luminance (hue kept)",
-}
+class _GamutActions(Mapping[str, str]):
+    """Strategy name → what it does to a colour the display cannot show: a live view of
+    ``extra["action"]`` of :data:`~spectrocolor.display.gamut.GAMUT_STRATEGIES` (the
+    description where a strategy gives no action), so a new strategy needs no entry here."""
+
+    def __getitem__(self, name: str) -> str:
+        if not isinstance(name, str) or name not in GAMUT_STRATEGIES.names():
+            raise KeyError(name)
+        return GAMUT_STRATEGIES.extra(name, "action", GAMUT_STRATEGIES.description(name))
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(GAMUT_STRATEGIES.names())
+
+    def __len__(self) -> int:
+        return len(GAMUT_STRATEGIES)
+
+    def __repr__(self) -> str:
+        return repr(dict(self))
+
+
+#: What each gamut strategy does to a colour the display cannot show (one line each), read
+#: from the registry's entries.
+GAMUT_ACTIONS: Mapping[str, str] = _GamutActions()
 
 _CHANNELS = ("R", "G", "B")
 

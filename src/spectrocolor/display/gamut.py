@@ -82,7 +82,7 @@ def _snap(rgb: np.ndarray, tolerance: float) -> np.ndarray:
 
 
 def _inside(rgb: np.ndarray) -> np.ndarray:
-    return ((rgb >= 0) & (rgb <= 1)).all(axis=-1, keepdims=True)
+    return np.asarray(((rgb >= 0) & (rgb <= 1)).all(axis=-1, keepdims=True))
 
 
 def flag_black(rgb_linear, tolerance: float = DEFAULT_TOLERANCE) -> np.ndarray:
@@ -244,20 +244,28 @@ def desaturate(rgb_linear, luminance_row, tolerance: float = DEFAULT_TOLERANCE):
 
 
 #: The gamut strategies: name → function (rgb_linear, luminance_row, tolerance) → rgb_linear.
+#: Each entry carries everything an interface shows: the description (help texts), the label
+#: (the explorer's select box) and ``extra["action"]``, what was done to a colour
+#: (:func:`spectrocolor.display.explain.explain`). A new strategy is one ``add`` here.
 GAMUT_STRATEGIES = Registry("gamut", "a gamut strategy")
 GAMUT_STRATEGIES.add(
     "flag", lambda rgb, row, tol: flag_black(rgb, tol),
     "show colours the display cannot reproduce as black (SPECTRA's 'cannot be reproduced')",
+    label="SPECTRA: cannot be reproduced", extra={"action": "shown black"},
 )
 GAMUT_STRATEGIES.add(
-    "clip", lambda rgb, row, tol: clip(rgb, tol), "clip each channel to [0, 1] (hue and luminance may shift)"
+    "clip", lambda rgb, row, tol: clip(rgb, tol), "clip each channel to [0, 1] (hue and luminance may shift)",
+    label="clip channels", extra={"action": "each channel clipped to 0-1"},
 )
 GAMUT_STRATEGIES.add(
     "preserve-luminance", preserve_luminance,
     "set negative channels to 0 and scale the others to keep luminance (Zawischa eqs. 20-21), then clip above 1",
+    label="keep luminance", extra={"action": "negative channels set to 0 at constant luminance"},
 )
 GAMUT_STRATEGIES.add(
-    "desaturate", desaturate, "move towards the grey of equal luminance along constant hue: the least change"
+    "desaturate", desaturate, "move towards the grey of equal luminance along constant hue: the least change",
+    label="desaturate (keep hue and luminance)",
+    extra={"action": "desaturated toward the white at constant luminance (hue kept)"},
 )
 
 

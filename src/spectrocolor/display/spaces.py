@@ -294,7 +294,8 @@ class RGBSpace:
             raise ColorimetryError(
                 f"white_xy {tuple(white)} must lie inside the triangle of the primaries"
             )
-        return cls.from_primaries_XYZ(*(columns * strengths).T, transfer=transfer, name=name)
+        red, green, blue = (columns * strengths).T
+        return cls.from_primaries_XYZ(red, green, blue, transfer=transfer, name=name)
 
     def __repr__(self) -> str:
         return f"RGBSpace({self.name!r}, white_xy={np.round(self.white_xy, 4).tolist()})"

@@ -24,6 +24,10 @@ ITU-R Recommendation BT.2020-2 (2015), Parameter values for ultra-high definitio
 Adobe Systems (2005), Adobe RGB (1998) Color Image Encoding, version 2005-05.
 P. Sällström (1999), A computer program for visualising the relation between colour and
 spectral energy distribution, USIP Report 99-05, Appendix ("c.dat", gamma 2.204).
+
+Why this file is long: the four transfer kinds, their registry and the integer coding form one
+contract (encode, decode, refuse values outside [0, 1], NaN passes through); each kind is a small
+class whose docstring carries its standard, and the coding functions are checked against every kind.
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ from ..errors import ColorimetryError
 from ..registry import Registry
 
 __all__ = [
+    "TransferCurve",
     "SRGBCurve",
     "PowerLaw",
     "BT2020Curve",
@@ -62,8 +67,87 @@ def _check_unit_range(values: np.ndarray, argument: str) -> np.ndarray:
     return values
 
 
+class TransferCurve:
+    """What every transfer does: encode linear drive to a signal and decode it back.
+
+    Both directions refuse values outside [0, 1] (bringing colours into range is a gamut
+    strategy's job, never a side effect of encoding); NaN passes through as NaN, except in a
+    :class:`LevelTable`, where NaN has no level and is refused. Each kind implements the two
+    directions on checked arrays (``_encode``, ``_decode``); the checks and the documentation
+    live here once.
+
+    Examples
+    --------
+    >>> curve = SRGBCurve()
+    >>> isinstance(curve, TransferCurve), curve.encode([0.0, 0.18, 1.0]).round(4).tolist()
+    (True, [0.0, 0.4614, 1.0])
+    >>> curve.encode([1.2])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    spectrocolor.errors.ColorimetryError: rgb_linear must lie in [0, 1] (NaN allowed); got ...
+    """
+
+    __slots__ = ()
+
+    def encode(self, rgb_linear) -> np.ndarray:
+        """Linear 0-1 -> encoded 0-1.
+
+        Parameters
+        ----------
+        rgb_linear : array_like
+            Linear drive values (relative emission) in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            Encoded signal values in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
+
+        Examples
+        --------
+        >>> PowerLaw(2.2).encode([0.18]).round(4).tolist()
+        [0.4587]
+        """
+        return self._encode(_check_unit_range(rgb_linear, "rgb_linear"))
+
+    def decode(self, rgb_encoded) -> np.ndarray:
+        """Encoded 0-1 -> linear 0-1.
+
+        Parameters
+        ----------
+        rgb_encoded : array_like
+            Encoded signal values in [0, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            Linear drive values (relative emission) in [0, 1], same shape.
+
+        Raises
+        ------
+        ColorimetryError
+            For values outside [0, 1].
+
+        Examples
+        --------
+        >>> PowerLaw(2.2).decode([0.5]).round(4).tolist()
+        [0.2176]
+        """
+        return self._decode(_check_unit_range(rgb_encoded, "rgb_encoded"))
+
+    def _encode(self, x: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    def _decode(self, v: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+
 @dataclass(frozen=True)
-class SRGBCurve:
+class SRGBCurve(TransferCurve):
     """The sRGB transfer function of IEC 61966-2-1:1999.
 
     ``encoded = 12.92 * linear`` for ``linear <= threshold``, else
@@ -95,58 +179,12 @@ class SRGBCurve:
     threshold: float = 0.0031308
     name: str = "sRGB (IEC 61966-2-1)"
 
-    def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded 0-1.
-
-        Parameters
-        ----------
-        rgb_linear : array_like
-            Linear drive values in [0, 1] (NaN passes through as NaN).
-
-        Returns
-        -------
-        numpy.ndarray
-            Encoded signal values in [0, 1], same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
-
-        Examples
-        --------
-        >>> SRGBCurve().encode([0.0, 0.18, 1.0]).round(4).tolist()
-        [0.0, 0.4614, 1.0]
-        """
-        x = _check_unit_range(rgb_linear, "rgb_linear")
+    def _encode(self, x: np.ndarray) -> np.ndarray:
         with np.errstate(invalid="ignore"):
             power = 1.055 * np.power(np.maximum(x, self.threshold), 1 / 2.4) - 0.055
         return np.where(x <= self.threshold, 12.92 * x, power)
 
-    def decode(self, rgb_encoded):
-        """Encoded 0-1 -> linear 0-1.
-
-        Parameters
-        ----------
-        rgb_encoded : array_like
-            Encoded signal values in [0, 1].
-
-        Returns
-        -------
-        numpy.ndarray
-            Linear drive values in [0, 1], same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1].
-
-        Examples
-        --------
-        >>> SRGBCurve().decode([0.04045, 0.5]).round(4).tolist()
-        [0.0031, 0.214]
-        """
-        v = _check_unit_range(rgb_encoded, "rgb_encoded")
+    def _decode(self, v: np.ndarray) -> np.ndarray:
         knee = 12.92 * self.threshold
         with np.errstate(invalid="ignore"):
             power = np.power((np.maximum(v, knee) + 0.055) / 1.055, 2.4)
@@ -154,7 +192,7 @@ class SRGBCurve:
 
 
 @dataclass(frozen=True)
-class PowerLaw:
+class PowerLaw(TransferCurve):
     """A pure power law: ``encoded = linear ** (1 / gamma)``, ``linear = encoded ** gamma``.
 
     Parameters
@@ -187,59 +225,16 @@ class PowerLaw:
         if not self.name:
             object.__setattr__(self, "name", f"gamma {self.gamma:g}")
 
-    def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded 0-1.
+    def _encode(self, x: np.ndarray) -> np.ndarray:
+        return np.power(x, 1.0 / self.gamma)
 
-        Parameters
-        ----------
-        rgb_linear : array_like
-            Linear drive values in [0, 1] (NaN passes through as NaN).
+    def _decode(self, v: np.ndarray) -> np.ndarray:
+        return np.power(v, self.gamma)
 
-        Returns
-        -------
-        numpy.ndarray
-            Encoded signal values in [0, 1], same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
-
-        Examples
-        --------
-        >>> PowerLaw(2.2).encode([0.18]).round(4).tolist()
-        [0.4587]
-        """
-        return np.power(_check_unit_range(rgb_linear, "rgb_linear"), 1.0 / self.gamma)
-
-    def decode(self, rgb_encoded):
-        """Encoded 0-1 -> linear 0-1.
-
-        Parameters
-        ----------
-        rgb_encoded : array_like
-            Encoded signal values in [0, 1].
-
-        Returns
-        -------
-        numpy.ndarray
-            Linear drive values in [0, 1], same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1].
-
-        Examples
-        --------
-        >>> PowerLaw(2.2).decode([0.5]).round(4).tolist()
-        [0.2176]
-        """
-        return np.power(_check_unit_range(rgb_encoded, "rgb_encoded"), self.gamma)
 
 
 @dataclass(frozen=True)
-class BT2020Curve:
+class BT2020Curve(TransferCurve):
     """The ITU-R BT.2020 transfer curve (camera OETF; BT.709's shape with exact constants).
 
     ``encoded = 4.5 * linear`` below ``beta = 0.018053968510807``, else
@@ -269,58 +264,12 @@ class BT2020Curve:
     alpha: float = 1.09929682680944
     beta: float = 0.018053968510807
 
-    def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded 0-1.
-
-        Parameters
-        ----------
-        rgb_linear : array_like
-            Linear drive values in [0, 1] (NaN passes through as NaN).
-
-        Returns
-        -------
-        numpy.ndarray
-            Encoded signal values in [0, 1], same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1]: bring colours into gamut first (a gamut strategy).
-
-        Examples
-        --------
-        >>> BT2020Curve().encode([0.01, 0.18]).round(4).tolist()
-        [0.045, 0.4088]
-        """
-        x = _check_unit_range(rgb_linear, "rgb_linear")
+    def _encode(self, x: np.ndarray) -> np.ndarray:
         with np.errstate(invalid="ignore"):
             power = self.alpha * np.power(np.maximum(x, self.beta), 0.45) - (self.alpha - 1)
         return np.where(x < self.beta, 4.5 * x, power)
 
-    def decode(self, rgb_encoded):
-        """Encoded 0-1 -> linear 0-1.
-
-        Parameters
-        ----------
-        rgb_encoded : array_like
-            Encoded signal values in [0, 1].
-
-        Returns
-        -------
-        numpy.ndarray
-            Linear drive values in [0, 1], same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1].
-
-        Examples
-        --------
-        >>> BT2020Curve().decode([0.5]).round(4).tolist()
-        [0.2597]
-        """
-        v = _check_unit_range(rgb_encoded, "rgb_encoded")
+    def _decode(self, v: np.ndarray) -> np.ndarray:
         knee = 4.5 * self.beta
         with np.errstate(invalid="ignore"):
             power = np.power((np.maximum(v, knee) + self.alpha - 1) / self.alpha, 1 / 0.45)
@@ -328,7 +277,7 @@ class BT2020Curve:
 
 
 @dataclass(frozen=True, eq=False)
-class LevelTable:
+class LevelTable(TransferCurve):
     """A measured excitation function: the relative emission at each of N signal levels.
 
     Parameters
@@ -405,7 +354,9 @@ class LevelTable:
         >>> LevelTable([0.0, 0.2, 0.6, 1.0]).index([0.35, 1.0]).tolist()
         [1, 3]
         """
-        x = _check_unit_range(rgb_linear, "rgb_linear")
+        return self._nearest(_check_unit_range(rgb_linear, "rgb_linear"))
+
+    def _nearest(self, x: np.ndarray) -> np.ndarray:
         if np.any(np.isnan(x)):
             raise ColorimetryError("rgb_linear contains NaN, which has no signal level")
         upper = np.clip(np.searchsorted(self.levels, x, side="left"), 1, self.n_levels - 1)
@@ -413,57 +364,12 @@ class LevelTable:
         take_upper = (self.levels[upper] - x) < (x - self.levels[lower])
         return np.where(take_upper, upper, lower)
 
-    def encode(self, rgb_linear):
-        """Linear 0-1 -> encoded ``index / (N - 1)`` of the nearest level.
+    def _encode(self, x: np.ndarray) -> np.ndarray:
+        return self._nearest(x) / (self.n_levels - 1)
 
-        Parameters
-        ----------
-        rgb_linear : array_like
-            Linear drive values in [0, 1].
+    def _decode(self, v: np.ndarray) -> np.ndarray:
+        return self.levels[np.rint(v * (self.n_levels - 1)).astype(int)]
 
-        Returns
-        -------
-        numpy.ndarray
-            Encoded values ``index / (N - 1)``, same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1] or NaN.
-
-        Examples
-        --------
-        >>> LevelTable([0.0, 0.2, 0.6, 1.0]).encode([0.35]).round(4).tolist()
-        [0.3333]
-        """
-        return self.index(rgb_linear) / (self.n_levels - 1)
-
-    def decode(self, rgb_encoded):
-        """Encoded ``index / (N - 1)`` -> the table's emission at that level.
-
-        Parameters
-        ----------
-        rgb_encoded : array_like
-            Encoded values in [0, 1] (rounded to the nearest level).
-
-        Returns
-        -------
-        numpy.ndarray
-            Relative emission (linear, 0–1), same shape.
-
-        Raises
-        ------
-        ColorimetryError
-            For values outside [0, 1].
-
-        Examples
-        --------
-        >>> LevelTable([0.0, 0.2, 0.6, 1.0]).decode([1 / 3]).tolist()
-        [0.2]
-        """
-        v = _check_unit_range(rgb_encoded, "rgb_encoded")
-        index = np.rint(v * (self.n_levels - 1)).astype(int)
-        return self.levels[index]
 
 
 Transfer = SRGBCurve | PowerLaw | BT2020Curve | LevelTable

@@ -131,7 +131,7 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
     if isinstance(fill, str):  # "transparent": RGBA, alpha 0 and colour 0 where masked
         rgba = np.zeros((*rgb.shape[:-1], 4), dtype)
         rgba[~masked, :3] = rgb[~masked]
-        rgba[~masked, 3] = np.iinfo(dtype).max if codes else 1.0
+        rgba[~masked, 3] = np.iinfo(rgba.dtype).max if codes else 1.0
         return rgba
     rgb[masked] = fill
     return rgb
@@ -139,17 +139,19 @@ def rgb_block(values, weights: np.ndarray, options: dict) -> np.ndarray:
 
 def _render(XYZ: np.ndarray, options: dict, dtype) -> np.ndarray:
     """Adapted, exposed and rendered finite XYZ, as ``options`` say (see :func:`rgb_block`)."""
-    import spectrocolor as sc
+    from ..display.adaptation import adapt
+    from ..display.render import render
+    from ..display.spaces import rgb_space
 
     if options["adapt_from"] is not None:
-        space = sc.rgb_space(options["space"]) if isinstance(options["space"], str) else (
+        space = rgb_space(options["space"]) if isinstance(options["space"], str) else (
             options["space"]
         )
-        XYZ = sc.adapt(XYZ, options["adapt_from"], space.white_XYZ,
+        XYZ = adapt(XYZ, options["adapt_from"], space.white_XYZ,
                        method=options["adapt_method"])
     if options["exposure"] != 1.0:
         XYZ = XYZ * options["exposure"]
-    rendering = sc.render(
+    rendering = render(
         XYZ, space=options["space"], normalise="none", gamut=options["gamut"],
         bit_depth=options["bit_depth"],
     )

@@ -6,14 +6,18 @@ A cube (H, W, K) is processed in blocks of whole rows, so memory holds one block
 than memory converts, and the output may itself be a memmap (``out=``). Every block goes
 through the same functions (:mod:`spectrocolor.images.blocks`) that the xarray/dask accessor
 maps over chunks, so all paths give the same numbers.
+
+Why this file is long: the conversion plan and the block loop it drives belong together: the plan's
+memory sizes are the loop's block sizes, and the output writers follow the plan's choice of format.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -37,7 +41,7 @@ class ConversionPlan:
     quantity : str
         "XYZ100" (or "XYZ" for lights), "CIELAB", or "rgb codes" / "rgb_linear" / "rgb_encoded".
     function : callable
-        One of :mod:`spectrocolor.images.blocks`.
+        One of ``spectrocolor.images.blocks``.
     keywords : dict
         Its other arguments (weights, white, options).
     dtype : numpy dtype
@@ -50,7 +54,7 @@ class ConversionPlan:
     """
 
     quantity: str
-    function: object
+    function: Callable[..., Any]
     keywords: dict
     dtype: np.dtype
     white_XYZ: np.ndarray | None
@@ -130,7 +134,7 @@ def plan_conversion(
     >>> plan.quantity, plan.dtype.name, plan.white_XYZ.round(3).tolist()
     ('CIELAB', 'float64', [94.94, 100.0, 108.709])
     """
-    import spectrocolor as sc
+    from .. import colorimetry
 
     if quantity not in ("xyz", "lab", "rgb"):
         raise ColorimetryError(f"quantity must be 'xyz', 'lab' or 'rgb'; got {quantity!r}")
@@ -142,7 +146,7 @@ def plan_conversion(
     if not np.isfinite(scale) or scale <= 0:
         raise ColorimetryError(f"scale must be a positive number; got {scale!r}")
     weights = np.asarray(
-        sc.weights(wavelengths_nm, observer=observer, illuminant=illuminant, method=method),
+        colorimetry.weights(wavelengths_nm, observer=observer, illuminant=illuminant, method=method),
         dtype=np.float64,
     )
     scaled = weights * scale if scale != 1.0 else weights.copy()
@@ -408,8 +412,8 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
 
     Each block is computed and written before the next is read, so memory holds one block of
     spectra and its result, never the whole image (neither floats nor codes): a PNG is
-    compressed row block by row block (:func:`spectrocolor.images.stream.write_png_blocks`), a
-    TIFF gets one strip per block (:func:`spectrocolor.images.stream.write_tiff_blocks`). The
+    compressed row block by row block (:func:`spectrocolor.imagefiles.write_png_blocks`), a
+    TIFF gets one strip per block (:func:`spectrocolor.imagefiles.write_tiff_blocks`). The
     file is written beside ``path`` and renamed over it once read back, like every writer.
 
     Parameters
@@ -457,7 +461,7 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
     ...     np.asarray(Image.open(path))[3, 4].tolist()
     [188, 188, 188]
     """
-    from .stream import write_png_blocks, write_tiff_blocks
+    from ..imagefiles import write_png_blocks, write_tiff_blocks
 
     path = Path(path)
     shape = tuple(values.shape)

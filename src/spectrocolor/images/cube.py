@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -221,7 +222,7 @@ class SpectralCube:
     ((2, 3, 31), [400.0, 700.0])
     """
 
-    values: object
+    values: Any  # an ndarray, a MappedArray or another array-like read by indexing (dask, h5py)
     wavelengths_nm: np.ndarray
     source: str = ""
     metadata: dict = field(default_factory=dict)

@@ -35,6 +35,11 @@ members, compressed TIFF, MATLAB v5, chunked v7.3 datasets) against the compress
 :data:`~spectrocolor.budget.MAX_COMPRESSION_RATIO`; and what must be held in memory (formats
 that cannot be read lazily) against the memory budget. Lazily read cubes are not limited by the
 budget: they are converted in blocks.
+
+Why this file is long: one reader per cube format (NumPy, TIFF, ENVI, MATLAB, NetCDF/HDF5) behind
+one :func:`read_cube`, each checking its header against the memory budget and the file's length
+before it reads; they share the checks and the metadata record, and the ENVI reader, kept ours for
+the reasons given at its top, is most of the length.
 """
 
 from __future__ import annotations
@@ -44,13 +49,18 @@ import struct
 import zlib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..budget import check_bytes, check_file_claim, claimed_bytes, format_size, npy_claim
 from ..budget import memory_budget as budget_in_force
 from ..errors import SpectrumError
+from ..imagefiles import image_header, read_image
 from .cube import MappedArray, SpectralCube, wavelengths_to_nm
+
+if TYPE_CHECKING:  # for an annotation only: the worker's module is imported on first use
+    from concurrent.futures import ProcessPoolExecutor
 
 __all__ = ["read_cube", "read_envi_header", "CorrectedArray", "MatlabH5Array"]
 
@@ -302,6 +312,7 @@ def _read_tiff(path: Path, wavelengths_nm, wavelength_units, budget: int) -> Spe
         dtype = np.dtype(series.dtype)
         claimed = claimed_bytes(shape, dtype.itemsize, f"{path}: the TIFF's shape")
         what = f"the TIFF claims pages of {_describe(shape, dtype)}"
+        values: MappedArray | np.ndarray
         if offset is not None:  # contiguous and uncompressed: read lazily, streamed
             check_file_claim(path, claimed, what, offset=int(offset))
             values = MappedArray(str(path), dtype.newbyteorder(tif.byteorder).str, shape, int(offset), order)
@@ -333,6 +344,18 @@ def _plain(metadata: dict) -> dict:
 
 
 # --- ENVI --------------------------------------------------------------------------------
+#
+# Why this reader is ours and not spectral.io.envi (issue 24; checked against spectral 0.25,
+# the current release): spectral's ``envi.open`` checks neither the size the header claims
+# against the file's length nor against the memory budget (its ``envi.py`` never looks at the
+# file's size; a header claiming 100000 x 100000 x 31 over a 1 kB file opens, and its spectral
+# libraries are read with ``np.fromfile`` of the claimed count before anything is checked), it
+# parses ``bbl`` but does not drop the bad bands, leaves ``data ignore value`` unapplied (NaN
+# only for spectral libraries) and applies ``reflectance scale factor`` only in some read
+# paths. The fuzz suite (tests/fuzz/test_fuzz_resources.py, tests/images/test_images_io.py) demands all of
+# these before allocation, so using spectral would mean parsing the header here first anyway,
+# then opening the file a second time through it: this reader (header parse, checks, one
+# memory map) stays.
 
 
 def _envi_header_for(path: Path) -> Path | None:
@@ -380,13 +403,14 @@ def read_envi_header(path) -> dict[str, str]:
     if not lines or lines[0].strip() != "ENVI":
         raise SpectrumError(f"{path}: not an ENVI header (the first line must be 'ENVI')")
     fields: dict[str, str] = {}
-    key, pending = None, None
+    key: str = ""  # the field whose '{...}' value is pending (set whenever pending is)
+    pending: str | None = None
     for line in lines[1:]:
         if pending is not None:
             pending += " " + line.strip()
             if "}" in line:
                 fields[key] = pending
-                key, pending = None, None
+                key, pending = "", None
             continue
         if not line.strip() or line.lstrip().startswith(";") or "=" not in line:
             continue
@@ -431,7 +455,9 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) 
                 f"suffixes {', '.join(repr(s) for s in _ENVI_RAW_SUFFIXES)})"
             )
     else:
-        raw_file, header = path, _envi_header_for(path)
+        found = _envi_header_for(path)
+        assert found is not None  # read_cube sends a raw file here only when its header exists
+        raw_file, header = path, found
         fields = read_envi_header(header)
     samples = _envi_int(fields, "samples", header)
     lines = _envi_int(fields, "lines", header)
@@ -561,7 +587,7 @@ class CorrectedArray:
     only what is indexed and pickles as its layout.
     """
 
-    stored: object
+    stored: Any  # a MappedArray or an ndarray, read by indexing
     bands: tuple[int, ...]
     divisor: float = 1.0
     ignore: float | None = None
@@ -696,7 +722,7 @@ def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable, budget: i
     """Read a MATLAB v4/v5 cube in a child process.
 
     scipy's MAT v5 parser is compiled code, and some damaged files crash the whole process
-    inside it (a segmentation fault, found by ``tests/test_fuzz_io.py``): no exception reaches
+    inside it (a segmentation fault, found by ``tests/fuzz/test_fuzz_io.py``): no exception reaches
     Python. In a child process (forked from a forkserver, so a crash costs milliseconds) such a
     file becomes one clear error and the caller survives.
     """
@@ -721,7 +747,7 @@ def _read_mat5(path: Path, wavelengths_nm, wavelength_units, variable, budget: i
 
 
 #: The child process that reads MATLAB v5 files (started on the first such read).
-_MAT5_WORKER = None
+_MAT5_WORKER: ProcessPoolExecutor | None = None
 
 
 def _read_mat5_here(path: Path, wavelengths_nm, wavelength_units, variable, budget: int) -> SpectralCube:
@@ -810,7 +836,7 @@ def _read_netcdf(path: Path, wavelength_units, variable, wavelengths_nm) -> Spec
     if variable is not None:
         if variable not in dataset.data_vars:
             raise SpectrumError(
-                f"{path}: no variable {variable!r}; variables: {sorted(dataset.data_vars)}"
+                f"{path}: no variable {variable!r}; variables: {sorted(map(str, dataset.data_vars))}"
             )
         if "wavelength" not in dataset[variable].dims:
             raise SpectrumError(f"{path}: variable {variable!r} has no 'wavelength' dimension")
@@ -887,15 +913,7 @@ def _wavelength_from_name(file: Path, wavelength_units) -> float:
 
 
 def _read_band(file: Path) -> np.ndarray:
-    if file.suffix.lower() == ".png":
-        from PIL import Image
-
-        with Image.open(file) as image:
-            band = np.asarray(image)
-    else:
-        import tifffile
-
-        band = tifffile.imread(file)
+    band = read_image(file)  # spectrocolor.imagefiles: PNG bit for bit, TIFF through tifffile
     if band.ndim != 2:
         raise SpectrumError(
             f"{file}: band images must have one channel; got shape {band.shape}"
@@ -906,22 +924,9 @@ def _read_band(file: Path) -> np.ndarray:
 def _band_bytes(file: Path) -> int:
     """Bytes of one band image's samples, from its header (nothing is decoded)."""
     try:
-        if file.suffix.lower() == ".png":
-            from PIL import Image
-
-            with Image.open(file) as image:
-                width, height = image.size
-                itemsize = 2 if image.mode.startswith("I") else 1
-                return width * height * len(image.getbands()) * itemsize
-        import tifffile
-
-        with tifffile.TiffFile(file) as tif:
-            series = tif.series[0]
-            return claimed_bytes(series.shape, np.dtype(series.dtype).itemsize, f"{file}: shape")
-    except SpectrumError:
-        raise
-    except Exception as exc:  # Pillow and tifffile raise many types for damaged files
-        raise SpectrumError(f"{file}: cannot be read as a band image ({exc!r:.80})") from None
+        return image_header(file).nbytes
+    except SpectrumError as exc:
+        raise SpectrumError(f"{file}: cannot be read as a band image ({exc})") from None
 
 
 def _read_folder(folder: Path, wavelength_units, budget: int) -> SpectralCube:

@@ -31,10 +31,11 @@ import numpy as np
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
 from . import cgats, delimited, tm27
-from .text import apply_scale, read_text
+from .text import Decoded, apply_scale, decode_text, read_decoded
 from .writers import spectra_to_cgats, spectra_to_csv, table_to_cgats
 
-__all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "spectra_to_cgats", "table_to_cgats"]
+__all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "spectra_to_cgats", "table_to_cgats",
+           "decode_text", "Decoded"]
 
 #: Formats tried, in order, with what each expects (error messages list them).
 FORMATS = (
@@ -84,13 +85,15 @@ def _only_numbers(value, where: str) -> None:
                                 "without quotes, e.g. 0.5)")
 
 
-def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None) -> Spectrum:
+def parse_spectra(text: str | bytes, source: str = "<text>", percent: bool | None = None, *,
+                  encoding: str | None = None) -> Spectrum:
     """Spectra from a file's text, the format detected from the content (see the module docstring).
 
     Parameters
     ----------
-    text : str
-        The whole file as text.
+    text : str or bytes
+        The whole file as text, or its bytes (decoded as :func:`decode_text` says: a
+        byte-order mark, else UTF-8, else cp1252 only where unambiguous; or ``encoding``).
     source : str, default "<text>"
         Name used in messages (normally the file name).
     percent : bool or None, default None
@@ -98,12 +101,16 @@ def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None
         ``SPECTRAL_NORM``, ``CTI3``, ``SPECTRAL_PCT``/``SPECTRAL_DEC`` fields) and otherwise keep
         the values as written; ``True``: the values are percentages (divided by 100); ``False``:
         they are fractions. Contradicting the file's declaration is an error.
+    encoding : str or None, keyword-only, default None
+        For ``bytes``: the codec to decode them with (``cp1252``, ``latin-1``, ``utf-16`` …)
+        instead of detecting it. Text that is already a ``str`` takes none.
 
     Returns
     -------
     Spectrum
         ``(N, K)`` (or ``(K,)`` for one spectrum) with names and ``metadata`` (``format``,
-        ``value_scale`` and whatever the file says: ``instrument``, ``illuminant``, ``geometry``,
+        ``value_scale``, for bytes ``encoding`` and ``encoding_note``, and whatever the file says:
+        ``instrument``, ``illuminant``, ``geometry``,
         ``date``, ``keywords``, ``sample_fields``).
 
     Raises
@@ -116,9 +123,28 @@ def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None
     >>> s = parse_spectra("Sample,400,500,600\\nred,5,20,60\\n", "tiles.csv", percent=True)
     >>> s.names, s.values.tolist(), s.metadata["format"]
     (('red',), [0.05, 0.2, 0.6], 'CSV, wide')
+    >>> parse_spectra("nm;Probe 1°\\n400;0,5\\n".encode("cp1252")).metadata["encoding"]
+    'cp1252'
     """
     if percent not in (None, True, False):
         raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
+    if isinstance(text, (bytes, bytearray, memoryview)):
+        return _parse_decoded(decode_text(bytes(text), source, encoding), source, percent)
+    if encoding is not None:
+        raise SpectrumError(f"encoding: applies to bytes; {source} was given as str (already decoded), "
+                            "so leave encoding unset or pass the file's bytes")
+    return _parse_text(text, source, percent)
+
+
+def _parse_decoded(decoded: Decoded, source: str, percent: bool | None) -> Spectrum:
+    """The spectra of decoded text, with ``metadata["encoding"]`` and ``["encoding_note"]``."""
+    spectrum = _parse_text(decoded.text, source, percent)
+    metadata = {**spectrum.metadata, "encoding": decoded.encoding, "encoding_note": decoded.note}
+    return Spectrum(spectrum.wavelengths_nm, spectrum.values, spectrum.names, metadata)
+
+
+def _parse_text(text: str, source: str, percent: bool | None) -> Spectrum:
+    """:func:`parse_spectra` of a ``str``."""
     head = text.lstrip()
     if head.startswith("{"):
         return _parse_json(text, source, percent)
@@ -137,7 +163,7 @@ def parse_spectra(text: str, source: str = "<text>", percent: bool | None = None
         raise SpectrumError(f"{exc}. Formats tried: {tried}") from None
 
 
-def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:
+def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str | None = None) -> Spectrum:
     """Read the spectra in a measurement file: CSV/TSV (long or wide, ``;`` with decimal commas),
     CGATS.17 (i1Profiler, X-Rite, Barbieri), ArgyllCMS ``.ti3``/``.sp``, IES TM-27 XML or JSON.
 
@@ -152,12 +178,18 @@ def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:
     percent : bool or None, keyword-only, default None
         As for :func:`parse_spectra`: ``None`` follows the file's declaration, ``True`` divides
         by 100, ``False`` keeps fractions.
+    encoding : str or None, keyword-only, default None
+        ``None`` detects it: a byte-order mark (UTF-8, UTF-16, UTF-32), else UTF-8, else cp1252
+        only when every byte is a printable cp1252 character (see
+        :func:`spectrocolor.io.decode_text`); or the codec to use (``"cp1252"``,
+        ``"latin-1"``, ``"utf-16"``, ``"mac-roman"`` …).
 
     Returns
     -------
     Spectrum
         ``(N, K)`` (or ``(K,)``) values on the 0–1 scale for reflectances when the file or
-        ``percent`` says so, with names and ``metadata`` (``format``, ``value_scale``, …).
+        ``percent`` says so, with names and ``metadata`` (``format``, ``value_scale``,
+        ``encoding`` (the codec used), ``encoding_note`` (how it was chosen), …).
 
     Raises
     ------
@@ -176,8 +208,8 @@ def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:
     --------
     >>> from importlib.resources import files
     >>> tcs = read_spectra(files("spectrocolor") / "data" / "reflectances_cie_tcs.csv")
-    >>> tcs.values.shape[0], tcs.metadata["format"]
-    (14, 'CSV, long')
+    >>> tcs.values.shape[0], tcs.metadata["format"], tcs.metadata["encoding"]
+    (14, 'CSV, long', 'utf-8')
     """
     if not isinstance(path, (str, Path)) and not hasattr(path, "read_bytes"):
         raise SpectrumError(f"path: expected a file name (str or Path), got {type(path).__name__}")
@@ -186,7 +218,9 @@ def read_spectra(path: str | Path, *, percent: bool | None = None) -> Spectrum:
         raise FileNotFoundError(f"{path}: no such file")
     if path.is_dir():
         raise SpectrumError(f"{path}: is a folder, not a spectral file (CSV, CGATS, TM-27 XML or JSON)")
-    return parse_spectra(read_text(path), str(path), percent)
+    if percent not in (None, True, False):
+        raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
+    return _parse_decoded(read_decoded(path, encoding), str(path), percent)
 
 
 def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:

@@ -103,6 +103,7 @@ def _tables(text: str, source: str):
             if head == "END_DATA_FORMAT":
                 state = "header"
             else:
+                assert fields is not None  # BEGIN_DATA_FORMAT set it
                 fields.extend(tokens)
             continue
         if state == "data":

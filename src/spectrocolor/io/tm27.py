@@ -229,9 +229,9 @@ def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
         ("instrument", ("Header/MeasurementEquipment", "Equipment/Model", "Equipment/Name")),
         ("date", ("Header/ReportDate", "Header/DocumentCreationDate")),
     ):
-        found = next((metadata[k] for k in keys if k in metadata), None)
-        if found is not None:
-            metadata[fact] = found
+        known = next((metadata[k] for k in keys if k in metadata), None)
+        if known is not None:
+            metadata[fact] = known
     values, note = apply_scale(np.array(rows), None, percent, source, "")
     metadata["value_scale"] = note
     try:

@@ -287,7 +287,7 @@ def spectra_to_csv(spectrum: Spectrum) -> str:
     if spectrum.values.ndim > 2:
         raise SpectrumError(f"spectrum: CSV holds (N, K) batches, got values of shape {spectrum.values.shape}")
     rows = np.atleast_2d(spectrum.values)
-    names = spectrum.names or tuple(f"spectrum_{i + 1}" for i in range(rows.shape[0]))
+    names: Sequence[str] = spectrum.names or tuple(f"spectrum_{i + 1}" for i in range(rows.shape[0]))
     names = [one_line(name, f"names[{i}]") for i, name in enumerate(names)]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")

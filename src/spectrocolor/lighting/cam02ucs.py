@@ -115,7 +115,8 @@ def _channels(XYZ100, white_XYZ100) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 def cam02ucs_planes(rgb_cat02, white_cat02, white_Y, L_A: float = 100.0, Y_b: float = 20.0,
-                    surround: str = "average", discount_illuminant: bool = True) -> tuple[np.ndarray, ...]:
+                    surround: str = "average", discount_illuminant: bool = True
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """CAM02-UCS J', a', b' as three arrays from channel-first CAT02 RGB ``(3, ...)``.
 
     The layout for large batches (CIE 224: 99 samples × many lights), where :data:`M_CAT02`

@@ -23,8 +23,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..data_tables import load_table
-from ..illuminants import C2_CIE_LOCUS_M_K, planck
 from ..interpolation import interpolation_matrix
+from ..radiators import C2_CIE_LOCUS_M_K, planck
 from ..sampling import cmfs_on
 
 #: Daylight series: CIE 015:2018 eqs. (4.7)–(4.8), defined for 4000 K ≤ T ≤ 25 000 K.

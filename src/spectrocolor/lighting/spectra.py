@@ -75,7 +75,7 @@ METRICS.add("alpha-opic", MetricRange("CIE S 026 α-opic quantities", 380.0, 780
 
 @dataclass(frozen=True)
 class CheckedLights:
-    """Lights checked for one metric (:func:`checked_lights`).
+    """Lights checked for one metric (``checked_lights``).
 
     Attributes
     ----------
@@ -238,7 +238,7 @@ def _raise_single(checked: CheckedLights, argument: str) -> None:
 def light_refusals(spd, metric: str) -> np.ndarray:
     """Why a lighting metric returns NaN for each light of a batch (``""`` where it computes).
 
-    The input checks of :func:`checked_lights` (range, finite values, zero and negative
+    The input checks of ``checked_lights`` (range, finite values, zero and negative
     power); the metrics' own undefined results (no CCT, no reference illuminant) are reported in
     their result records.
 
@@ -257,7 +257,7 @@ def light_refusals(spd, metric: str) -> np.ndarray:
     Raises
     ------
     SpectrumError
-        As :func:`checked_lights` (a refused grid; a single refused light).
+        As ``checked_lights`` (a refused grid; a single refused light).
 
     Examples
     --------

@@ -40,6 +40,11 @@ __all__ = ["BUILDERS", "html", "svg", "text", "spectrum_view", "SpectrumView"]
 
 #: Record class (module and name) -> (builder module in this package, function prefix): the
 #: builder module defines ``<prefix>_html``, ``<prefix>_svg`` and optionally ``<prefix>_text``.
+#: Every builder has the same contract, written here once rather than in each builder: it takes
+#: one record of its class (as the library function named in the table above returns it) and
+#: returns a ``str``: ``_html`` a self-contained HTML ``<div>``, ``_svg`` a standalone SVG
+#: document, ``_text`` the one-line ``__repr__``. Each builder's docstring says what it shows and
+#: gives an example.
 BUILDERS: dict[str, tuple[str, str]] = {
     "spectrocolor.spectrum.Spectrum": ("spectrum_records", "spectrum"),
     "spectrocolor.display.render.Rendering": ("display_records", "rendering"),

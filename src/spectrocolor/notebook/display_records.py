@@ -79,15 +79,6 @@ def _summary(rendering) -> str:
 def rendering_text(rendering) -> str:
     """One line: count, space, depth, normalisation, strategy, how many left the gamut, first hex.
 
-    Parameters
-    ----------
-    rendering : Rendering
-        From :func:`spectrocolor.render`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------
@@ -105,15 +96,6 @@ hex=['#807e7c', '#00e89d'])"
 def rendering_html(rendering) -> str:
     """HTML: swatches, what the gamut strategy did, and a table of the first colours.
 
-    Parameters
-    ----------
-    rendering : Rendering
-        From :func:`spectrocolor.render`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -152,15 +134,6 @@ def rendering_html(rendering) -> str:
 def rendering_svg(rendering) -> str:
     """Standalone SVG: the first swatches in a row.
 
-    Parameters
-    ----------
-    rendering : Rendering
-        From :func:`spectrocolor.render`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------

@@ -133,15 +133,6 @@ def _cri_row(cri, i: int, count: int, shape: tuple) -> list:
 def cri_text(cri) -> str:
     """One line: Ra, R9, CCT and Duv of the light (of the first and the count for a batch).
 
-    Parameters
-    ----------
-    cri : CRI
-        From :func:`spectrocolor.colour_rendering_index`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------
@@ -161,15 +152,6 @@ def cri_text(cri) -> str:
 def cri_html(cri) -> str:
     """HTML: Ra, R9, CCT, Duv and validity in a table; R1–R14 as bars in the samples' colours.
 
-    Parameters
-    ----------
-    cri : CRI
-        From :func:`spectrocolor.colour_rendering_index`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -194,15 +176,6 @@ def cri_html(cri) -> str:
 def cri_svg(cri) -> str:
     """Standalone SVG: the R1–R14 bars of the (first) light.
 
-    Parameters
-    ----------
-    cri : CRI
-        From :func:`spectrocolor.colour_rendering_index`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------
@@ -310,15 +283,6 @@ def _bins_table(fidelity, first: int, count: int) -> Markup:
 def fidelity_text(fidelity) -> str:
     """One line: Rf, Rg, CCT and Duv of the light (of the first and the count for a batch).
 
-    Parameters
-    ----------
-    fidelity : Fidelity
-        From :func:`spectrocolor.colour_fidelity`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------
@@ -337,15 +301,6 @@ def fidelity_text(fidelity) -> str:
 def fidelity_html(fidelity) -> str:
     """HTML: the TM-30 colour vector graphic, Rf, Rg, CCT, Duv, and the per-bin shifts.
 
-    Parameters
-    ----------
-    fidelity : Fidelity
-        From :func:`spectrocolor.colour_fidelity`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -370,15 +325,6 @@ def fidelity_html(fidelity) -> str:
 def fidelity_svg(fidelity) -> str:
     """Standalone SVG: the colour vector graphic of the (first) light.
 
-    Parameters
-    ----------
-    fidelity : Fidelity
-        From :func:`spectrocolor.colour_fidelity`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------

@@ -83,15 +83,6 @@ def _state(feasible: bool, converged: bool) -> str:
 def smoothest_text(result) -> str:
     """One line: count, bounds, conditions, how many are feasible and certified.
 
-    Parameters
-    ----------
-    result : SmoothestResult
-        From :func:`spectrocolor.smoothest_reflectance`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------
@@ -117,15 +108,6 @@ method 'unconstrained')"
 def smoothest_html(result) -> str:
     """HTML: the reflectances drawn in their colours, and the certificate of each.
 
-    Parameters
-    ----------
-    result : SmoothestResult
-        From :func:`spectrocolor.smoothest_reflectance`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -174,15 +156,6 @@ def smoothest_html(result) -> str:
 def smoothest_svg(result) -> str:
     """Standalone SVG: the reflectances of the first colours, drawn in their colours.
 
-    Parameters
-    ----------
-    result : SmoothestResult
-        From :func:`spectrocolor.smoothest_reflectance`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------

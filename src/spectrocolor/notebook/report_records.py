@@ -60,15 +60,6 @@ def _conditions(report) -> str:
 def measurement_report_text(report) -> str:
     """One line: the number of samples, the conditions and the first samples' swatches.
 
-    Parameters
-    ----------
-    report : MeasurementReport
-        From :func:`spectrocolor.measurement_report`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------
@@ -88,15 +79,6 @@ grey #bcbcbc)"
 def measurement_report_html(report) -> str:
     """HTML: the conditions, the curves of the first samples and the table of the first rows.
 
-    Parameters
-    ----------
-    report : MeasurementReport
-        From :func:`spectrocolor.measurement_report`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -133,15 +115,6 @@ def measurement_report_html(report) -> str:
 def measurement_report_svg(report) -> str:
     """Standalone SVG: the curves of the first samples in their colours.
 
-    Parameters
-    ----------
-    report : MeasurementReport
-        From :func:`spectrocolor.measurement_report`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------

@@ -348,15 +348,6 @@ def _table(view: SpectrumView) -> Markup:
 def spectrum_html(view) -> str:
     """HTML of a spectrum (or of its :class:`SpectrumView`): curves, swatches, grid, table.
 
-    Parameters
-    ----------
-    view : Spectrum or SpectrumView
-        What to show (a Spectrum is read by :func:`spectrum_view`'s defaults).
-
-    Returns
-    -------
-    str
-        Self-contained HTML (inline SVG, no script, no link).
 
     Examples
     --------
@@ -384,15 +375,6 @@ def spectrum_html(view) -> str:
 def spectrum_svg(view) -> str:
     """Standalone SVG of a spectrum: its curves above a row of swatches.
 
-    Parameters
-    ----------
-    view : Spectrum or SpectrumView
-        What to show.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------

@@ -70,15 +70,6 @@ def _summary(colours) -> str:
 def film_colours_text(colours) -> str:
     """One line: how many films, the light, observer, exposure and display.
 
-    Parameters
-    ----------
-    colours : FilmColours
-        From :func:`spectrocolor.film_colours`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------
@@ -111,15 +102,6 @@ def _table(colours):
 def film_colours_html(colours) -> str:
     """HTML: the strip (or map) of film colours and the first films in a table.
 
-    Parameters
-    ----------
-    colours : FilmColours
-        From :func:`spectrocolor.film_colours`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -133,15 +115,6 @@ def film_colours_html(colours) -> str:
 def film_colours_svg(colours) -> str:
     """Standalone SVG: the strip (or map) of film colours.
 
-    Parameters
-    ----------
-    colours : FilmColours
-        From :func:`spectrocolor.film_colours`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------
@@ -171,15 +144,6 @@ def _zawischa_canvas(strip_record, width: int = 620) -> Canvas:
 def zawischa_strip_html(strip_record) -> str:
     """HTML: seed 000's strip with its ticks, and what it was computed with.
 
-    Parameters
-    ----------
-    strip_record : ZawischaStrip
-        From :func:`spectrocolor.zawischa_strip`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -197,15 +161,6 @@ def zawischa_strip_html(strip_record) -> str:
 def zawischa_strip_svg(strip_record) -> str:
     """Standalone SVG: seed 000's strip with its ticks.
 
-    Parameters
-    ----------
-    strip_record : ZawischaStrip
-        From :func:`spectrocolor.zawischa_strip`.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------
@@ -219,15 +174,6 @@ def zawischa_strip_svg(strip_record) -> str:
 def zawischa_strip_text(strip_record) -> str:
     """One line: columns, the range of optical path difference, the ticks and the colours' summary.
 
-    Parameters
-    ----------
-    strip_record : ZawischaStrip
-        From :func:`spectrocolor.zawischa_strip`.
-
-    Returns
-    -------
-    str
-        The ``__repr__``.
 
     Examples
     --------

@@ -88,15 +88,6 @@ def _coverage(table) -> list:
 def upsampling_table_html(table) -> str:
     """HTML: the coverage numbers and the slices through the cube.
 
-    Parameters
-    ----------
-    table : UpsamplingTable
-        From :func:`spectrocolor.upsampling_table` or :func:`spectrocolor.upsampling.load_table`.
-
-    Returns
-    -------
-    str
-        Self-contained HTML.
 
     Examples
     --------
@@ -119,15 +110,6 @@ def upsampling_table_html(table) -> str:
 def upsampling_table_svg(table) -> str:
     """Standalone SVG: the slices through the cube.
 
-    Parameters
-    ----------
-    table : UpsamplingTable
-        The table.
-
-    Returns
-    -------
-    str
-        An SVG document.
 
     Examples
     --------

@@ -13,7 +13,8 @@ In floating point "=" and "vanish" mean: within the rounding error of evaluating
 expression, which is bounded by the sizes of the terms actually summed (Higham 2002, §3.1):
 a sum of n terms ``t_i`` computed in any order, with any blocking (so on any BLAS and any
 number of threads), is within ``γ_n Σ |t_i|`` of the exact sum, ``γ_n = n ε / (1 − n ε)``.
-The tolerances below are small multiples of those bounds, computed per component:
+The tolerances below (their constants are in :mod:`.tolerances`) are small multiples of those
+bounds, computed per component:
 
 * primal, component j: ``PRIMAL_FACTOR · γ_{K+1} · (Σ_k |ρ_k W_kj| + |b_j|)``;
 * dual, sample k: ``DUAL_FACTOR · ε · (|Q| |ρ| + |W| |μ|)_k`` — the two terms of ``λ_k``
@@ -38,26 +39,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-EPS = float(np.finfo(float).eps)
-#: Multiple of the worst-case rounding bound allowed for ``ρ @ W − b`` (half of it for the
-#: rounding of the evaluation in any order, half for the rounding of ρ itself).
-PRIMAL_FACTOR = 2.0
-#: Multiple of ``ε (|Q||ρ| + |W||μ|)_k`` allowed for ``λ_k`` off the bounds and for a wrong
-#: sign at them: ``γ_6 ≈ 6 ε`` bounds the rounding of one evaluation, the solver's iterative
-#: refinement leaves at most about as much again, and a factor 2 keeps the verdict the same
-#: for every summation order.
-DUAL_FACTOR = 32.0
-
-
-def gamma(n: int) -> float:
-    """Higham's ``γ_n = n ε / (1 − n ε)``: relative error bound of an n-term sum.
-
-    Examples
-    --------
-    >>> bool(abs(gamma(1) - 2.0 ** -52) < 1e-30)
-    True
-    """
-    return n * EPS / (1.0 - n * EPS)
+from . import compiled
+from .tolerances import DUAL_FACTOR, EPS, PRIMAL_FACTOR, gamma
 
 
 def abs_hess_times(rho: np.ndarray, step_nm: float) -> np.ndarray:
@@ -138,8 +121,6 @@ def certify(W, step_nm, b, rho, mu, lower, upper, settled) -> Certificate:
     ``settled`` (N,) says whether the solver stopped normally. The multipliers of the bounds
     are recomputed here from ρ and μ, so nothing else of the solver's state is trusted.
     """
-    from . import compiled
-
     N = len(b)
     found = compiled.kernels()
     if found is not None:

@@ -5,7 +5,7 @@ does with whole-batch arrays: the closed form with its refinement
 (:func:`.qp.solve_unconstrained`), the primal-dual active-set iterations (:func:`.qp._pdas`)
 and the certificate's measures (:func:`.certificate.certify`). Each colour's samples stay in
 the processor's cache, and the refinement of the closed form is an O(K) solve
-(:class:`.qp.PinnedKKT`) instead of a product with the dense KKT inverse.
+(:class:`.pinned_kkt.PinnedKKT`) instead of a product with the dense KKT inverse.
 
 The kernels sum in another order than BLAS does, so their results agree with the NumPy
 path's to rounding rather than bit for bit; the certificate's tolerances hold for any order of
@@ -23,9 +23,9 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..numba_support import use_compiled
-from . import certificate
+from . import tolerances
 
-__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas", "roughness", "warm_up"]
+__all__ = ["closed_form", "facet_maxima", "kernels", "measures", "pdas", "roughness"]
 
 
 @lru_cache(maxsize=1)
@@ -61,8 +61,8 @@ def kernels():
 
 def _factors(step_nm: float, size: int):
     """``2/h``, ``PRIMAL_FACTOR γ_{K+1}`` and ``DUAL_FACTOR``: the certificate's constants."""
-    return (2.0 / step_nm, certificate.PRIMAL_FACTOR * certificate.gamma(size + 1),
-            certificate.DUAL_FACTOR)
+    return (2.0 / step_nm, tolerances.PRIMAL_FACTOR * tolerances.gamma(size + 1),
+            tolerances.DUAL_FACTOR)
 
 
 def _operand(a):
@@ -82,7 +82,7 @@ def closed_form(found, prob, b, refine_steps, lowest=-np.inf, highest=np.inf):
     ``b``: ``rho`` (N, K), ``mu`` (N, m), the measures (5, N) of :func:`.certificate.certify`
     and ``Σ (Δρ)² / h`` (N,).
 
-    Each closed form is refined (by :class:`.qp.PinnedKKT`, at most ``refine_steps`` times)
+    Each closed form is refined (by :class:`.pinned_kkt.PinnedKKT`, at most ``refine_steps`` times)
     while its ratio exceeds a quarter; colours with a value below ``lowest`` or above
     ``highest`` are left unrefined and unmeasured (ratio ∞, roughness NaN).
     """
@@ -153,36 +153,3 @@ def roughness(found, rho, step_nm):
     out = np.empty(len(rho))
     found.roughness(rho, float(step_nm), out)
     return out
-
-
-def warm_up() -> bool:
-    """Compile (or load from the cache) every kernel now rather than on first use.
-
-    The first use on a machine compiles the kernels, about 35 s on a 2-core machine (longer
-    under load), and caches them beside this module; later processes load them in well under
-    a second. ``make test`` calls this before the tests (whose servers must not spend their time
-    limits compiling), as ``python -m spectrocolor.recovery.compiled``; the explorer calls it in
-    a background process while its pages use the NumPy path (:mod:`spectrocolor.app.kernels`).
-
-    Returns
-    -------
-    bool
-        Whether the kernels are in use (False without numba or with ``SPECTROCOLOR_NUMBA=0``).
-
-    Examples
-    --------
-    >>> isinstance(warm_up(), bool)
-    True
-    """
-    if kernels() is None:
-        return False
-    from .smoothest import smoothest_reflectance
-
-    colours = np.array([[40.0, 40.0, 40.0], [30.0, 20.0, 3.0], [60.0, 30.0, 5.0]])
-    for bounds in ("unit", "nonnegative", None):
-        smoothest_reflectance(colours, wavelengths=(400.0, 700.0, 20.0), bounds=bounds)
-    return True
-
-
-if __name__ == "__main__":  # python -m spectrocolor.recovery.compiled
-    print("recovery kernels", "compiled and cached" if warm_up() else "not in use (NumPy path)")

@@ -98,7 +98,8 @@ class _Programme:
         self.lower = Fraction(float(lower))
         self.upper = Fraction(float(upper)) if np.isfinite(upper) else None
         self.degree = [(k > 0) + (k < self.K - 1) for k in range(self.K)]
-        self._runs = {}  # see _run_solutions
+        # see _run_solutions: (start, stop, left, right) -> {sample: its row of L_FF⁻¹ [W_F, t]}
+        self._runs: dict[tuple[int, int, Fraction | None, Fraction | None], dict[int, list[Fraction]]] = {}
 
     def colour(self, rho) -> list[Fraction]:
         return [sum(rho[k] * self.W[k][j] for k in range(self.K) if rho[k]) for j in range(self.m)]
@@ -158,7 +159,7 @@ class _Programme:
                 if q in in_basis:
                     continue
                 d = cost[q] - sum(y[i] * column[q][i] for i in range(m))
-                if d < 0 and (high[q] is None or x[q] < high[q]):
+                if d < 0 and ((ceiling := high[q]) is None or x[q] < ceiling):
                     entering, sign = q, 1
                     break
                 if d > 0 and x[q] > low[q]:
@@ -170,7 +171,7 @@ class _Programme:
             direction = _solve_small(B, column[entering])
             if direction is None:
                 return None
-            step = None if high[entering] is None else high[entering] - low[entering]
+            step = None if (ceiling := high[entering]) is None else ceiling - low[entering]
             leave = None
             for i, q in enumerate(basis):
                 rate = -sign * direction[i]
@@ -253,7 +254,8 @@ class _Programme:
     def _run(self, start, stop, left, right):
         """Rows ``start … stop − 1`` of ``L_FF⁻¹ [W_F, t]`` by the Thomas algorithm (a run with a
         fixed neighbour is positive definite: every pivot is positive)."""
-        pivots, ys = [], []
+        pivots: list[Fraction] = []
+        ys: list[list[Fraction]] = []
         for i in range(start, stop):
             rhs = list(self.W[i])
             t = _ZERO

@@ -75,7 +75,7 @@ def _touching_facet(G, c, lower, upper, tol, choice=0):
     if not slacks or not sum(len(v) for v in slacks):
         return None
     slack, n = np.concatenate(slacks), np.concatenate(found)
-    distinct = []
+    distinct: list[np.ndarray] = []
     for k in np.argsort(slack, kind="stable"):
         if all(abs(float(n[k] @ d)) < 1.0 - 1e-9 for d in distinct):
             distinct.append(n[k])
@@ -197,7 +197,7 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
     rho = np.zeros(K)
     free = np.ones(K, dtype=bool)
     basis = np.eye(m)  # orthonormal columns: the subspace that the free generators span
-    levels = []  # (normal in colour space, indices fixed at that level)
+    levels: list[tuple[np.ndarray, np.ndarray]] = []  # (normal in colour space, indices fixed at that level)
     failed = (np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False)
     while free.any() and basis.shape[1] > 0:
         F = np.flatnonzero(free)

@@ -16,8 +16,8 @@ import numpy as np
 from ..colorimetry import weights
 from ..coordinates import colour_array
 from ..errors import ColorimetryError, SpectrumError
-from ..illuminants import canonical_illuminant, illuminant_label
-from ..observers import canonical_observer_name
+from ..illuminants import Illuminant, resolve_illuminant
+from ..observers import Observer, resolve_observer
 from ..spectrum import wavelength_grid
 from . import qp, zonotope
 
@@ -51,7 +51,7 @@ class Setup:
 
 
 @lru_cache(maxsize=32)
-def _named_setup(key: tuple[float, float, float], observer: str, illuminant: str) -> Setup:
+def _named_setup(key: tuple[float, float, float], observer: Observer, illuminant: Illuminant) -> Setup:
     grid = wavelength_grid(*key)
     return Setup(grid, weights(grid, observer=observer, illuminant=illuminant))
 
@@ -82,7 +82,7 @@ def grid_key(wavelengths) -> tuple[float, float, float]:
     if isinstance(wavelengths, tuple | list) and len(wavelengths) == 3:
         if all(isinstance(v, Real) for v in wavelengths):
             wavelength_grid(*wavelengths)  # validates
-            return tuple(float(v) for v in wavelengths)
+            return float(wavelengths[0]), float(wavelengths[1]), float(wavelengths[2])
     try:
         grid = np.asarray(wavelengths, dtype=float)
     except (TypeError, ValueError):
@@ -100,17 +100,17 @@ def grid_key(wavelengths) -> tuple[float, float, float]:
 def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
     """The :class:`Setup` (cached for named observers and illuminants) and their labels.
 
-    ``illuminant`` takes every form of :func:`spectrocolor.canonical_illuminant` but ``None``
-    (a reflectance needs a light): a CIE name, ``"blackbody:T"``, ``"D:T"``, a temperature, or a
-    Spectrum on the grid.
+    ``illuminant`` takes every form of :func:`spectrocolor.resolve_illuminant` but ``None``
+    (a reflectance needs a light): a CIE name, ``"blackbody:T"``, ``"D:T"``, a temperature, a
+    Spectrum on the grid, or an :class:`~spectrocolor.illuminants.Illuminant`.
 
     Parameters
     ----------
     wavelengths : tuple of float or array_like
         ``(start_nm, stop_nm, step_nm)`` or a uniform grid, nm.
-    observer : str or Spectrum
-        Observer name or alias, or colour-matching functions on the grid.
-    illuminant : str, float or Spectrum
+    observer : str, Spectrum or Observer
+        Observer name or alias, colour-matching functions on the grid, or a resolved Observer.
+    illuminant : str, float, Spectrum or Illuminant
         The light (not ``None``).
 
     Returns
@@ -139,17 +139,16 @@ def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
             f"recovery takes at most {MAX_SAMPLES} (its memory grows as the square of the "
             f"count): use a coarser step, e.g. 1 nm"
         )
-    light = canonical_illuminant(illuminant)
+    light = resolve_illuminant(illuminant)
     if light is None:
         raise ColorimetryError(
             "illuminant: reflectances need a light; None means the spectra are lights themselves"
         )
-    if isinstance(observer, str) and isinstance(light, str):
-        obs = canonical_observer_name(observer)
-        return _named_setup(key, obs, light), obs, illuminant_label(light)
+    viewer = resolve_observer(observer)
+    if viewer.cacheable and light.cacheable:
+        return _named_setup(key, viewer, light), viewer.name, light.label
     grid = wavelength_grid(*key)
-    label_obs = observer if isinstance(observer, str) else "custom observer"
-    return Setup(grid, weights(grid, observer=observer, illuminant=light)), label_obs, illuminant_label(light)
+    return Setup(grid, weights(grid, observer=viewer, illuminant=light)), viewer.name, light.label
 
 
 def xyz_array(XYZ, name: str = "XYZ") -> np.ndarray:

@@ -23,9 +23,10 @@ from ..arguments import refuse_overflow
 from ..colorimetry import weights
 from ..coordinates import lab
 from ..differences import delta_e_2000
+from ..display.adaptation import adapt
 from ..errors import ColorimetryError, SpectrumError
-from ..illuminants import DEFAULT_ILLUMINANT
-from ..observers import DEFAULT_OBSERVER
+from ..illuminants import DEFAULT_ILLUMINANT, resolve_illuminant
+from ..observers import DEFAULT_OBSERVER, resolve_observer
 from ..spectrum import Spectrum
 
 #: Why a result of finite reflectances is refused: their colours overflowed the float range.
@@ -146,8 +147,18 @@ def metameric_black(spectrum: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, observ
     return Spectrum(s.wavelengths_nm, s.values - s.values @ R.T, s.names)
 
 
+#: The illuminant under which :func:`metamerism_index` measures the mismatch when none is given:
+#: CIE illuminant A (CIE 015:2018, special metamerism index for a change in illuminant).
+DEFAULT_TEST_ILLUMINANT = "A"
+
+
 def metamerism_index(
-    spectrum1: Spectrum, spectrum2: Spectrum, reference="D65", test="A", observer="1931"
+    spectrum1: Spectrum,
+    spectrum2: Spectrum,
+    *,
+    reference=DEFAULT_ILLUMINANT,
+    test=DEFAULT_TEST_ILLUMINANT,
+    observer=DEFAULT_OBSERVER,
 ) -> np.ndarray:
     """CIE special metamerism index for a change in illuminant, with CIEDE2000.
 
@@ -160,12 +171,15 @@ def metamerism_index(
     ----------
     spectrum1, spectrum2 : Spectrum
         Reflectance factors (0–1) on the same grid; broadcast against each other.
-    reference : str or Spectrum, default "D65"
-        The illuminant under which the pair matches.
-    test : str or Spectrum, default "A"
-        The illuminant under which the mismatch is measured.
-    observer : str or Spectrum, default "1931"
-        Observer name or alias.
+    reference : str, float, Spectrum or Illuminant, keyword-only
+        The illuminant under which the pair matches (default ``"D65"``), in any form of
+        :func:`spectrocolor.resolve_illuminant` (``"blackbody:T"``, ``"D:T"``, a Spectrum on the
+        grid, …).
+    test : str, float, Spectrum or Illuminant, keyword-only
+        The illuminant under which the mismatch is measured (default ``"A"``,
+        :data:`DEFAULT_TEST_ILLUMINANT`), in the same forms.
+    observer : str, Spectrum or Observer, keyword-only
+        Observer name or alias (default CIE 1931 2°), or colour-matching functions.
 
     Returns
     -------
@@ -201,6 +215,8 @@ def metamerism_index(
         raise SpectrumError(f"spectrum1, spectrum2: batches of shapes {s1.values.shape[:-1]} and "
                             f"{s2.values.shape[:-1]} do not broadcast; pass pairs in matching batches") from None
     grid = s1.wavelengths_nm
+    observer = resolve_observer(observer)  # each argument resolved once, naming it in errors
+    reference, test = resolve_illuminant(reference, "reference"), resolve_illuminant(test, "test")
     W_ref = np.asarray(weights(grid, observer=observer, illuminant=reference))
     W_test = np.asarray(weights(grid, observer=observer, illuminant=test))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -277,8 +293,6 @@ def colour_shift(spectrum: Spectrum, source="D65", target="A", observer="1931",
     >>> colour_shift(green).shift_ab.round(2).tolist()  # a*, b* shift from D65 to A
     [-19.07, -0.68]
     """
-    from ..display.adaptation import adapt
-
     s = _reflectance(spectrum, "spectrum")
     W_s = np.asarray(weights(s.wavelengths_nm, observer=observer, illuminant=source))
     W_t = np.asarray(weights(s.wavelengths_nm, observer=observer, illuminant=target))

@@ -31,13 +31,14 @@ from ..colorimetry import weights
 from ..coordinates import lab
 from ..differences import delta_e_2000
 from ..errors import ColorimetryError
-from ..illuminants import DEFAULT_ILLUMINANT, canonical_illuminant_name
-from ..observers import DEFAULT_OBSERVER
+from ..illuminants import DEFAULT_ILLUMINANT, Illuminant, resolve_illuminant
+from ..observers import DEFAULT_OBSERVER, Observer, resolve_observer
 from ..spectrum import Spectrum, wavelength_grid
 from . import qp, zonotope
 from .certificate import Certificate, certify
 from .inputs import DEFAULT_WAVELENGTHS, grid_key, setup_for, xyz_array
 from .optimal import object_colour_membership
+from .smoothest import smoothest_reflectance
 
 
 @dataclass(frozen=True)
@@ -58,7 +59,8 @@ class MismatchRegion:
     extreme_metamers : Spectrum (n, K)
         The extreme metamers themselves (0/1 except at a few samples).
     illuminant, second_illuminant, observer : str
-        The conditions used.
+        The conditions used (the lights' labels, as :func:`spectrocolor.illuminant_label`, and
+        the observer's name).
 
     Examples
     --------
@@ -137,16 +139,32 @@ class MetamerResult:
     certificate: Certificate
 
 
-def _pair_weights(wavelengths, observer, illuminant, second_illuminant):
+#: The light the metamers are seen under when the caller gives none: CIE illuminant A
+#: (incandescent, CIE 015:2018 §4.1), the classic change from daylight.
+DEFAULT_SECOND_ILLUMINANT = "A"
+
+
+def _resolve_conditions(illuminant, second_illuminant, observer) -> tuple[Illuminant, Illuminant, Observer]:
+    """The two lights and the observer, resolved once at a public function's entry.
+
+    Both lights take every form of :func:`spectrocolor.resolve_illuminant` but ``None``.
+    """
+    first = resolve_illuminant(illuminant, "illuminant")
+    second = resolve_illuminant(second_illuminant, "second_illuminant")
+    if first is None or second is None:
+        argument = "illuminant" if first is None else "second_illuminant"
+        raise ColorimetryError(f"{argument}: reflectances need a light; None means the spectra are lights themselves")
+    return first, second, resolve_observer(observer)
+
+
+def _pair_weights(wavelengths, observer: Observer, illuminant: Illuminant, second_illuminant: Illuminant):
     setup, obs, ill = setup_for(wavelengths, observer, illuminant)
     W2 = np.asarray(weights(setup.grid, observer=observer, illuminant=second_illuminant))
-    ill2 = (canonical_illuminant_name(second_illuminant) if isinstance(second_illuminant, str)
-            else "custom illuminant")
-    return setup, W2, obs, ill, ill2
+    return setup, W2, obs, ill, second_illuminant.label
 
 
 @lru_cache(maxsize=16)
-def _pair_problem(grid_key, observer, illuminant, second_illuminant) -> qp.Problem:
+def _pair_problem(grid_key, observer: Observer, illuminant: Illuminant, second_illuminant: Illuminant) -> qp.Problem:
     grid = wavelength_grid(*grid_key)
     W = np.concatenate([np.asarray(weights(grid, observer=observer, illuminant=illuminant)),
                         np.asarray(weights(grid, observer=observer, illuminant=second_illuminant))], axis=1)
@@ -170,7 +188,7 @@ def metamer_mismatch_region(
     XYZ,
     *,
     illuminant=DEFAULT_ILLUMINANT,
-    second_illuminant="A",
+    second_illuminant=DEFAULT_SECOND_ILLUMINANT,
     observer=DEFAULT_OBSERVER,
     wavelengths=DEFAULT_WAVELENGTHS,
     directions: int | np.ndarray = 200,
@@ -182,11 +200,14 @@ def metamer_mismatch_region(
     XYZ : array_like (3,)
         The colour under ``illuminant`` (perfect white ``Y = 100``); it must lie in the
         object-colour solid.
-    illuminant, second_illuminant : str or Spectrum
+    illuminant, second_illuminant : str, float, Spectrum or Illuminant, keyword-only
         The illuminant the metamers match under (default ``"D65"``), and the one they are seen
-        under (default ``"A"``).
-    observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        under (default ``"A"``, :data:`DEFAULT_SECOND_ILLUMINANT`); each in any form of
+        :func:`spectrocolor.resolve_illuminant` but ``None`` (``"blackbody:3000"``, ``"D:5000"``,
+        a temperature in kelvin, a Spectrum on the grid, …).
+    observer : str, Spectrum or Observer, keyword-only
+        Observer name or alias, colour-matching functions on the grid, or an
+        :class:`~spectrocolor.observers.Observer` (default :data:`~spectrocolor.DEFAULT_OBSERVER`).
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
     directions : int or ndarray (n, 3)
@@ -221,6 +242,7 @@ def metamer_mismatch_region(
     b = xyz_array(XYZ)
     if b.shape != (3,):
         raise ColorimetryError(f"XYZ: expected one colour of shape (3,), got {b.shape}")
+    illuminant, second_illuminant, observer = _resolve_conditions(illuminant, second_illuminant, observer)
     setup, W2, obs, ill, ill2 = _pair_weights(wavelengths, observer, illuminant,
                                               second_illuminant)
     member = object_colour_membership(b, illuminant=illuminant, observer=observer, wavelengths=wavelengths)
@@ -262,9 +284,10 @@ def metamer_mismatch_region(
 def smoothest_metamer(
     XYZ,
     XYZ_second,
-    illuminant="D65",
-    second_illuminant="A",
-    observer="1931",
+    *,
+    illuminant=DEFAULT_ILLUMINANT,
+    second_illuminant=DEFAULT_SECOND_ILLUMINANT,
+    observer=DEFAULT_OBSERVER,
     wavelengths=DEFAULT_WAVELENGTHS,
 ) -> MetamerResult:
     """The smoothest reflectance(s) ``0 ≤ ρ ≤ 1`` with given colours under two illuminants.
@@ -278,10 +301,12 @@ def smoothest_metamer(
     XYZ, XYZ_second : array_like (..., 3)
         Colours under ``illuminant`` and ``second_illuminant`` (each white ``Y = 100``).
 
-    illuminant, second_illuminant : str or Spectrum
-        The two lights (defaults ``"D65"`` and ``"A"``).
-    observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+    illuminant, second_illuminant : str, float, Spectrum or Illuminant, keyword-only
+        The two lights (defaults ``"D65"`` and ``"A"``), each in any form of
+        :func:`spectrocolor.resolve_illuminant` but ``None``.
+    observer : str, Spectrum or Observer, keyword-only
+        Observer name or alias, colour-matching functions on the grid, or an
+        :class:`~spectrocolor.observers.Observer` (default :data:`~spectrocolor.DEFAULT_OBSERVER`).
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
 
@@ -316,10 +341,11 @@ def smoothest_metamer(
     b1, b2 = xyz_array(XYZ), xyz_array(XYZ_second, "XYZ_second")
     if b1.shape != b2.shape:
         raise ColorimetryError(f"XYZ_second: shape {b2.shape} differs from XYZ's {b1.shape}")
+    illuminant, second_illuminant, observer = _resolve_conditions(illuminant, second_illuminant, observer)
     setup, W2, obs, ill, ill2 = _pair_weights(wavelengths, observer, illuminant,
                                               second_illuminant)
-    if all(isinstance(v, str) for v in (observer, illuminant, second_illuminant)):
-        prob = _pair_problem(grid_key(wavelengths), obs, ill, ill2)
+    if all(v.cacheable for v in (observer, illuminant, second_illuminant)):
+        prob = _pair_problem(grid_key(wavelengths), observer, illuminant, second_illuminant)
     else:
         prob = qp.make_problem(np.concatenate([setup.W, W2], axis=1), setup.step_nm)
     shape = b1.shape[:-1]
@@ -387,9 +413,10 @@ class DifferentMetamer:
 def most_different_metamer(
     sample,
     amount: float = 0.9,
-    illuminant="D65",
-    second_illuminant="A",
-    observer="1931",
+    *,
+    illuminant=DEFAULT_ILLUMINANT,
+    second_illuminant=DEFAULT_SECOND_ILLUMINANT,
+    observer=DEFAULT_OBSERVER,
     wavelengths=DEFAULT_WAVELENGTHS,
     directions: int = 200,
 ) -> DifferentMetamer:
@@ -403,10 +430,12 @@ def most_different_metamer(
     amount : float, default 0.9
         0 ≤ amount < 1: the metamer's colour under ``second_illuminant`` lies this fraction
         of the way from the sample's to the farthest point of the mismatch region.
-    illuminant, second_illuminant : str or Spectrum
-        The two lights (defaults ``"D65"`` and ``"A"``).
-    observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+    illuminant, second_illuminant : str, float, Spectrum or Illuminant, keyword-only
+        The two lights (defaults ``"D65"`` and ``"A"``), each in any form of
+        :func:`spectrocolor.resolve_illuminant` but ``None``.
+    observer : str, Spectrum or Observer, keyword-only
+        Observer name or alias, colour-matching functions on the grid, or an
+        :class:`~spectrocolor.observers.Observer` (default :data:`~spectrocolor.DEFAULT_OBSERVER`).
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
     directions : int, default 200
@@ -440,11 +469,10 @@ def most_different_metamer(
     >>> round(float(different.delta_e_2000), 2), round(float(different.max_delta_e_2000), 2)
     (16.55, 22.81)
     """
-    from .smoothest import smoothest_reflectance
-
     a = float(amount)
     if not 0.0 <= a < 1.0:
         raise ColorimetryError(f"amount: expected 0 ≤ amount < 1, got {amount!r}")
+    illuminant, second_illuminant, observer = _resolve_conditions(illuminant, second_illuminant, observer)
     setup, W2, obs, ill, ill2 = _pair_weights(wavelengths, observer, illuminant,
                                               second_illuminant)
     if isinstance(sample, Spectrum):
@@ -464,7 +492,7 @@ def most_different_metamer(
     white2 = W2.sum(axis=0)
     de = delta_e_2000(lab(reference, white2), lab(region.boundary_XYZ100, white2))
     far = region.boundary_XYZ100[int(np.argmax(de))]
-    result = smoothest_metamer(XYZ1, reference + a * (far - reference), illuminant,
-                               second_illuminant, observer, wavelengths)
+    result = smoothest_metamer(XYZ1, reference + a * (far - reference), illuminant=illuminant,
+                               second_illuminant=second_illuminant, observer=observer, wavelengths=wavelengths)
     got = float(delta_e_2000(lab(reference, white2), lab(result.spectrum.values @ W2, white2)))
     return DifferentMetamer(result, reference, far, got, float(de.max()), region)

@@ -10,9 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..colorimetry import weights
+from ..coordinates import lab, xy
 from ..errors import SpectrumError
-from ..plot import axes_or_new, plain_text
+from ..plot import axes_or_new, chromaticity_diagram, plain_text
 from ..spectrum import Spectrum
+from .optimal import macadam_limits
 
 
 @plain_text
@@ -59,7 +62,7 @@ def reflectance_curves(spectrum: Spectrum, measured: Spectrum | None = None, ax=
     ax = axes_or_new(ax, (6.4, 4.0))
     for i, curve in enumerate(values):
         ax.plot(spectrum.wavelengths_nm, curve, color=f"C{i % 10}", lw=1.6, label=names[i])
-        if ref is not None:
+        if ref is not None and measured is not None:  # ref is set exactly when measured is
             ax.plot(measured.wavelengths_nm, ref[i], color=f"C{i % 10}", lw=1.2, ls="--")
     ax.set_xlabel("wavelength (nm)")
     ax.set_ylabel("reflectance factor")
@@ -141,8 +144,6 @@ def domain_of_validity_plot(domain, ax=None, title: str | None = None, levels=No
     >>> import matplotlib.pyplot as plt
     >>> plt.close("all")
     """
-    from ..plot import chromaticity_diagram
-
     ax = chromaticity_diagram(spaces=(), whites=(domain.illuminant,), planckian=False,
                               fill=False, ax=axes_or_new(ax, (6.4, 6.4)),
                               title=title or f"Domain of validity, {domain.illuminant}, "
@@ -202,8 +203,8 @@ def _draw_classes(ax, domain, filled: bool):
         ax.annotate(text, inside, fontsize=7, ha="center", va="center", color=dark, zorder=9,
                     fontweight="bold")
     if ends:
-        ends = np.unique(np.round(np.asarray(ends), 12), axis=0)
-        ax.plot(ends[:, 0], ends[:, 1], "D", color="black", ms=4, zorder=8,
+        corners = np.unique(np.round(np.asarray(ends), 12), axis=0)
+        ax.plot(corners[:, 0], corners[:, 1], "D", color="black", ms=4, zorder=8,
                 label="end points of the classes")
 
 
@@ -243,10 +244,6 @@ def macadam_limits_plot(luminance_factors=(10, 30, 50, 70, 90), illuminant="D65"
     >>> import matplotlib.pyplot as plt
     >>> plt.close("all")
     """
-    from ..coordinates import xy
-    from ..plot import chromaticity_diagram
-    from .optimal import macadam_limits
-
     curves = [np.vstack([c, c[:1]]) for c in (
         xy(macadam_limits(Y, illuminant=illuminant, observer=observer, wavelengths=wavelengths))
         for Y in luminance_factors)]
@@ -296,8 +293,6 @@ def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_seco
     """
     from scipy.spatial import ConvexHull
 
-    from ..coordinates import lab
-
     W_white = _second_white(region)
     ab = lab(region.boundary_XYZ100, W_white)[:, 1:]
     ax = axes_or_new(ax, (5.6, 5.2))
@@ -324,8 +319,6 @@ def mismatch_region_plot(region, sample_XYZ100_second=None, metamers_XYZ100_seco
 
 
 def _second_white(region):
-    from ..colorimetry import weights
-
     grid = region.extreme_metamers.wavelengths_nm
     return np.asarray(weights(grid, observer=region.observer, illuminant=region.second_illuminant)).sum(axis=0)
 
@@ -335,7 +328,7 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
     """Van Trigt's boundary locus (Figs. 3–4): left and right branches on the xy diagram.
 
     ``locus`` is a :class:`~spectrocolor.recovery.validity.BoundaryLocus`; with
-    ``generating`` (:class:`~spectrocolor.recovery.validity.GeneratingFunctions`) the
+    ``generating`` (:class:`~spectrocolor.recovery.generating.GeneratingFunctions`) the
     chromaticities of the generating functions (the boundary of the domain of validity) are
     drawn too, with λ₁ marked every 50 nm.
 
@@ -344,7 +337,7 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
     locus : BoundaryLocus
         From :func:`spectrocolor.recovery.validity.boundary_locus`.
     generating : GeneratingFunctions, optional
-        From :func:`spectrocolor.recovery.validity.generating_functions`.
+        From :func:`spectrocolor.recovery.generating.generating_functions`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; default a new figure.
     title : str, optional
@@ -369,8 +362,6 @@ def boundary_locus_plot(locus, generating=None, ax=None, title: str | None = Non
     >>> import matplotlib.pyplot as plt
     >>> plt.close("all")
     """
-    from ..plot import chromaticity_diagram
-
     ax = chromaticity_diagram(spaces=(), whites=(), planckian=False, fill=False,
                               ax=axes_or_new(ax, (6.4, 6.4)), title=title or "Boundary locus")
     ax.plot(*locus.left_xy.T, color="C0", lw=1.5, zorder=5, label="left branch: λ_b … λ")
@@ -421,7 +412,7 @@ def generating_luminance_plot(generating, ax=None, title: str | None = None):
     Parameters
     ----------
     generating : GeneratingFunctions
-        From :func:`spectrocolor.recovery.validity.generating_functions`.
+        From :func:`spectrocolor.recovery.generating.generating_functions`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; default a new figure.
     title : str, optional

@@ -87,7 +87,7 @@ class SmoothestResult:
         ``"dense primal active set"`` (the one-at-a-time fallback), ``"boundary face"``
         (a colour on or within 1e-9 of the boundary, solved on its face),
         ``"boundary face, exact rational arithmetic"`` (such a colour that only the exact
-        solver of :mod:`spectrocolor.recovery.exact` settled), ``"black or white"`` or
+        solver of ``spectrocolor.recovery.exact`` settled), ``"black or white"`` or
         ``"infeasible"``.
     bounds : str or None
     observer, illuminant : str

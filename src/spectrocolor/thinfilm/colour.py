@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import notebook_hooks
 from ..display.gamut import DEFAULT_GAMUT
+from ..display.render import Rendering
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import illuminant_label
 from ..observers import DEFAULT_OBSERVER
@@ -62,7 +63,7 @@ class FilmColours:
 
     XYZ100: np.ndarray
     xy: np.ndarray
-    rendering: object
+    rendering: Rendering
     illuminant: str
     observer: str
     exposure: str

@@ -12,6 +12,10 @@ frame rendered through one table is consistent.
 Thickness maps: :func:`wedge`, :func:`draining_film`, :func:`bubble`, or a user's array from
 :func:`read_thickness_map` (``.npy`` in nm, or a 16-bit PNG with a stated nm per count).
 NaN marks pixels without film; they get the ``background`` colour.
+
+Why this file is long: the thickness-to-colour lookup table and the three pictures made with it (a
+still, an animation of a draining film, a thickness map read from a file) share the table's grid and
+its interpolation; each picture is short.
 """
 
 from __future__ import annotations
@@ -21,7 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..display.transfer import Transfer
 from ..errors import SpectrumError
+from ..imagefiles import image_header, read_image, write_gif
 from .colour import film_colours
 from .optics import FilmOptics
 
@@ -70,7 +76,7 @@ class ColourTable:
     rgb8: np.ndarray
     description: str
     rgb_linear: np.ndarray | None = None
-    transfer: object | None = None
+    transfer: Transfer | None = None
 
     @property
     def angles_deg(self) -> np.ndarray | None:
@@ -158,6 +164,7 @@ class ColourTable:
         if self.rgb_linear is None or self.transfer is None:
             raise SpectrumError("this table holds no linear values; build it with colour_table")
         grid = self.angles_deg
+        assert grid is not None  # lookup() comes here only for a table with an angle grid
         if not np.all((a >= 0) & (a <= grid[-1])):
             raise SpectrumError(
                 f"angle_deg: values must lie in 0-{grid[-1]:g}° (the table's angle grid; build "
@@ -242,6 +249,7 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
         raise SpectrumError(f"thickness_step_nm: expected > 0, got {thickness_step_nm}")
     wl = np.arange(380.0, 781.0, 5.0) if wavelengths_nm is None else wavelengths_nm
     count = int(np.ceil(min(max_thickness_nm / thickness_step_nm, 1e18) - 1e-9)) + 1
+    angles: np.ndarray
     if max_angle_deg is None:
         angles, angle_step = np.zeros(1), None
     else:
@@ -529,18 +537,17 @@ def read_thickness_map(path, nm_per_count: float | None = None) -> np.ndarray:
             raise SpectrumError(
                 "nm_per_count: a PNG holds grey counts; state the thickness per count in nm"
             )
-        from PIL import Image
-
         from ..budget import check_bytes
 
-        with Image.open(path) as image:
-            check_bytes(image.width * image.height * 12, f"{path}: {image.width} x {image.height} "
-                        "pixels (counts, their float32 thicknesses and the picture's work)")
-            if image.mode not in ("I;16", "I;16B", "I", "L"):
-                raise SpectrumError(
-                    f"{path}: expected a greyscale PNG (8 or 16 bit), got mode {image.mode}"
-                )
-            counts = np.asarray(image)
+        header = image_header(path)
+        check_bytes(header.width * header.height * 12, f"{path}: {header.width} x {header.height} "
+                    "pixels (counts, their float32 thicknesses and the picture's work)")
+        if header.format != "PNG" or header.channels != 1 or header.dtype not in (np.uint8, np.uint16):
+            raise SpectrumError(
+                f"{path}: expected a greyscale PNG (8 or 16 bit), got {header.format} with "
+                f"{header.channels} channels of {header.dtype.name}"
+            )
+        counts = read_image(path)
         return counts.astype(np.float32) * np.float32(nm_per_count)
     raise SpectrumError(f"{path}: thickness maps must be .npy or .png")
 
@@ -570,12 +577,14 @@ def draining_film_gif(path, table: ColourTable, width: int, height: int, times_s
     Returns
     -------
     pathlib.Path
-        The file written.
+        The file written (atomically: :func:`spectrocolor.imagefiles.write_gif`).
 
     Raises
     ------
     SpectrumError
         For no times, or thicknesses beyond the table.
+    spectrocolor.safe_write.OutputError
+        If the file cannot be written (any previous file is left unchanged).
 
     Examples
     --------
@@ -589,12 +598,8 @@ def draining_film_gif(path, table: ColourTable, width: int, height: int, times_s
     ...         print(gif.n_frames, gif.size)
     2 (8, 8)
     """
-    from PIL import Image
-
-    frames = [Image.fromarray(render_thickness_map(
-        draining_film(width, height, time_s=t, **film_options), table)) for t in times_s]
+    frames = [render_thickness_map(draining_film(width, height, time_s=t, **film_options), table)
+              for t in times_s]
     if not frames:
         raise SpectrumError("times_s: need at least one time")
-    path = Path(path)
-    frames[0].save(path, save_all=True, append_images=frames[1:], duration=frame_ms, loop=0)
-    return path
+    return write_gif(path, frames, frame_ms=frame_ms, loop=0)  # atomic, like every writer

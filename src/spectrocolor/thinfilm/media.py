@@ -5,6 +5,10 @@ validity; asking for an index outside that range is an error, never an extrapola
 optics functions accept a medium they also accept a plain number (a constant index).
 
 Sign convention: ``k >= 0`` means absorption (fields ``exp(i(kz - ωt))``).
+
+Why this file is long: it is a catalogue: the :class:`Medium` type and each named material's
+dispersion formula with its citation; every entry is short and independent, and :func:`medium` lists
+them from one place.
 """
 
 from __future__ import annotations
@@ -54,7 +58,7 @@ class Medium:
         Parameters
         ----------
         wavelengths_nm : array_like, shape (K,)
-            Vacuum wavelengths, nm, finite and positive, inside :attr:`valid_nm`.
+            Vacuum wavelengths, nm, finite and positive, inside ``valid_nm``.
 
         Returns
         -------
@@ -64,7 +68,7 @@ class Medium:
         Raises
         ------
         SpectrumError
-            If a wavelength lies outside :attr:`valid_nm` (never extrapolated) or the grid is
+            If a wavelength lies outside ``valid_nm`` (never extrapolated) or the grid is
             malformed.
 
         Examples

@@ -15,6 +15,10 @@ are vacuum wavelengths in nm; thicknesses are physical thicknesses in nm; the an
 is in degrees, measured in the ambient medium, which must be non-absorbing. Reflectance and
 transmittance are fractions of the incident power (0-1). For unpolarised light they are the
 means of the s and p values.
+
+Why this file is long: the three optical models (two-beam, single film, exact multilayer) share the
+angle, admittance and polarisation helpers and are tested against each other; one module keeps those
+conventions (the sign of k, s and p) in one place.
 """
 
 from __future__ import annotations
@@ -80,7 +84,7 @@ class FilmOptics:
         Returns
         -------
         Spectrum
-            Values of shape ``(..., K)`` on :attr:`wavelengths_nm`, factors 0–1 (ready for
+            Values of shape ``(..., K)`` on ``wavelengths_nm``, factors 0–1 (ready for
             :func:`spectrocolor.tristimulus` with an illuminant).
 
         Raises
@@ -475,13 +479,13 @@ def stack_optics(thicknesses_nm, wavelengths_nm, layers: Sequence, *, ambient=1.
 
     trig = _layer_trig(qs, thicknesses, wl)
     if substrate_thickness_nm is None:
-        def compute(pol):
+        def coherent(pol):
             eta0 = _admittance(n0, q0, pol)
             etas = [_admittance(n, q, pol) for n, q in zip(n_layers, qs, strict=True)]
             r, t = _coherent_stack(eta0, etas, _admittance(n_sub, q_sub, pol), trig)
             return np.abs(r) ** 2, t
 
-        reflectance, transmittance = _mean_over_polarisations(compute, polarisation)
+        reflectance, transmittance = _mean_over_polarisations(coherent, polarisation)
         shape = np.broadcast_shapes(reflectance.shape, thicknesses.shape[:-1] + (wl.size,))
         return FilmOptics(wl, np.broadcast_to(reflectance, shape).copy(),
                           np.broadcast_to(transmittance, shape).copy(), polarisation)

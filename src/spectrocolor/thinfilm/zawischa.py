@@ -133,7 +133,7 @@ def zawischa_strip(columns: int = COLUMNS, beta: float = BETA) -> ZawischaStrip:
     [99, 199, 299]
     """
     from ..budget import check_bytes
-    from ..illuminants import blackbody
+    from ..radiators import blackbody
     from ..spectrum import Spectrum, wavelength_grid
 
     if isinstance(columns, bool) or not isinstance(columns, (int, np.integer)) or columns < 1:

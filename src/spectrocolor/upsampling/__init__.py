@@ -12,15 +12,17 @@
   C in ``docs/upsampling/``).
 * :func:`save_texel_coefficients`, :func:`load_texel_coefficients` — per-texel coefficients
   (``.sctx``) for renderers.
-* :func:`read_png` — 8- and 16-bit PNG codes without loss (Pillow cuts 16-bit RGB to 8 bits).
+* :func:`read_png` — 8- and 16-bit PNG codes without loss (Pillow cuts 16-bit RGB to 8 bits);
+  :mod:`spectrocolor.imagefiles`, needs ``imagecodecs`` (extras ``images``, ``app``).
 
-With numba installed (extra ``fast``) the lookup, blends and PNG filters run in compiled kernels
+With numba installed (extra ``fast``) the lookup and blends run in compiled kernels
 (:mod:`spectrocolor.upsampling.compiled`), with the same numbers as the NumPy path.
 
 The core needs only NumPy/SciPy; dask is imported only by :func:`upsample_dask`, numba only
 when a kernel first runs.
 """
 
+from ..imagefiles import read_png
 from .apply import (
     OUT_OF_RANGE_STRATEGIES,
     Lookup,
@@ -34,7 +36,6 @@ from .apply import (
     upsample_spectra,
 )
 from .fileformat import load_table, save_table
-from .png_reader import read_png
 from .relight import relight, rgb_linear_from_image
 from .table import NODE_STATUS, UpsamplingTable, upsampling_table
 from .texels import TexelCoefficients, load_texel_coefficients, save_texel_coefficients

@@ -20,6 +20,10 @@ References
 J. M. Kasson, S. I. Nin, W. Plouffe, J. L. Hafner, "Performing color space conversions with
 three-dimensional linear interpolation", J. Electronic Imaging 4, 226–250 (1995)
 (tetrahedral interpolation).
+
+Why this file is long: every way of applying a table (spectra, colours under a light, texel
+coefficients, blocks of an image, dask arrays) rests on the one tetrahedral lookup and the out-of-
+range strategies defined here; a split would make each caller import the internals of the lookup.
 """
 
 from __future__ import annotations
@@ -206,7 +210,7 @@ def _flat(t: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(t.reshape(-1, 3), dtype=np.float64)
 
 
-def _kernel_table(table: UpsamplingTable, name: str) -> tuple:
+def _kernel_table(table: UpsamplingTable, name: str) -> tuple[int, int, np.ndarray, np.ndarray]:
     """(n, move code, path offsets, flat node status): the table as the kernels take it."""
     n = table.resolution
     status = np.ascontiguousarray(table.node_status, dtype=np.uint8).reshape(-1)
@@ -234,7 +238,7 @@ def _apply(table: UpsamplingTable, rgb_linear, name: str, values: np.ndarray, cl
     lead, channels = t.shape[:-1], values.shape[1]
     direct = (out is not None and out.dtype == np.float64 and out.flags.c_contiguous
               and out.size == int(np.prod(lead, dtype=np.int64)) * channels)
-    flat_out = out.reshape(-1, channels) if direct else np.empty((t.size // 3, channels))
+    flat_out = out.reshape(-1, channels) if direct and out is not None else np.empty((t.size // 3, channels))
     exact, moved = run_blend(compiled, _flat(t), *_kernel_table(table, name),
                              np.ascontiguousarray(values, dtype=np.float64), clamp,
                              name == "nan", flat_out)

@@ -213,7 +213,7 @@ def load_table(path, *, memory_budget=None) -> UpsamplingTable:
             head = handle.read(HEADER.size)
             if len(head) < HEADER.size:
                 raise _bad(path, f"{size} bytes, shorter than the {HEADER.size}-byte header")
-            magic, version, n, K, J, start, step, *matrix = HEADER.unpack(head)
+            magic, version, n, K, J, start, step, *matrix_entries = HEADER.unpack(head)
             if magic != MAGIC:
                 raise _bad(path, f"magic {magic!r}, expected {MAGIC!r}")
             if version != VERSION:
@@ -237,7 +237,7 @@ def load_table(path, *, memory_budget=None) -> UpsamplingTable:
             arrays = {}
             for name, shape, dtype in sections:
                 array = np.empty(shape, dtype=dtype)
-                buffer = memoryview(array.reshape(-1)).cast("B")
+                buffer = array.reshape(-1).data.cast("B")
                 _read_exactly(handle, len(buffer), path, into=buffer)
                 crc = zlib.crc32(buffer, crc)
                 arrays[name] = array.astype(np.dtype(dtype).newbyteorder("="), copy=False)
@@ -260,7 +260,7 @@ def load_table(path, *, memory_budget=None) -> UpsamplingTable:
         raise _bad(path, "node reflectances outside [0, 1] (or NaN)")
     if not np.all(np.isin(arrays["node_status"], list(NODE_STATUS))):
         raise _bad(path, f"node status codes other than {sorted(NODE_STATUS)}")
-    matrix = np.array(matrix, dtype=float).reshape(3, 3)
+    matrix = np.array(matrix_entries, dtype=float).reshape(3, 3)
     if not (np.all(np.isfinite(matrix)) and np.all(np.isfinite(arrays["weights"]))):
         raise _bad(path, "non-finite colour map or weights")
     grid = start + step * np.arange(K)

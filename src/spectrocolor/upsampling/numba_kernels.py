@@ -109,31 +109,3 @@ def locate_serial(t, n, move, offsets, status, nodes, weights, exact, moved):
     """:func:`locate_parallel` on one thread."""
     for q in range(t.shape[0]):
         _locate_one(t, n, move, offsets, status, nodes, weights, exact, moved, q)
-
-
-@_jit()
-def unfilter_png(filtered, filters, out):
-    """Undo PNG scanline filters, row by row: ``filtered`` and ``out`` (H, W, B) uint8.
-
-    The same predictors as :func:`spectrocolor.upsampling.png_reader._unfilter_band`.
-    """
-    height, width, depth = filtered.shape
-    for r in range(height):
-        kind = filters[r]
-        for col in range(width):
-            for k in range(depth):
-                a = np.int16(out[r, col - 1, k]) if col > 0 else np.int16(0)
-                b = np.int16(out[r - 1, col, k]) if r > 0 else np.int16(0)
-                ul = np.int16(out[r - 1, col - 1, k]) if r > 0 and col > 0 else np.int16(0)
-                if kind == 1:
-                    predictor = a
-                elif kind == 2:
-                    predictor = b
-                elif kind == 3:
-                    predictor = (a + b) >> 1
-                elif kind == 4:
-                    pa, pb, pc = abs(b - ul), abs(a - ul), abs(a + b - 2 * ul)
-                    predictor = a if pa <= pb and pa <= pc else (b if pb <= pc else ul)
-                else:
-                    predictor = np.int16(0)
-                out[r, col, k] = np.uint8((np.int16(filtered[r, col, k]) + predictor) & 0xFF)

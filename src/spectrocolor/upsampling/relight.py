@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ColorimetryError
-from ..illuminants import illuminant_label
+from ..illuminants import illuminant_label, resolve_illuminant
 from .apply import colours_under
 from .table import UpsamplingTable
 
@@ -108,8 +108,9 @@ def relight(table: UpsamplingTable, rgb_linear, illuminant, adaptation: str | No
         Built on an RGB space for the light the image was taken under (e.g. ``"D65"``).
     rgb_linear : array_like (..., 3)
         Linear RGB of the table's space (see :func:`rgb_linear_from_image`).
-    illuminant : str or Spectrum
-        The new light, e.g. ``"A"``.
+    illuminant : str, float, Spectrum or Illuminant
+        The new light, e.g. ``"A"``, ``"blackbody:3000"``, ``"D:5000"`` (any form of
+        :func:`spectrocolor.resolve_illuminant`).
     adaptation : str or None
         None (default): viewer adapted to the original light; else a method of
         :func:`spectrocolor.adapt` (e.g. ``"bradford"``) for a viewer adapted to the new light.
@@ -140,14 +141,15 @@ def relight(table: UpsamplingTable, rgb_linear, illuminant, adaptation: str | No
     if table.space == "XYZ" and space is None:
         raise ColorimetryError("space: an 'XYZ' table needs an RGB display space to relight on")
     display = rgb_space(table.space if space is None else space)
+    light = resolve_illuminant(illuminant)  # once: the weights and the label take the value
     W_new = np.asarray(weights(table.wavelengths_nm, observer=_observer(table),
-                               illuminant=illuminant), dtype=float)
+                               illuminant=light), dtype=float)
     XYZ, exact = colours_under(table, rgb_linear, W_new, out_of_range)
     seen_white = table.weights.sum(axis=0) if adaptation is None else W_new.sum(axis=0)
     method = "bradford" if adaptation is None else adaptation
     to_display = adaptation_matrix(seen_white, display.white_XYZ, method)
     XYZ_display = XYZ @ to_display.T
-    label = illuminant_label(illuminant)
+    label = illuminant_label(light)
     return Relit(XYZ_display, display.rgb_linear_from_XYZ(XYZ_display), exact, label,
                  adaptation, display.name)
 

@@ -211,7 +211,7 @@ def node_coordinates(n: int) -> np.ndarray:
 
 def _resolution(resolution) -> int:
     if (isinstance(resolution, bool) or not isinstance(resolution, Integral)
-            or not MIN_RESOLUTION <= resolution <= MAX_RESOLUTION):
+            or not MIN_RESOLUTION <= int(resolution) <= MAX_RESOLUTION):
         raise ColorimetryError(
             f"resolution: expected an integer number of nodes per axis from {MIN_RESOLUTION} "
             f"to {MAX_RESOLUTION}, got {resolution!r}"
@@ -404,7 +404,7 @@ def upsampling_table(space="sRGB", illuminant="D65", observer="1931",
     memory_budget : int or str, keyword-only, optional
         Most memory the build may take (e.g. ``"2GiB"``); default the budget in force
         (:func:`spectrocolor.budget.memory_budget`). The build takes about
-        :func:`table_build_bytes` (n = 65 on the default grid: 2 GiB).
+        ``table_build_bytes`` (n = 65 on the default grid: 2 GiB).
 
     Returns
     -------

@@ -393,7 +393,7 @@ def load_texel_coefficients(path, table: UpsamplingTable | None = None, *,
         return SpectrumError(f"{path}: not a valid texel coefficient file: {what}")
 
     def read_into(handle, array: np.ndarray, crc: int) -> int:
-        buffer = memoryview(array.reshape(-1)).cast("B")
+        buffer = array.reshape(-1).data.cast("B")
         done = 0
         while done < len(buffer):
             got = handle.readinto(buffer[done:])

@@ -88,6 +88,10 @@ const STRATEGIES = {
   },
 };
 
+/** Whether a gamut strategy has a local fast path here; one registered only in the library is
+ * drawn from the server's answer alone (a moment later, never wrong). */
+export const hasFastPath = (gamut) => Object.hasOwn(STRATEGIES, gamut);
+
 /**
  * One distribution's colour as /api/evaluate gives it (without λd and purity, which only the
  * server computes).

@@ -6,8 +6,8 @@ import {$, el, fill} from "./dom.js";
 import {apiJSON, api} from "./api.js";
 import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stateURL, readURLOptions,
   readURLDistributions, persist, readPersisted} from "./state.js";
-import {localColour, localWeights, whiteOf, emitted} from "./colour.js";
-import {buildPatches, buildCards, paint, evalSpec, markStale, gamutLabel, NORMALISE_TEXT} from "./view.js";
+import {hasFastPath, localColour, localWeights, whiteOf, emitted} from "./colour.js";
+import {buildPatches, buildCards, paint, evalSpec, markStale} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
 import {applyPreset, presetButtons, moveButtons} from "./presets.js";
@@ -44,7 +44,7 @@ function update(final = true) {
   const lw = localWeights(S.model, S.normalise, e.illuminant);
   drawEditors(S.editing);
   S.editing = null;
-  if (lw) {
+  if (lw && hasFastPath(S.gamut)) {
     S.localWhite = whiteOf(lw.W);
     S.local = e.spectra.map((s) => localColour(s, S.model, {W: lw.W, scale: lw.scale, normalise: S.normalise, gamut: S.gamut}));
     paint(S.local, null);
@@ -404,10 +404,13 @@ async function init() {
   S.display = defaults_.display || o.displays[0];
   if (o.adaptations) S.adaptation = defaults_.adaptation || o.adaptations[0][0];
   const setting = fromURL(location.search) || 1;
+  // every list and label comes from the library's registries through /api/options
+  fillSelect("step", o.steps, String(S.step));
   fillSelect("display", o.displays.map((d) => [d, d]), S.display);
   fillSelect("observer", Object.entries(o.observers), S.observer);
-  fillSelect("gamut", o.gamuts.map((g) => [g, gamutLabel(g), (o.gamut_actions || {})[g]]), S.gamut);
-  fillSelect("normalise", o.normalisations.map((n) => [n, ...(NORMALISE_TEXT[n] || [n, ""])]), S.normalise);
+  fillSelect("gamut", o.choices.gamut, S.gamut);
+  fillSelect("normalise", o.choices.normalise, S.normalise);
+  fillSelect("upload-scale", o.choices.scale.map(([v, text]) => [v, text]), o.choices.scale[0][0]);
   if (o.adaptations) {
     fillSelect("adaptation", o.adaptations, S.adaptation);
     $("adaptation-label").hidden = false;

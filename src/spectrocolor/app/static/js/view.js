@@ -7,17 +7,10 @@ import {hexOf, lab} from "./colour.js";
 
 const fmt = (v, n) => (v === null || v === undefined || !Number.isFinite(v)) ? "—" : v.toFixed(n);
 
-/** Short names of the gamut strategies; what each does comes from the server (gamut_actions). */
-const GAMUT_NAMES = {"flag": "SPECTRA: cannot be reproduced", "clip": "clip channels",
-  "preserve-luminance": "keep luminance", "desaturate": "desaturate (keep hue and luminance)"};
-export const gamutLabel = (g) => GAMUT_NAMES[g] || g;
+/** The label of a choice, from the registries via /api/options (choices: [name, label, help] rows). */
+const choiceRow = (kind, v) => (((S.options && S.options.choices) || {})[kind] || []).find(([n]) => n === v);
+export const gamutLabel = (g) => (choiceRow("gamut", g) || [g, g])[1];
 const gamutAction = (g) => ((S.options && S.options.gamut_actions) || {})[g] || "";
-
-export const NORMALISE_TEXT = {
-  "fixed": ["A · fixed scale", "One scale for all colours: the largest channel any distribution can drive (lightness relations kept)."],
-  "per-colour": ["B · per colour (Optimised!)", "Every colour as bright as the display allows: only its chromaticity is kept."],
-  "spectra-exact": ["A · as SPECTRA computed it", "The program's own numbers: 1.32 × the white's largest channel, one factor k per channel from its step 1."],
-};
 
 /** What each setting evaluates: the spectra sent to the library, their labels, the pairs. */
 export function evalSpec() {

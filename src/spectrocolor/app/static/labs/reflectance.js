@@ -17,11 +17,11 @@ const redoStack = [];
 
 
 
-function decode(hash) {
+function decode(hash, steps) {
   const params = new URLSearchParams(hash.slice(1));
   const next = { ...DEFAULTS };
   if (params.has("light")) next.light = params.get("light");
-  if (["5", "10"].includes(params.get("step"))) next.step = params.get("step");
+  if (steps.includes(params.get("step"))) next.step = params.get("step");
   for (const key of ["x", "y", "Y"]) {
     const v = Number(params.get(key));
     if (params.has(key) && Number.isFinite(v)) next[key] = v;
@@ -195,7 +195,8 @@ function paint() {
 async function start() {
   const options = await api("/api/lab/reflectance/options");
   $("light").replaceChildren(...options.illuminants.map((n) => Object.assign(document.createElement("option"), { value: n, textContent: n })));
-  state = decode(location.hash);
+  $("step").replaceChildren(...options.steps.map(([v, label]) => Object.assign(document.createElement("option"), { value: v, textContent: label })));
+  state = decode(location.hash, options.steps_nm);
   $("light").addEventListener("change", (e) => commit({ light: e.target.value }));
   $("step").addEventListener("change", (e) => commit({ step: e.target.value }));
   for (const key of ["x", "y"]) $(key).addEventListener("change", (e) => commit({ [key]: Number(e.target.value) }));
@@ -219,7 +220,7 @@ async function start() {
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
   wireCommon(undo, redo);
-  window.addEventListener("popstate", () => { state = decode(location.hash); render(); });
+  window.addEventListener("popstate", () => { state = decode(location.hash, options.steps_nm); render(); });
   window.addEventListener("resize", paint);
   history.replaceState(null, "", encode(state));
   render();

@@ -185,12 +185,12 @@ function paint() {
 }
 
 async function start() {
-  const options = await api("/api/lab/reflectance/options");
+  const options = await api("/api/lab/solid/options");
   const fill = (select, values, labels = values) => select.replaceChildren(
     ...values.map((v, i) => Object.assign(document.createElement("option"), { value: String(v), textContent: labels[i] })));
   fill($("light"), options.illuminants);
   fill($("second"), options.illuminants);
-  fill($("display"), ["sRGB", "Display P3", "Adobe RGB (1998)", "Rec. 2020", "SPECTRA 7000K"]);
+  fill($("display"), options.displays);
   fill($("sample"), Array.from({ length: 14 }, (_, i) => i + 1), Array.from({ length: 14 }, (_, i) => `TCS${String(i + 1).padStart(2, "0")}`));
   state = decode(location.hash);
   for (const [id, key] of [["light", "light"], ["display", "display"], ["second", "second"]]) {

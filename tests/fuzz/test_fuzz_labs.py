@@ -1,0 +1,74 @@
+"""Hostile JSON to the labs' routes: every answer is a 200 or a 422 with the server's one error shape.
+
+Bodies are drawn by hypothesis from the fields each route knows, with values of every JSON kind
+(numbers out of range, NaN-like strings, nested lists, huge integers, text) plus unknown keys.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("fastapi")
+hypothesis = pytest.importorskip("hypothesis")
+from fastapi.testclient import TestClient  # noqa: E402
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from spectrocolor.app.server import create_app  # noqa: E402
+
+FINITE = st.floats(allow_nan=False, allow_infinity=False)  # JSON has no NaN or infinity
+NAMES = st.sampled_from(["D65", "A", "FL11", "blackbody:3000", "D:5000", "sRGB", "soap", "tio2", "airy", "two-beam",
+                         "5", "10", "1931"])
+SCALARS = st.one_of(st.none(), st.booleans(), st.integers(-10**20, 10**20), FINITE, st.text(max_size=30), NAMES)
+VALUES = st.recursive(SCALARS, lambda inner: st.lists(inner, max_size=5) | st.dictionaries(st.text(max_size=8), inner,
+                                                                                          max_size=4), max_leaves=12)
+FIELDS = {
+    "/api/lab/thinfilm": ["film", "model", "angle_deg", "illuminant", "observer", "display"],
+    "/api/lab/reflectance": ["x", "y", "Y", "illuminant", "observer", "step_nm"],
+    "/api/lab/light": ["source", "display"],
+    "/api/lab/solid/section": ["illuminant", "display", "Y"],
+}
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app(), base_url="http://127.0.0.1")
+
+
+def check(response):
+    assert response.status_code in (200, 422), (response.status_code, response.text[:300])
+    if response.status_code == 422:
+        error = response.json()["error"]
+        assert isinstance(error, str) and 0 < len(error) < 2000
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+@pytest.mark.slow
+def test_hostile_bodies_get_an_answer_or_one_clear_error(client, data):
+    route = data.draw(st.sampled_from(sorted(FIELDS)))
+    keys = st.sampled_from(FIELDS[route] + ["extra"])
+    body = data.draw(st.dictionaries(keys, VALUES, max_size=len(FIELDS[route]) + 1) | VALUES)
+    check(client.post(route, json=body))
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(source=st.fixed_dictionaries({"kind": st.just("leds"),
+                                     "peaks_nm": st.lists(st.floats(300, 900), min_size=0, max_size=6),
+                                     "widths_nm": st.lists(st.floats(0, 400), min_size=0, max_size=6),
+                                     "powers": st.lists(st.floats(-1, 2), min_size=0, max_size=6)}))
+def test_led_mixtures_of_any_shape(client, source):
+    check(client.post("/api/lab/light", json={"source": source}))
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(x=st.floats(-1, 2), y=st.floats(-1, 2), Y=st.floats(-10, 200))
+def test_any_colour_for_the_reflectance_lab(client, x, y, Y):
+    check(client.post("/api/lab/reflectance", json={"x": x, "y": y, "Y": Y, "step_nm": "10"}))
+
+
+@pytest.mark.parametrize("body", [{"sample": 0}, {"sample": 15}, {"sample": "9"}, {"second_illuminant": "X"},
+                                  {"illuminant": None}, {"sample": 1.5}, [1, 2], "sample"])
+def test_mismatch_refuses_bad_requests_clearly(client, body):
+    response = client.post("/api/lab/solid/mismatch", json=body)
+    assert response.status_code == 422 and isinstance(response.json()["error"], str)
