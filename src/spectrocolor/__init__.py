@@ -48,6 +48,8 @@ _PUBLIC: dict[str, str] = {
     "Registry": "registry",
     "SUMMATION_METHODS": "colorimetry",
     "ILLUMINANTS": "illuminants",
+    "LIGHT_KINDS": "illuminants",
+    "LightKind": "illuminants",
     "OBSERVERS": "observers",
     "GAMUT_STRATEGIES": "display.gamut",
     "NORMALISATIONS": "display.normalise",

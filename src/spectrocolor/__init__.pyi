@@ -63,7 +63,9 @@ from .errors import ColorimetryError as ColorimetryError
 from .errors import SpectrumError as SpectrumError
 from .illuminants import DEFAULT_ILLUMINANT as DEFAULT_ILLUMINANT
 from .illuminants import ILLUMINANTS as ILLUMINANTS
+from .illuminants import LIGHT_KINDS as LIGHT_KINDS
 from .illuminants import Illuminant as Illuminant
+from .illuminants import LightKind as LightKind
 from .illuminants import canonical_illuminant as canonical_illuminant
 from .illuminants import illuminant as illuminant
 from .illuminants import illuminant_label as illuminant_label
@@ -176,6 +178,8 @@ __all__ = [
     "GAMUT_STRATEGIES",
     "ILLUMINANTS",
     "Illuminant",
+    "LIGHT_KINDS",
+    "LightKind",
     "LightReport",
     "MeasurementReport",
     "Medium",

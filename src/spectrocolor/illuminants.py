@@ -1,7 +1,8 @@
 """CIE illuminants: the vocabulary of lights, resolved once into :class:`Illuminant` values.
 
 The formulas of the lights that have one (Planckian radiators, illuminant A, the CIE daylight
-series) are in :mod:`spectrocolor.radiators`.
+series) are in :mod:`spectrocolor.radiators`; the lights named ``"kind:T"`` are the entries of
+:data:`LIGHT_KINDS`, a registry one can add to.
 
 References
 ----------
@@ -10,7 +11,8 @@ c₂ = 1.435 × 10⁻² m·K), §4.1.2 and Table 6 (daylight basis S0, S1, S2 an
 formulae), Tables 8–10 (FL1–FL12, LED-B1–B5). CODATA 2018 (second radiation constant
 c₂ = 1.438 776 877 × 10⁻² m·K). Sources of the files: ``data/PROVENANCE.md``.
 
-Why this file is long: it is the vocabulary of lights: the registry of CIE names, the typed
+Why this file is long: it is the vocabulary of lights: the registry of CIE names, the registry of
+kinds of light named by a temperature (:data:`LIGHT_KINDS`, :class:`LightKind`), the typed
 :class:`Illuminant` with its cached SPD, and the one resolver every argument that names a light goes
 through; the formulas were moved to :mod:`spectrocolor.radiators`, and what remains is one concept.
 """
@@ -18,6 +20,7 @@ through; the formulas were moved to :mod:`spectrocolor.radiators`, and what rema
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cache, lru_cache
 
@@ -104,40 +107,181 @@ def canonical_illuminant_name(name: str) -> str:
 #: the CLI and the app take their default from this constant.
 DEFAULT_ILLUMINANT = "D65"
 
-#: ``KIND:T``; the temperature text is cut out by :func:`_temperature_key`, not by the pattern (a
-#: lazy ``.*?`` between ``\s*`` runs took cubic time on a name padded with spaces).
-_TEMPERATURE_KEY = re.compile(r"\s*+(blackbody|planck|bb|d|daylight)\s*+:(.*)", re.IGNORECASE)
+@dataclass(frozen=True, slots=True)
+class LightKind:
+    """A family of lights with one parameter, a temperature: what ``"prefix:T"`` names.
+
+    Registered in :data:`LIGHT_KINDS` (its name is the :attr:`Illuminant.kind`, its aliases
+    the other words accepted before the colon); the resolver, the explorer's light lab, its
+    request validation, ``/api/options`` and the command line's help read it from there.
+
+    Attributes
+    ----------
+    prefix : str
+        The word of the canonical name, ``"blackbody"`` in ``"blackbody:6504"``, ``"D"`` in
+        ``"D:5000"``.
+    label_template : str
+        The :attr:`Illuminant.label`, formatted with ``T`` (kelvin): ``"blackbody {T:g} K"``.
+    spd : callable
+        ``spd(temperature_K, wavelengths_nm) -> Spectrum``, the relative SPD (``wavelengths_nm``
+        None: the kind's own grid).
+    reference : str
+        Where the distribution is defined.
+    min_K, max_K : float
+        The temperatures accepted, K (within ``MIN_TEMPERATURE_K``–``MAX_TEMPERATURE_K``).
+    validate : callable or None
+        ``validate(temperature_K)`` raising :class:`ColorimetryError` with the kind's own message
+        (the daylight series: :func:`~spectrocolor.radiators.daylight_xy`); None: the range above.
+    by_formula : bool
+        Whether the SPD is a formula defined at every wavelength (not interpolated from a table).
+
+    Examples
+    --------
+    >>> kind = LIGHT_KINDS.get("bb")
+    >>> kind.prefix, kind.label(2856.0), kind.min_K
+    ('blackbody', 'blackbody 2856 K', 100.0)
+    """
+
+    prefix: str
+    label_template: str
+    spd: Callable[[float, np.ndarray | None], Spectrum]
+    reference: str
+    min_K: float = MIN_TEMPERATURE_K
+    max_K: float = MAX_TEMPERATURE_K
+    validate: Callable[[float], object] | None = None
+    by_formula: bool = True
+
+    def label(self, temperature_K: float) -> str:
+        """The light's short name at ``temperature_K`` (:attr:`label_template` filled in).
+
+        Parameters
+        ----------
+        temperature_K : float
+            Temperature, K.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> LIGHT_KINDS.get("daylight").label(5000.0)
+        'CIE daylight 5000 K'
+        """
+        return self.label_template.format(T=temperature_K)
+
+    def check(self, temperature_K: float) -> None:
+        """Raise :class:`ColorimetryError` unless the kind is defined at ``temperature_K``.
+
+        Parameters
+        ----------
+        temperature_K : float
+            Temperature, K.
+
+        Raises
+        ------
+        ColorimetryError
+            Outside the kind's range (the message of :attr:`validate` where it has one).
+
+        Examples
+        --------
+        >>> LIGHT_KINDS.get("D").check(6500.0)
+        >>> try:
+        ...     LIGHT_KINDS.get("D").check(3000.0)
+        ... except ColorimetryError as error:
+        ...     print(error)
+        cct_K: the CIE daylight series is defined for 4000–25000 K, got 3000.0
+        """
+        if self.validate is not None:
+            self.validate(temperature_K)
+        elif not self.min_K <= temperature_K <= self.max_K:
+            raise ColorimetryError(
+                f"temperature_K: {self.prefix} is defined for {self.min_K:g}–{self.max_K:g} K, got {temperature_K!r}")
+
+
+#: The lights named ``"kind:T"`` (T in kelvin), by kind: a :class:`LightKind` each. The word
+#: before the colon is the kind's name or an alias, in any case. Add one entry and the resolver,
+#: the explorer (light lab, request validation, ``/api/options``) and ``--help`` offer it.
+LIGHT_KINDS = Registry("illuminant", "a light kind ('kind:T', T in kelvin)")
+LIGHT_KINDS.add(
+    "blackbody",
+    LightKind("blackbody", "blackbody {T:g} K", blackbody,
+              "Planck's law; CIE 015:2018 §4.1; CODATA 2018 c₂ = 1.438776877e-2 m·K"),
+    "a Planckian radiator at temperature_K (Planck's law, CODATA 2018 c₂)",
+    aliases=("planck", "bb"), label="Planckian radiator",
+    extra={"form": "a Planckian radiator at T kelvin"},
+)
+LIGHT_KINDS.add(
+    "daylight",
+    LightKind("D", "CIE daylight {T:g} K", daylight,
+              "CIE 015:2018 §4.1.2, eqs. (4.7)–(4.10) and Table 6 (S0, S1, S2)",
+              min_K=4000.0, max_K=25000.0, validate=daylight_xy, by_formula=False),
+    "the CIE daylight series at correlated colour temperature temperature_K",
+    aliases=("D",), label="CIE daylight",
+    extra={"form": "the CIE daylight of correlated colour temperature T, 4000–25000 K"},
+)
 
 
 def _temperature_key(name: str) -> tuple[str, str] | None:
-    """``(kind, temperature text)`` of ``"blackbody:6504 K"``-style names, or None (linear time)."""
-    match = _TEMPERATURE_KEY.fullmatch(name)
-    if match is None:
+    """``(kind, temperature text)`` of ``"blackbody:6504 K"``-style names, or None (linear time).
+
+    The word before the first colon is looked up in :data:`LIGHT_KINDS` (any case); the kind
+    returned is its registered name.
+    """
+    word, colon, value = name.partition(":")
+    if not colon or word.strip() not in LIGHT_KINDS:
         return None
-    value = match.group(2).strip()
+    value = value.strip()
     if len(value) > 1 and value[-1] in "kK":
         value = value[:-1].rstrip()
-    return (match.group(1), value) if value else None
-_ACCEPTED_SOURCES = (
-    "a CIE name such as 'D65' or 'A', 'blackbody:T' (a Planckian radiator at T kelvin), 'D:T' "
-    "(the CIE daylight of correlated colour temperature T, 4000–25000 K), a temperature in kelvin "
-    "(a blackbody), or a spectrocolor.Spectrum with one distribution"
-)
-_ACCEPTED = f"None (no illuminant: the spectra are lights), {_ACCEPTED_SOURCES}"
+    return (LIGHT_KINDS.canonical(word.strip()), value) if value else None
 
 
-#: The kinds of light an :class:`Illuminant` can be, with what defines each.
-ILLUMINANT_KINDS = {
-    "cie": "a CIE illuminant of ILLUMINANTS: a table, the formula of A, or the constant E",
-    "blackbody": "a Planckian radiator at temperature_K (Planck's law, CODATA 2018 c₂)",
-    "daylight": "the CIE daylight series at correlated colour temperature temperature_K",
-    "spectrum": "a user's Spectrum with one distribution, used on its own samples",
-}
+def _temperature_forms(conjunction: str = ", ") -> str:
+    """``'blackbody:T', 'D:T'``: the registered kinds' forms, for messages."""
+    return conjunction.join(f"'{LIGHT_KINDS.get(name).prefix}:T'" for name in LIGHT_KINDS)
+
+
+def _accepted_sources() -> str:
+    forms = ", ".join(
+        f"'{LIGHT_KINDS.get(name).prefix}:T' ({LIGHT_KINDS.extra(name, 'form', LIGHT_KINDS.description(name))})"
+        for name in LIGHT_KINDS)
+    return (f"a CIE name such as 'D65' or 'A', {forms}, a temperature in kelvin (a blackbody), or a "
+            "spectrocolor.Spectrum with one distribution")
+
+
+class _IlluminantKinds(Mapping[str, str]):
+    """``{kind: what defines it}``: "cie", the registered :data:`LIGHT_KINDS`, "spectrum" (live)."""
+
+    _FIXED = {
+        "cie": "a CIE illuminant of ILLUMINANTS: a table, the formula of A, or the constant E",
+        "spectrum": "a user's Spectrum with one distribution, used on its own samples",
+    }
+
+    def _table(self) -> dict[str, str]:
+        kinds = {name: LIGHT_KINDS.description(name) for name in LIGHT_KINDS}
+        return {"cie": self._FIXED["cie"], **kinds, "spectrum": self._FIXED["spectrum"]}
+
+    def __getitem__(self, kind: str) -> str:
+        return self._table()[kind]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._table())
+
+    def __len__(self) -> int:
+        return len(LIGHT_KINDS) + 2
+
+    def __repr__(self) -> str:
+        return repr(self._table())
+
+
+#: The kinds of light an :class:`Illuminant` can be, with what defines each: ``"cie"``, every
+#: kind of :data:`LIGHT_KINDS` (``"blackbody"``, ``"daylight"``, …) and ``"spectrum"``. A live,
+#: read-only mapping: it follows the registry.
+ILLUMINANT_KINDS: Mapping[str, str] = _IlluminantKinds()
 _REFERENCES = {
     "A": "CIE 015:2018 §4.1, eq. (4.1) (c₂ = 1.435e-2 m·K, 2848 K)",
     "E": "CIE 015:2018 §4.1 (equal-energy illuminant)",
-    "blackbody": "Planck's law; CIE 015:2018 §4.1; CODATA 2018 c₂ = 1.438776877e-2 m·K",
-    "daylight": "CIE 015:2018 §4.1.2, eqs. (4.7)–(4.10) and Table 6 (S0, S1, S2)",
     "spectrum": "user-supplied spectral power distribution",
 }
 
@@ -158,7 +302,8 @@ class Illuminant:
         Short human-readable name (:func:`illuminant_label`): ``"D65"``, ``"blackbody 3000 K"``,
         ``"CIE daylight 5000 K"``.
     kind : str
-        One of :data:`ILLUMINANT_KINDS`: ``"cie"``, ``"blackbody"``, ``"daylight"``, ``"spectrum"``.
+        One of :data:`ILLUMINANT_KINDS`: ``"cie"``, a kind of :data:`LIGHT_KINDS` (``"blackbody"``,
+        ``"daylight"``, …) or ``"spectrum"``.
     temperature_K : float or None
         Temperature of a blackbody or correlated colour temperature of a daylight, K.
     reference : str
@@ -203,7 +348,9 @@ class Illuminant:
     @property
     def by_formula(self) -> bool:
         """Whether the distribution is a formula defined at every wavelength (A, blackbodies)."""
-        return self.kind == "blackbody" or self.name == "A"
+        if self.kind in LIGHT_KINDS:
+            return bool(LIGHT_KINDS.get(self.kind).by_formula)
+        return self.name == "A"
 
     @property
     def tabulated(self) -> bool:
@@ -269,10 +416,8 @@ class Illuminant:
 def _named_spd(name: str, kind: str, temperature_K, grid_key: bytes | None, method: str) -> Spectrum:
     """A named light's SPD on a grid (``None``: its own), read-only and cached."""
     wavelengths_nm = None if grid_key is None else np.frombuffer(grid_key, dtype=float)
-    if kind == "blackbody":
-        result = blackbody(temperature_K, wavelengths_nm)
-    elif kind == "daylight":
-        result = daylight(temperature_K, wavelengths_nm)
+    if kind != "cie" and kind in LIGHT_KINDS:
+        result = LIGHT_KINDS.get(kind).spd(temperature_K, wavelengths_nm)
     elif name == "A":
         grid = _table("A").wavelengths_nm if wavelengths_nm is None else validate_wavelengths(wavelengths_nm)
         result = Spectrum(grid, illuminant_A_values(grid), ("A",))
@@ -290,16 +435,55 @@ def _named_spd(name: str, kind: str, temperature_K, grid_key: bytes | None, meth
     return result
 
 
-def _named(name: str, kind: str, temperature_K: float | None = None) -> Illuminant:
-    if kind == "blackbody":
-        label = f"blackbody {temperature_K:g} K"
-    elif kind == "daylight":
-        label = f"CIE daylight {temperature_K:g} K"
-    else:
-        label = name
-    reference = _REFERENCES.get(name) or _REFERENCES.get(kind) or (
+def _named(name: str) -> Illuminant:
+    """The :class:`Illuminant` of a canonical CIE name."""
+    reference = _REFERENCES.get(name) or (
         f"CIE 015:2018 Tables 5–10: {ILLUMINANTS.description(name)} (data/PROVENANCE.md)")
-    return Illuminant(name, label, kind, temperature_K, reference)
+    return Illuminant(name, name, "cie", None, reference)
+
+
+def temperature_light(kind: str, temperature_K, argument: str = "illuminant") -> Illuminant:
+    """The light of a kind of :data:`LIGHT_KINDS` at a temperature: what ``"kind:T"`` resolves to.
+
+    Parameters
+    ----------
+    kind : str
+        A name or alias of :data:`LIGHT_KINDS` (any case): ``"blackbody"``, ``"bb"``, ``"D"``, ...
+    temperature_K : float
+        Temperature, K (``MIN_TEMPERATURE_K``–``MAX_TEMPERATURE_K``, and the kind's range).
+    argument : str, default "illuminant"
+        The name of the caller's argument, used in the error message.
+
+    Returns
+    -------
+    Illuminant
+        Named ``"prefix:T"`` (T as ``%g``), of kind the registered name.
+
+    Raises
+    ------
+    ColorimetryError
+        For an unknown kind or a temperature the kind does not accept.
+
+    Examples
+    --------
+    >>> temperature_light("D", 6500).name, temperature_light("planck", 2856).label
+    ('D:6500', 'blackbody 2856 K')
+    """
+    return _temperature_light(LIGHT_KINDS.canonical(kind, argument), temperature_K, argument)
+
+
+def _temperature_light(name: str, temperature_K, argument: str, given: str | None = None) -> Illuminant:
+    """:func:`temperature_light` of a registered ``name``; ``given`` is the text quoted in errors."""
+    light_kind: LightKind = LIGHT_KINDS.get(name)
+    temperature = _temperature(temperature_K, argument)
+    try:
+        light_kind.check(temperature)
+    except ColorimetryError as exc:  # name the caller's argument, not the kind's
+        quoted = given if given is not None else f"{light_kind.prefix}:{temperature:g}"
+        raise ColorimetryError(f"{argument}: {quoted!r:.40}: {exc}") from None
+    temperature = float(f"{temperature:g}")
+    return Illuminant(f"{light_kind.prefix}:{temperature:g}", light_kind.label(temperature), name, temperature,
+                      light_kind.reference)
 
 
 def resolve_illuminant(illuminant, argument: str = "illuminant") -> Illuminant | None:
@@ -360,34 +544,27 @@ def _parse_illuminant(illuminant, argument: str) -> Illuminant:
         label = illuminant.names[0] if illuminant.names and illuminant.names[0] else "user illuminant"
         return Illuminant(label, label, "spectrum", None, _REFERENCES["spectrum"], illuminant)
     if isinstance(illuminant, int | float | np.integer | np.floating) and not isinstance(illuminant, bool):
-        temperature = _temperature(illuminant, argument)
-        return _named(f"blackbody:{temperature:g}", "blackbody", float(f"{temperature:g}"))
+        return temperature_light("blackbody", illuminant, argument)
     if isinstance(illuminant, str):
         match = _temperature_key(illuminant)
         if match:
-            kind = match[0].lower()
             try:
                 value = float(match[1])
             except ValueError:
                 raise ColorimetryError(
                     f"{argument}: {illuminant!r} needs a temperature in kelvin after the colon, e.g. 'blackbody:6504'"
                 ) from None
-            temperature = _temperature(value, argument)
-            if kind in ("d", "daylight"):
-                try:
-                    daylight_xy(temperature)  # validates the 4000–25000 K range
-                except ColorimetryError as exc:  # name the caller's argument, not daylight's
-                    raise ColorimetryError(f"{argument}: {illuminant!r:.40}: {exc}") from None
-                return _named(f"D:{temperature:g}", "daylight", float(f"{temperature:g}"))
-            return _named(f"blackbody:{temperature:g}", "blackbody", float(f"{temperature:g}"))
+            return _temperature_light(match[0], value, argument, illuminant)
         try:
-            return _named(canonical_illuminant_name(illuminant), "cie")
+            return _named(canonical_illuminant_name(illuminant))
         except ColorimetryError:
             raise ColorimetryError(
                 f"{argument}: {illuminant!r:.80} is not a CIE illuminant name ({', '.join(ILLUMINANTS)}); "
-                "other forms: 'blackbody:T', 'D:T', a temperature in kelvin, a Spectrum, or None for lights"
+                f"other forms: {_temperature_forms()}, a temperature in kelvin, a Spectrum, or None for lights"
             ) from None
-    raise ColorimetryError(f"{argument}: expected {_ACCEPTED}; got {illuminant!r:.80}")
+    raise ColorimetryError(
+        f"{argument}: expected None (no illuminant: the spectra are lights), {_accepted_sources()}; "
+        f"got {illuminant!r:.80}")
 
 
 def canonical_illuminant(illuminant, argument: str = "illuminant"):
@@ -510,5 +687,5 @@ def illuminant(name, wavelengths_nm=None, method: str = "linear") -> Spectrum:
     """
     light = resolve_illuminant(name, "name")
     if light is None:
-        raise ColorimetryError(f"name: expected {_ACCEPTED_SOURCES}; got None")
+        raise ColorimetryError(f"name: expected {_accepted_sources()}; got None")
     return light.spd(wavelengths_nm, method)

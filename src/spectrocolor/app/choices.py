@@ -32,12 +32,14 @@ from ..display.chain import (
 )
 from ..display.gamut import DEFAULT_GAMUT, GAMUT_STRATEGIES
 from ..display.spaces import RGB_SPACES
+from ..illuminants import LIGHT_KINDS
 from ..observers import OBSERVERS
 from ..registry import Registry
 
 __all__ = [
     "ADAPTATIONS", "Adaptation", "DISPLAYS", "Display", "GAMUTS", "Gamut", "LAB_OBSERVER_KEYS",
-    "LabObserver", "NORMALISATIONS", "Normalise", "OBSERVER_KEYS", "Observer", "Step", "choice", "expected_text",
+    "LIGHT_KIND_NAMES", "LabObserver", "LightKindName", "light_kind_options",
+    "NORMALISATIONS", "Normalise", "OBSERVER_KEYS", "Observer", "Step", "choice", "expected_text",
     "observer_key", "observer_labels", "select_options",
 ]
 
@@ -216,6 +218,32 @@ LAB_OBSERVER_KEYS = ("1931", "1964")
 if not set(LAB_OBSERVER_KEYS) <= set(OBSERVER_KEYS):  # pragma: no cover - a renamed observer
     raise RuntimeError(f"the labs' observers {LAB_OBSERVER_KEYS} are not all keys of OBSERVERS")
 
+#: The kinds of light named by a temperature (``"blackbody"``, ``"daylight"``, ...), live: a
+#: view of :data:`~spectrocolor.illuminants.LIGHT_KINDS`.
+LIGHT_KIND_NAMES = LIGHT_KINDS.names_view()
+
+
+def light_kind_options() -> list[dict[str, Any]]:
+    """The light kinds for a select box: name, label, help and the temperatures accepted, K.
+
+    Returns
+    -------
+    list of dict
+        ``{"name", "label", "help", "min_K", "max_K"}`` per kind of
+        :data:`~spectrocolor.illuminants.LIGHT_KINDS`, in registration order (read live).
+
+    Examples
+    --------
+    >>> [(k["name"], k["label"], k["min_K"]) for k in light_kind_options()][:2]
+    [('blackbody', 'Planckian radiator', 100.0), ('daylight', 'CIE daylight', 4000.0)]
+    """
+    rows = []
+    for name, label, help_text in select_options(LIGHT_KINDS, LIGHT_KIND_NAMES):
+        kind = LIGHT_KINDS.get(name)
+        rows.append({"name": name, "label": label, "help": help_text, "min_K": kind.min_K, "max_K": kind.max_K})
+    return rows
+
+
 #: The explorer's bin widths, nm (400-700 nm in 31, 61, 151 or 301 bins): written once, here;
 #: :data:`spectrocolor.app.compute.STEPS_NM` and ``/api/options`` are made from it. A Literal, so
 #: JSON 10 and 10.0 are both 10 nm.
@@ -227,3 +255,4 @@ Adaptation: TypeAlias = Annotated[str, choice(ADAPTATIONS)]
 Display: TypeAlias = Annotated[str, choice(DISPLAYS)]
 Observer: TypeAlias = Annotated[str, choice(OBSERVER_KEYS)]
 LabObserver: TypeAlias = Annotated[str, choice(LAB_OBSERVER_KEYS)]
+LightKindName: TypeAlias = Annotated[str, choice(LIGHT_KIND_NAMES)]

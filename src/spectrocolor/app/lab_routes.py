@@ -25,9 +25,10 @@ from fastapi.responses import FileResponse, JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 
 from ..errors import ColorimetryError
+from ..illuminants import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K
 from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
-from .choices import LabObserver, choice
+from .choices import LabObserver, LightKindName, choice
 from .responses import FiniteJSONResponse
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
@@ -99,11 +100,21 @@ class LedLight(BaseModel):
     powers: Annotated[list[float], Field(min_length=1, max_length=light_lab.MAX_PRIMARIES)]
 
 
-class LightRequest(BaseModel):
-    """One light (named, or a mixture of Gaussian primaries) and the display for the samples."""
+class TemperatureLight(BaseModel):
+    """A kind of :data:`~spectrocolor.illuminants.LIGHT_KINDS` (checked live) at a temperature."""
 
     model_config = ConfigDict(extra="forbid")
-    source: Annotated[NamedLight | LedLight, Field(discriminator="kind")]
+    kind: Literal["temperature"]
+    light: LightKindName
+    temperature_K: Annotated[float, Field(ge=MIN_TEMPERATURE_K, le=MAX_TEMPERATURE_K)]
+
+
+class LightRequest(BaseModel):
+    """One light (named, of a kind at a temperature, or a mixture of Gaussian primaries) and the
+    display for the samples."""
+
+    model_config = ConfigDict(extra="forbid")
+    source: Annotated[NamedLight | TemperatureLight | LedLight, Field(discriminator="kind")]
     display: Annotated[str, Field(max_length=40)] = "sRGB"
 
 
@@ -130,7 +141,10 @@ def light_options():
 
 @router.post("/api/lab/light")
 def light(req: LightRequest, request: Request):
-    return _computed(request, light_lab.light_lab, req.source.model_dump(), req.display)
+    # the SPD here, from this process's registries (a kind registered at run time is unknown to
+    # the spawned workers); the worker computes the metrics from the numbers
+    spd, label = light_lab.light_spd(req.source.model_dump())
+    return _computed(request, light_lab.light_lab_of, spd, label, req.display)
 
 
 @router.get("/api/lab/thinfilm/options")

@@ -19,7 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ColorimetryError
-from ..illuminants import resolve_illuminant
+from ..illuminants import resolve_illuminant, temperature_light
+from .choices import light_kind_options
 
 WAVELENGTHS_NM = np.arange(380.0, 781.0, 5.0)
 MAX_PRIMARIES = 4
@@ -70,18 +71,23 @@ def light_spd(source: dict):
     """The light's SPD (peak 1) and its label from the page's description of it.
 
     ``{"kind": "named", "name": "FL2"}`` (any form of :func:`spectrocolor.canonical_illuminant`
-    that names a light: a CIE name, ``"blackbody:T"``, ``"D:T"``) or ``{"kind": "leds", "peaks_nm":
-    […], "widths_nm": […], "powers": […]}``.
+    that names a light: a CIE name, ``"blackbody:T"``, ``"D:T"``), ``{"kind": "temperature",
+    "light": "daylight", "temperature_K": 5000}`` (a kind of
+    :data:`~spectrocolor.illuminants.LIGHT_KINDS` at a temperature) or ``{"kind": "leds",
+    "peaks_nm": […], "widths_nm": […], "powers": […]}``.
 
     Examples
     --------
     >>> spd, label = light_spd({"kind": "named", "name": "blackbody:2700"})
     >>> label, float(spd.max())
     ('blackbody 2700 K', 1.0)
+    >>> light_spd({"kind": "temperature", "light": "daylight", "temperature_K": 5000})[1]
+    'CIE daylight 5000 K'
     """
     kind = source.get("kind") if isinstance(source, dict) else None
-    if kind == "named":
-        light = resolve_illuminant(source.get("name"), "name")
+    if kind in ("named", "temperature"):
+        light = (resolve_illuminant(source.get("name"), "name") if kind == "named"
+                 else temperature_light(str(source.get("light")), source.get("temperature_K"), "light"))
         if light is None or not light.cacheable:
             raise ColorimetryError("name: the lab takes a named light, e.g. 'FL2', 'blackbody:3000' or 'D:5000'")
         values = light.spd(WAVELENGTHS_NM).values
@@ -90,7 +96,8 @@ def light_spd(source: dict):
         spd = led_mixture(source.get("peaks_nm", ()), source.get("widths_nm", ()), source.get("powers", ()))
         peaks = ", ".join(f"{p:g}" for p in np.asarray(source["peaks_nm"], dtype=float).reshape(-1))
         return spd, f"LED mixture ({peaks} nm)"
-    raise ColorimetryError("source: expected {'kind': 'named', 'name': …} or {'kind': 'leds', 'peaks_nm': …, …}")
+    raise ColorimetryError("source: expected {'kind': 'named', 'name': …}, {'kind': 'temperature', 'light': …, "
+                           "'temperature_K': …} or {'kind': 'leds', 'peaks_nm': …, …}")
 
 
 def _samples_rgb8(spd: np.ndarray, display: str) -> tuple[np.ndarray | None, str]:
@@ -152,12 +159,42 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
     >>> lab["samples"]["under_light"] == lab["samples"]["under_reference"]   # it renders colours differently
     False
     """
+    spd, label = light_spd(source)
+    return light_lab_of(spd, label, display)
+
+
+def light_lab_of(spd, label: str, display: str = "sRGB") -> dict:
+    """:func:`light_lab` of a light given by its SPD on :data:`WAVELENGTHS_NM` (peak 1) and label.
+
+    The server resolves the light (:func:`light_spd`) in its own process, where every registered
+    light kind is known, and has a worker compute this.
+
+    Parameters
+    ----------
+    spd : array_like, shape (K,)
+        Relative SPD on :data:`WAVELENGTHS_NM`.
+    label : str
+        The light's name as shown.
+    display : str
+        A built-in RGB space for the sample swatches.
+
+    Returns
+    -------
+    dict
+        As :func:`light_lab`.
+
+    Examples
+    --------
+    >>> spd, label = light_spd({"kind": "named", "name": "A"})
+    >>> round(light_lab_of(spd, label)["summary"]["Ra"], 1)
+    100.0
+    """
     from ..lighting import colour_fidelity, colour_rendering_index, summary
     from ..lighting.reference import cri_reference
     from ..lighting.vector_graphic import bin_colours_rgb8, normalised_graphic
     from ..spectrum import Spectrum
 
-    spd, label = light_spd(source)
+    spd = np.asarray(spd, dtype=float)
     light = Spectrum(WAVELENGTHS_NM, spd)
     headline = summary(light)
     cri = colour_rendering_index(light)
@@ -202,16 +239,17 @@ def light_lab(source: dict, display: str = "sRGB") -> dict:
 
 
 def light_lab_options() -> dict:
-    """The named lights and displays the lab offers (from the registries).
+    """The named lights, the kinds of light by temperature and the displays the lab offers (from
+    the registries, read at every call).
 
     Examples
     --------
     >>> options = light_lab_options()
-    >>> options["lights"][:3]
-    ['A', 'B', 'C']
+    >>> options["lights"][:3], [k["name"] for k in options["light_kinds"]][:2]
+    (['A', 'B', 'C'], ['blackbody', 'daylight'])
     """
     from ..display.spaces import RGB_SPACES
     from ..illuminants import ILLUMINANTS
 
-    return {"lights": [n for n in ILLUMINANTS.names() if n != "E"], "displays": RGB_SPACES.names(),
-            "max_primaries": MAX_PRIMARIES}
+    return {"lights": [n for n in ILLUMINANTS.names() if n != "E"], "light_kinds": light_kind_options(),
+            "displays": RGB_SPACES.names(), "max_primaries": MAX_PRIMARIES}

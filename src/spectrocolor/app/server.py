@@ -34,6 +34,7 @@ from ..display.explain import GAMUT_ACTIONS
 from ..display.gamut import GAMUT_STRATEGIES
 from ..display.spaces import RGB_SPACES
 from ..errors import ColorimetryError, SpectrumError
+from ..illuminants import LIGHT_KINDS
 from ..interpolation import METHODS as INTERPOLATION_METHODS
 from ..spreadsheet import neutralise_cell
 from . import compute
@@ -41,6 +42,7 @@ from .choices import (
     ADAPTATIONS,
     DISPLAYS,
     GAMUTS,
+    LIGHT_KIND_NAMES,
     NORMALISATIONS,
     Adaptation,
     Display,
@@ -49,6 +51,7 @@ from .choices import (
     Observer,
     Step,
     choice,
+    light_kind_options,
     observer_labels,
     select_options,
 )
@@ -248,6 +251,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
             "gamuts": list(GAMUTS),
             "normalisations": list(NORMALISATIONS),
             "adaptations": select_options(WHITE_ADAPTATIONS, ADAPTATIONS),
+            "light_kinds": light_kind_options(),  # "kind:T" lights, as the light lab offers them
             "gamut_actions": dict(GAMUT_ACTIONS),
             # [name, label, tooltip] rows of the page's select boxes
             "choices": {
@@ -255,6 +259,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
                 "normalise": select_options(CHAIN_NORMALISATIONS, NORMALISATIONS, help_key="help"),
                 "display": [[d, d, RGB_SPACES.description(d)] for d in DISPLAYS],
                 "scale": select_options(compute.IMPORT_SCALES, compute.IMPORT_SCALES.names()),
+                "light_kind": select_options(LIGHT_KINDS, LIGHT_KIND_NAMES),
             },
             "defaults": {"gamut": compute.DEFAULT_GAMUT, "normalise": compute.DEFAULT_NORMALISE,
                          "adaptation": compute.DEFAULT_ADAPTATION,

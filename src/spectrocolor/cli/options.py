@@ -16,11 +16,33 @@ from ..display.adaptation import ADAPTATION_METHODS
 from ..display.gamut import DEFAULT_GAMUT, GAMUT_STRATEGIES
 from ..display.normalise import NORMALISATIONS
 from ..errors import ColorimetryError
-from ..illuminants import DEFAULT_ILLUMINANT, canonical_illuminant
+from ..illuminants import DEFAULT_ILLUMINANT, LIGHT_KINDS, canonical_illuminant
 from ..observers import OBSERVERS, canonical_observer_name
 
-#: How --illuminant is written, for every command's help.
-ILLUMINANT_FORMS = "a CIE name (D65, A, C, D50, FL11, LED-B1, …), blackbody:T or D:T (T in kelvin)"
+
+def illuminant_forms(cie_names: str = "D65, A, C, D50, FL11, LED-B1, …") -> str:
+    """How a light is written on the command line, for ``--illuminant`` and ``--to`` help.
+
+    The ``kind:T`` forms are read from :data:`~spectrocolor.illuminants.LIGHT_KINDS` when the
+    parser is built, so a registered kind is listed.
+
+    Parameters
+    ----------
+    cie_names : str
+        The CIE names given as examples.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> illuminant_forms()
+    'a CIE name (D65, A, C, D50, FL11, LED-B1, …), blackbody:T or D:T (T in kelvin)'
+    """
+    forms = [f"{LIGHT_KINDS.get(name).prefix}:T" for name in LIGHT_KINDS]
+    listed = forms[0] if len(forms) == 1 else f"{', '.join(forms[:-1])} or {forms[-1]}"
+    return f"a CIE name ({cie_names}), {listed} (T in kelvin)"
 
 
 def _illuminant_type(lights: bool):
@@ -41,7 +63,7 @@ def _illuminant_type(lights: bool):
 def add_illuminant(parser: argparse.ArgumentParser, *, lights: bool = False, default: str = DEFAULT_ILLUMINANT,
                    what: str = "the samples") -> None:
     """``--illuminant``: the light on ``what``; with ``lights``, ``none`` means the spectra are lights."""
-    help_text = f"the light on {what}: {ILLUMINANT_FORMS}"
+    help_text = f"the light on {what}: {illuminant_forms()}"
     if lights:
         help_text += "; 'none' when the file holds lights (sources) rather than reflectances"
     parser.add_argument("--illuminant", type=_illuminant_type(lights), default=default,

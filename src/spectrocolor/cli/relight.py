@@ -20,7 +20,7 @@ import numpy as np
 from ..upsampling.apply import OUT_OF_RANGE_STRATEGIES
 from . import UserError
 from .files import add_force, check_files
-from .options import adapt_choices, add_gamut
+from .options import adapt_choices, add_gamut, illuminant_forms
 
 #: NaN spectra cannot be displayed, so the command offers the strategies that give colours.
 _OUT_OF_RANGE = tuple(name for name in OUT_OF_RANGE_STRATEGIES if name != "nan")
@@ -44,7 +44,7 @@ def register(subparsers) -> None:
     p.add_argument("--out", required=True,
                    help="output .png (or an existing folder when INPUT is a folder)")
     p.add_argument("--to", required=True, dest="to_illuminant",
-                   help="the new light: a CIE name (A, F11, D50, …), blackbody:T or D:T (T in kelvin)")
+                   help=f"the new light: {illuminant_forms('A, F11, D50, …')}")
     p.add_argument("--adapt", choices=adapt_choices(), default="none",
                    help="chromatic adaptation to the new light (default none)")
     add_table_options(p, taken="the light the photo was taken under",

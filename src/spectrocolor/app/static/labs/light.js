@@ -8,6 +8,8 @@ const DEFAULT_LEDS = [[450, 20, 1.0], [540, 60, 0.7], [620, 20, 0.8]];
 const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB" };
 
 let state = structuredClone(DEFAULTS);
+// the kinds of light named by a temperature, from the server's registry: name -> {label, min_K, max_K}
+let kinds = new Map();
 let result = null;
 let inflight = false;
 let dirty = false;
@@ -43,9 +45,12 @@ function source(s) {
     return { kind: "leds", peaks_nm: s.leds.map((p) => p[0]), widths_nm: s.leds.map((p) => p[1]),
       powers: s.leds.map((p) => p[2]) };
   }
-  const name = s.name === "blackbody" ? `blackbody:${s.temperature}`
-    : s.name === "daylight" ? `D:${Math.max(4000, s.temperature)}` : s.name;
-  return { kind: "named", name };
+  const kind = kinds.get(s.name);
+  if (kind) {
+    return { kind: "temperature", light: s.name,
+      temperature_K: Math.min(kind.max_K, Math.max(kind.min_K, s.temperature)) };
+  }
+  return { kind: "named", name: s.name };
 }
 
 function commit(change, replace = false) {
@@ -122,7 +127,7 @@ function syncControls() {
   $("temperature-out").textContent = `${state.temperature} K`;
   $("named-box").hidden = state.kind !== "named";
   $("leds-box").hidden = state.kind !== "leds";
-  $("temperature-box").hidden = !["blackbody", "daylight"].includes(state.name);
+  $("temperature-box").hidden = !kinds.has(state.name);
   buildPrimaries();
   $("undo").disabled = !undoStack.length;
   $("redo").disabled = !redoStack.length;
@@ -265,9 +270,12 @@ function paint() {
 
 async function start() {
   const options = await api("/api/lab/light/options");
-  const names = [...options.lights.map((n) => [n, n]), ["blackbody", "Planckian radiator (temperature below)"],
-    ["daylight", "CIE daylight (temperature below, ≥ 4000 K)"]];
-  $("name").replaceChildren(...names.map(([value, label]) => Object.assign(document.createElement("option"), { value, textContent: label })));
+  kinds = new Map(options.light_kinds.map((k) => [k.name, k]));
+  const range = (k) => (k.min_K > 1000 ? `, ≥ ${k.min_K} K` : "");
+  const names = [...options.lights.map((n) => [n, n, ""]),
+    ...options.light_kinds.map((k) => [k.name, `${k.label} (temperature below${range(k)})`, k.help])];
+  $("name").replaceChildren(...names.map(([value, label, title]) =>
+    Object.assign(document.createElement("option"), { value, textContent: label, title })));
   $("display").replaceChildren(...options.displays.map((d) => Object.assign(document.createElement("option"), { value: d, textContent: d })));
   state = decode(location.hash);
   $("kind").addEventListener("change", (e) => commit({ kind: e.target.value }));
