@@ -199,75 +199,21 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     levels = np.asarray(spectra, dtype=float)
-    XYZ = tristimulus(Spectrum(wl, levels / FULL_LEVEL), observer=observer,
-                      illuminant=reference)
-    white_XYZ = tristimulus(Spectrum.constant(1.0, wl), observer=observer,
-                            illuminant=reference)
-    xy_ = xy(XYZ)
-    white_xy = xy(white_XYZ)
-    lit = XYZ[:, 1] > 0
-    dom_nm, dom_comp, purity, dom_note = _dominant(xy_, white_xy, observer, lit)
+    XYZ, white_XYZ, xy_, white_xy, lit, dominant = _cie_values(wl, levels, reference, observer)
     chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
-    space = chain.space
     shown_XYZ = chain.shown_XYZ(XYZ)
     # the X Y Z row: SPECTRA's step-1 values (one k per channel, the full spectrum 100/100/100)
     # in "spectra-exact", else CIE's (one k); xy, CIELAB and λd are always CIE's
     row_XYZ = XYZ * chain.channel_factors
     r = chain.render(XYZ, gamut)
-    explanations = r.explain()
-    negative, over = out_of_gamut_channels(r)
-    scales = np.broadcast_to(np.asarray(r.scale, dtype=float), (len(levels),))
-    primaries = primary_emission(space, wl).values
-    _, gamma = excitation_function(space)
-    drive = gamma[r.codes]  # γ(code): the fraction of full emission of each primary
-    emitted_levels = FULL_LEVEL * scales[:, None] * (drive @ primaries)
-    emitted_XYZ = scales[:, None] * (drive @ np.asarray(space.matrix_to_XYZ).T)
-    lab_note = None
-    if np.all(white_XYZ > 0):
-        lab_ = lab(XYZ, white_XYZ)
-    else:  # e.g. a single line beyond 650 nm: its white has Z = 0, CIELAB is undefined
-        lab_ = np.full_like(XYZ, np.nan)
-        lab_note = (f"CIELAB and ΔE00 undefined: the reference white has X, Y, Z = "
-                    f"{np.round(white_XYZ, 3).tolist()} (CIELAB needs all three > 0)")
-    colours = []
-    for i in range(len(levels)):
-        if not lit[i]:
-            status = "black"
-        elif not r.in_gamut[i]:
-            status = explanations[i]
-        elif normalise == "per-colour":
-            status = "Optimised!"
-        else:
-            status = "ok"
-        colours.append({
-            "XYZ": XYZ[i].tolist(),
-            "xy": [_none_nan(v) for v in xy_[i]],
-            "dominant_nm": _none_nan(dom_nm[i]),
-            "complementary": bool(dom_comp[i]),
-            "purity": _none_nan(purity[i]),
-            "dominant_note": dom_note if lit[i] else None,
-            "lab": [_none_nan(v) for v in lab_[i]],
-            "XYZ_displayed": shown_XYZ[i].tolist(),
-            "XYZ_row": row_XYZ[i].tolist(),
-            "rgb_unmapped": r.rgb_unmapped[i].tolist(),
-            "rgb_linear": r.rgb_linear[i].tolist(),
-            "rgb_encoded": r.rgb_encoded[i].tolist(),
-            "codes": [int(c) for c in r.codes[i]],
-            "in_gamut": bool(r.in_gamut[i]),
-            "negative": negative[i],
-            "over": over[i],
-            "gamut_applied": None if r.in_gamut[i] else gamut,
-            "explanation": explanations[i],
-            "scale": float(scales[i]),
-            "emitted_levels": emitted_levels[i].tolist(),
-            "emitted_XYZ": emitted_XYZ[i].tolist(),
-            "status": status,
-        })
+    shown = _rendered(r, chain.space, wl, shown_XYZ, row_XYZ, gamut, normalise, lit)
+    lab_, lab_note = _cielab(XYZ, white_XYZ)
+    colours = [{**_cie_row(i, XYZ, xy_, dominant, lit, lab_), **shown[i]} for i in range(len(levels))]
     delta = [_none_nan(float(delta_e_2000(lab_[a], lab_[b]))) if lab_note is None else None
              for a, b in pairs]
     # The lights as the display is asked to show them (after normalisation A or B, before any
     # gamut strategy), relative to the display's own white: what the split patch compares.
-    shown_lab = lab(space.XYZ_from_rgb_linear(r.rgb_unmapped), space.white_XYZ)
+    shown_lab = lab(chain.space.XYZ_from_rgb_linear(r.rgb_unmapped), chain.space.white_XYZ)
     delta_shown = [float(delta_e_2000(shown_lab[a], shown_lab[b])) for a, b in pairs]
     return {
         "colours": colours,
@@ -284,6 +230,79 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "bit_depth": r.bit_depth,
         "light_metrics": None if illuminant_levels is None else light_metrics(wl, illuminant_levels),
     }
+
+
+def _cie_values(wl, levels, reference, observer):
+    """XYZ, the white's XYZ, both xy, which distributions are lit, and :func:`_dominant`'s answer."""
+    XYZ = tristimulus(Spectrum(wl, levels / FULL_LEVEL), observer=observer, illuminant=reference)
+    white_XYZ = tristimulus(Spectrum.constant(1.0, wl), observer=observer, illuminant=reference)
+    xy_, white_xy = xy(XYZ), xy(white_XYZ)
+    lit = XYZ[:, 1] > 0
+    return XYZ, white_XYZ, xy_, white_xy, lit, _dominant(xy_, white_xy, observer, lit)
+
+
+def _cielab(XYZ, white_XYZ):
+    """CIELAB of each XYZ relative to the white, and None; or NaN and why, where it is undefined."""
+    if np.all(white_XYZ > 0):
+        return lab(XYZ, white_XYZ), None
+    # e.g. a single line beyond 650 nm: its white has Z = 0, CIELAB is undefined
+    return np.full_like(XYZ, np.nan), (f"CIELAB and ΔE00 undefined: the reference white has X, Y, Z = "
+                                       f"{np.round(white_XYZ, 3).tolist()} (CIELAB needs all three > 0)")
+
+
+def _cie_row(i, XYZ, xy_, dominant, lit, lab_) -> dict:
+    """The CIE part of :func:`evaluate`'s answer for distribution ``i``."""
+    dom_nm, dom_comp, purity, dom_note = dominant
+    return {
+        "XYZ": XYZ[i].tolist(),
+        "xy": [_none_nan(v) for v in xy_[i]],
+        "dominant_nm": _none_nan(dom_nm[i]),
+        "complementary": bool(dom_comp[i]),
+        "purity": _none_nan(purity[i]),
+        "dominant_note": dom_note if lit[i] else None,
+        "lab": [_none_nan(v) for v in lab_[i]],
+    }
+
+
+def _rendered(r, space, wl, shown_XYZ, row_XYZ, gamut, normalise, lit) -> list[dict]:
+    """The display part of :func:`evaluate`'s answer per distribution: the rendering ``r``, the
+    light the screen emits for its codes (seed 002 STEP 4) and the status line."""
+    explanations = r.explain()
+    negative, over = out_of_gamut_channels(r)
+    scales = np.broadcast_to(np.asarray(r.scale, dtype=float), (len(lit),))
+    primaries = primary_emission(space, wl).values
+    _, gamma = excitation_function(space)
+    drive = gamma[r.codes]  # γ(code): the fraction of full emission of each primary
+    emitted_levels = FULL_LEVEL * scales[:, None] * (drive @ primaries)
+    emitted_XYZ = scales[:, None] * (drive @ np.asarray(space.matrix_to_XYZ).T)
+    rows = []
+    for i in range(len(lit)):
+        if not lit[i]:
+            status = "black"
+        elif not r.in_gamut[i]:
+            status = explanations[i]
+        elif normalise == "per-colour":
+            status = "Optimised!"
+        else:
+            status = "ok"
+        rows.append({
+            "XYZ_displayed": shown_XYZ[i].tolist(),
+            "XYZ_row": row_XYZ[i].tolist(),
+            "rgb_unmapped": r.rgb_unmapped[i].tolist(),
+            "rgb_linear": r.rgb_linear[i].tolist(),
+            "rgb_encoded": r.rgb_encoded[i].tolist(),
+            "codes": [int(c) for c in r.codes[i]],
+            "in_gamut": bool(r.in_gamut[i]),
+            "negative": negative[i],
+            "over": over[i],
+            "gamut_applied": None if r.in_gamut[i] else gamut,
+            "explanation": explanations[i],
+            "scale": float(scales[i]),
+            "emitted_levels": emitted_levels[i].tolist(),
+            "emitted_XYZ": emitted_XYZ[i].tolist(),
+            "status": status,
+        })
+    return rows
 
 
 #: What the X Y Z row shows (``XYZ_row``), said once; the page shows the same as the row's tooltip.

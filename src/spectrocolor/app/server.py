@@ -22,7 +22,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
 
-from fastapi import FastAPI, Request
+from fastapi import APIRouter, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
@@ -206,31 +206,10 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
                   default_response_class=FiniteJSONResponse)  # never NaN/inf, never a 500 for one
     static = Path(str(resources.files("spectrocolor.app") / "static"))
     parsers = UploadParser(MAX_PARSERS, PARSER_WAIT_S, PARSER_TIMEOUT_S)
+    app.state.parsers = parsers  # for POST /api/import
     app.router.on_shutdown.append(parsers.close)
-    # added last = outermost: Host/Origin first, then the body count, then whether a result
-    # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
-    app.add_middleware(KernelStatusHeader)
-    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
-    app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
-
-    @app.exception_handler(HTTPException)
-    async def _http(_request, exc: HTTPException):
-        message = exc.detail if isinstance(exc.detail, str) else str(exc.status_code)
-        return JSONResponse({"error": message}, status_code=exc.status_code, headers=exc.headers)
-
-    @app.exception_handler(Exception)
-    async def _unexpected(_request, exc: Exception):  # a bug: still the page's error shape
-        return JSONResponse({"error": f"internal error ({exc.__class__.__name__})"},
-                            status_code=500)
-
-    @app.exception_handler(RequestValidationError)
-    async def _invalid(_request, exc: RequestValidationError):
-        return JSONResponse({"error": _message(exc)}, status_code=422)
-
-    @app.exception_handler(SpectrumError)
-    @app.exception_handler(ColorimetryError)
-    async def _library(_request, exc: ValueError):
-        return JSONResponse({"error": str(exc)}, status_code=422)
+    _add_guards(app, port, check_host)
+    _add_error_handlers(app)
 
     @app.get("/", include_in_schema=False)
     def index():
@@ -239,82 +218,140 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     app.mount("/static", StaticFiles(directory=static), name="static")
     app.include_router(lab_router)
     app.include_router(relight_router)
-
-    @app.get("/api/options")
-    def options():
-        # read from the registries at every request: an entry registered there is offered
-        return {
-            "steps_nm": list(compute.STEPS_NM),
-            "steps": [[str(int(s)), compute.step_label(s)] for s in compute.STEPS_NM],
-            "observers": observer_labels(),
-            "displays": list(DISPLAYS),
-            "gamuts": list(GAMUTS),
-            "normalisations": list(NORMALISATIONS),
-            "adaptations": select_options(WHITE_ADAPTATIONS, ADAPTATIONS),
-            "light_kinds": light_kind_options(),  # "kind:T" lights, as the light lab offers them
-            "gamut_actions": dict(GAMUT_ACTIONS),
-            # [name, label, tooltip] rows of the page's select boxes
-            "choices": {
-                "gamut": select_options(GAMUT_STRATEGIES, GAMUTS, help_key="action"),
-                "normalise": select_options(CHAIN_NORMALISATIONS, NORMALISATIONS, help_key="help"),
-                "display": [[d, d, RGB_SPACES.description(d)] for d in DISPLAYS],
-                "scale": select_options(compute.IMPORT_SCALES, compute.IMPORT_SCALES.names()),
-                "light_kind": select_options(LIGHT_KINDS, LIGHT_KIND_NAMES),
-            },
-            "defaults": {"gamut": compute.DEFAULT_GAMUT, "normalise": compute.DEFAULT_NORMALISE,
-                         "adaptation": compute.DEFAULT_ADAPTATION,
-                         "display": DISPLAYS[0]},
-            "full_level": compute.FULL_LEVEL,
-        }
-
-    @app.get("/api/presets")
-    def presets(step_nm: str = "10"):
-        steps = [f"{s:g}" for s in compute.STEPS_NM]
-        if step_nm not in steps:
-            return JSONResponse(
-                {"error": f"step_nm: {step_nm[:20]!r} is not one of {', '.join(steps)} (nm)"},
-                status_code=422)
-        return compute.presets(float(step_nm))
-
-    @app.post("/api/model")
-    def model(req: DisplayRequest):
-        return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
-                             req.normalise, req.adaptation)
-
-    @app.post("/api/evaluate")
-    def evaluate(req: EvaluateRequest):
-        return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
-                                req.gamut, req.spectra, req.illuminant, req.pairs,
-                                req.adaptation)
-
-    @app.post("/api/metamer")
-    def metamer(req: MetamerRequest):
-        return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
-
-    @app.post("/api/import")
-    def import_(req: ImportRequest, request: Request):  # a plain def: run in FastAPI's threads
-        suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
-        if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
-            raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
-        try:  # in a worker process: other clients keep being answered meanwhile
-            return parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
-                                 req.method, req.scale, MAX_IMPORT_SPECTRA,
-                                 client=request.client.host if request.client else None)
-        except Busy:
-            return JSONResponse({"error": "the server is busy reading other files; try again"},
-                                status_code=429)
-
-    @app.post("/api/export")
-    def export(req: ExportRequest):
-        with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
-            path = Path(folder) / f"spectra.{req.format}"
-            names = [neutralise_cell(n) for n in req.names] if req.format == "csv" else req.names
-            compute.export_spectra(float(req.step_nm), names, req.spectra, path)
-            body = path.read_bytes()
-        media = "text/csv" if req.format == "csv" else "application/json"
-        return Response(body, media_type=media, headers={
-            "Content-Disposition": f'attachment; filename="spectra.{req.format}"'})
-
+    app.include_router(router)
     return app
 
 
+def _add_guards(app: FastAPI, port: int | None, check_host: bool) -> None:
+    """The middleware of :func:`create_app`, outermost last."""
+    # added last = outermost: Host/Origin first, then the body count, then whether a result
+    # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
+    app.add_middleware(KernelStatusHeader)
+    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
+    app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
+
+
+def _add_error_handlers(app: FastAPI) -> None:
+    """Every error of every route answered in the page's one shape, ``{"error": "one line"}``."""
+    app.exception_handler(HTTPException)(_http_error)
+    app.exception_handler(Exception)(_unexpected_error)
+    app.exception_handler(RequestValidationError)(_invalid_request)
+    app.exception_handler(ColorimetryError)(_library_error)
+    app.exception_handler(SpectrumError)(_library_error)
+
+
+async def _http_error(_request, exc: HTTPException):
+    """403, 404, 405, 413, 429 and the like: the exception's detail as the line."""
+    message = exc.detail if isinstance(exc.detail, str) else str(exc.status_code)
+    return JSONResponse({"error": message}, status_code=exc.status_code, headers=exc.headers)
+
+
+async def _unexpected_error(_request, exc: Exception):
+    """A bug: still the page's error shape (500)."""
+    return JSONResponse({"error": f"internal error ({exc.__class__.__name__})"},
+                        status_code=500)
+
+
+async def _invalid_request(_request, exc: RequestValidationError):
+    """A request the models refuse: 422 with the first few of pydantic's messages."""
+    return JSONResponse({"error": _message(exc)}, status_code=422)
+
+
+async def _library_error(_request, exc: ValueError):
+    """The library's refusal (SpectrumError, ColorimetryError): 422 with its message."""
+    return JSONResponse({"error": str(exc)}, status_code=422)
+
+
+#: The routes of SPECTRA's five settings, included by :func:`create_app` after the labs' routers;
+#: their answers are never NaN/inf, like every answer of the app.
+router = APIRouter(default_response_class=FiniteJSONResponse)
+
+
+@router.get("/api/options")
+def options():
+    """The choices of the page's select boxes, read from the registries at every request."""
+    # read from the registries at every request: an entry registered there is offered
+    return {
+        "steps_nm": list(compute.STEPS_NM),
+        "steps": [[str(int(s)), compute.step_label(s)] for s in compute.STEPS_NM],
+        "observers": observer_labels(),
+        "displays": list(DISPLAYS),
+        "gamuts": list(GAMUTS),
+        "normalisations": list(NORMALISATIONS),
+        "adaptations": select_options(WHITE_ADAPTATIONS, ADAPTATIONS),
+        "light_kinds": light_kind_options(),  # "kind:T" lights, as the light lab offers them
+        "gamut_actions": dict(GAMUT_ACTIONS),
+        # [name, label, tooltip] rows of the page's select boxes
+        "choices": {
+            "gamut": select_options(GAMUT_STRATEGIES, GAMUTS, help_key="action"),
+            "normalise": select_options(CHAIN_NORMALISATIONS, NORMALISATIONS, help_key="help"),
+            "display": [[d, d, RGB_SPACES.description(d)] for d in DISPLAYS],
+            "scale": select_options(compute.IMPORT_SCALES, compute.IMPORT_SCALES.names()),
+            "light_kind": select_options(LIGHT_KINDS, LIGHT_KIND_NAMES),
+        },
+        "defaults": {"gamut": compute.DEFAULT_GAMUT, "normalise": compute.DEFAULT_NORMALISE,
+                     "adaptation": compute.DEFAULT_ADAPTATION,
+                     "display": DISPLAYS[0]},
+        "full_level": compute.FULL_LEVEL,
+    }
+
+
+@router.get("/api/presets")
+def presets(step_nm: str = "10"):
+    """The preset distributions on one grid (``step_nm`` as the page sends it)."""
+    steps = [f"{s:g}" for s in compute.STEPS_NM]
+    if step_nm not in steps:
+        return JSONResponse(
+            {"error": f"step_nm: {step_nm[:20]!r} is not one of {', '.join(steps)} (nm)"},
+            status_code=422)
+    return compute.presets(float(step_nm))
+
+
+@router.post("/api/model")
+def model(req: DisplayRequest):
+    """:func:`spectrocolor.app.compute.model` for one set of display choices."""
+    return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
+                         req.normalise, req.adaptation)
+
+
+@router.post("/api/evaluate")
+def evaluate(req: EvaluateRequest):
+    """:func:`spectrocolor.app.compute.evaluate` of the spectra sent."""
+    return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
+                            req.gamut, req.spectra, req.illuminant, req.pairs,
+                            req.adaptation)
+
+
+@router.post("/api/metamer")
+def metamer(req: MetamerRequest):
+    """:func:`spectrocolor.app.compute.metamer` of the target."""
+    return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
+
+
+@router.post("/api/import")
+def import_(req: ImportRequest, request: Request):  # a plain def: run in FastAPI's threads
+    """The spectra of an uploaded file, parsed in a worker process (429 when all stay busy)."""
+    parsers: UploadParser = request.app.state.parsers
+    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
+    if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
+        raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
+    try:  # in a worker process: other clients keep being answered meanwhile
+        return parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
+                             req.method, req.scale, MAX_IMPORT_SPECTRA,
+                             client=request.client.host if request.client else None)
+    except Busy:
+        return JSONResponse({"error": "the server is busy reading other files; try again"},
+                            status_code=429)
+
+
+@router.post("/api/export")
+def export(req: ExportRequest):
+    """The spectra as a CSV or JSON file to download."""
+    with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
+        path = Path(folder) / f"spectra.{req.format}"
+        names = [neutralise_cell(n) for n in req.names] if req.format == "csv" else req.names
+        compute.export_spectra(float(req.step_nm), names, req.spectra, path)
+        body = path.read_bytes()
+    media = "text/csv" if req.format == "csv" else "application/json"
+    return Response(body, media_type=media, headers={
+        "Content-Disposition": f'attachment; filename="spectra.{req.format}"'})

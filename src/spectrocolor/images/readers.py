@@ -49,7 +49,7 @@ import struct
 import zlib
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -441,6 +441,19 @@ def _envi_list(text: str) -> list[str]:
 
 
 def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) -> SpectralCube:
+    header, raw_file, fields = _envi_files(path)
+    layout = _envi_layout(fields, header)
+    _check_envi_size(raw_file, header, layout)  # before anything is read
+    wavelengths = _envi_wavelengths(fields, header, layout.bands, wavelengths_nm, wavelength_units)
+    values = MappedArray(str(raw_file), layout.dtype.str, layout.file_shape, layout.offset, layout.axes)
+    corrections = _envi_corrections(fields, header, layout.bands, wavelength_units)
+    if raw:
+        return SpectralCube(values, wavelengths, str(header), corrections)
+    return _envi_corrected(values, wavelengths, header, layout.bands, corrections)
+
+
+def _envi_files(path: Path) -> tuple[Path, Path, dict[str, str]]:
+    """The header, the raw data file and the header's fields, for a path to either file."""
     if path.suffix.lower() == ".hdr":
         header = path
         fields = read_envi_header(header)
@@ -459,6 +472,23 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) 
         assert found is not None  # read_cube sends a raw file here only when its header exists
         raw_file, header = path, found
         fields = read_envi_header(header)
+    return header, raw_file, fields
+
+
+class _EnviLayout(NamedTuple):
+    """How the header says the numbers are stored: sizes, header offset, dtype and interleave."""
+
+    samples: int
+    lines: int
+    bands: int
+    offset: int
+    dtype: np.dtype
+    file_shape: tuple[int, int, int]  # the array as stored
+    axes: tuple[int, int, int]  # its axes in (rows, columns, bands) order
+
+
+def _envi_layout(fields: dict, header: Path) -> _EnviLayout:
+    """The storage layout from the header's fields, each checked (nothing is read yet)."""
     samples = _envi_int(fields, "samples", header)
     lines = _envi_int(fields, "lines", header)
     bands = _envi_int(fields, "bands", header)
@@ -486,6 +516,12 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) 
             f"{header}: 'interleave' must be bsq, bil or bip; got {fields.get('interleave')!r}"
         )
     file_shape, axes = layouts[interleave]
+    return _EnviLayout(samples, lines, bands, offset, dtype, file_shape, axes)
+
+
+def _check_envi_size(raw_file: Path, header: Path, layout: _EnviLayout) -> None:
+    """Refuse a raw file whose length, or whose bytes stored on disk, differ from the header's claim."""
+    samples, lines, bands, offset, dtype = layout[:5]
     expected = offset + samples * lines * bands * dtype.itemsize
     size = raw_file.stat().st_size
     if size != expected:
@@ -495,30 +531,33 @@ def _read_envi(path: Path, wavelengths_nm, wavelength_units, raw: bool = False) 
         )
     check_file_claim(raw_file, expected - offset, f"the header ({header.name}) claims "
                      f"{samples} x {lines} x {bands} {dtype.name}", offset=offset)
+
+
+def _envi_wavelengths(fields: dict, header: Path, bands: int, wavelengths_nm, wavelength_units) -> np.ndarray:
+    """The wavelengths, nm: those given, else the header's ``wavelength`` list in its units."""
     if wavelengths_nm is not None:
-        wavelengths = _given_wavelengths(wavelengths_nm, header)
-    elif "wavelength" not in fields:
+        return _given_wavelengths(wavelengths_nm, header)
+    if "wavelength" not in fields:
         raise SpectrumError(
             f"{header}: missing wavelengths: the header has no 'wavelength' field; give them "
             "with wavelengths_nm=..."
         )
-    else:
-        listed = _envi_list(fields["wavelength"])
-        if len(listed) != bands:
-            raise SpectrumError(
-                f"{header}: 'wavelength' lists {len(listed)} values but 'bands' = {bands}; "
-                "they must match"
-            )
-        try:
-            numbers = [float(item) for item in listed]
-        except ValueError as exc:
-            raise SpectrumError(f"{header}: 'wavelength' values must be numbers") from exc
-        units = fields.get("wavelength units", wavelength_units)
-        wavelengths = wavelengths_to_nm(numbers, units, str(header))
-    values = MappedArray(str(raw_file), dtype.str, file_shape, offset, axes)
-    corrections = _envi_corrections(fields, header, bands, wavelength_units)
-    if raw:
-        return SpectralCube(values, wavelengths, str(header), corrections)
+    listed = _envi_list(fields["wavelength"])
+    if len(listed) != bands:
+        raise SpectrumError(
+            f"{header}: 'wavelength' lists {len(listed)} values but 'bands' = {bands}; "
+            "they must match"
+        )
+    try:
+        numbers = [float(item) for item in listed]
+    except ValueError as exc:
+        raise SpectrumError(f"{header}: 'wavelength' values must be numbers") from exc
+    units = fields.get("wavelength units", wavelength_units)
+    return wavelengths_to_nm(numbers, units, str(header))
+
+
+def _envi_corrected(values, wavelengths: np.ndarray, header: Path, bands: int, corrections: dict) -> SpectralCube:
+    """The cube with the header's corrections (bad bands dropped, scale factor, ignore value) applied."""
     keep, divisor, ignore = corrections.get("bbl"), corrections.get("reflectance scale factor"), None
     ignore = corrections.get("data ignore value")
     applied = []
