@@ -154,6 +154,7 @@ def new_light_kind():
 
 def test_the_library_resolves_and_uses_the_new_kind(new_light_kind):
     light = sc.resolve_illuminant(f"{new_light_kind}:5000")
+    # exact: temperature_K is float("5000"), parsed from the name's text, not computed
     assert (light.name, light.kind, light.label, light.temperature_K) == (
         "twice-blackbody:5000", new_light_kind, "blackbody at twice 5000 K", 5000.0)
     assert sc.resolve_illuminant("TBB : 5000 K") == light  # an alias, any case, with K
