@@ -251,16 +251,17 @@ def astm_e308_weights(wavelengths_nm: np.ndarray, observer, illuminant) -> np.nd
     ----------
     wavelengths_nm : array_like, shape (K,)
         The measured wavelengths, nm: uniform with an interval of 1, 5, 10 or 20 nm, starting and
-        ending on whole nanometres, within the observer's and illuminant's range.
+        ending on whole nanometres, within the observer's and illuminant's range; see
+        :term:`wavelength grid`.
     observer : str or Spectrum
-        Observer name or alias (see :func:`spectrocolor.observer`) or a (3, K) :class:`Spectrum`
-        of colour-matching functions (used at 1 nm, interpolated linearly if needed).
+        The observer of the table; a (3, K) :class:`Spectrum` is used at 1 nm, interpolated linearly
+        if needed; see :term:`observer`.
     illuminant : str or Spectrum
-        CIE illuminant name (evaluated at 1 nm by ``illuminant_at_1nm``: A from its formula,
-        D65 linearly as CIE's 1 nm table, the other 5 nm tables by E2022's Lagrange scheme) or a :class:`Spectrum` that
-        includes every whole nanometre of the reference range (normally 360–780 nm; a Spectrum
-        defined on a shorter range shortens the reference range to it, as for the CIE FL
-        illuminants, which start at 380 nm).
+        The light of the table: a CIE name (evaluated at 1 nm by ``illuminant_at_1nm``: A from its
+        formula, D65 linearly as CIE's 1 nm table, the other 5 nm tables by E2022's Lagrange scheme)
+        or a :class:`Spectrum` that includes every whole nanometre of the reference range (normally
+        360–780 nm; a Spectrum defined on a shorter range shortens the reference range to it, as for
+        the CIE FL illuminants, which start at 380 nm); see :term:`illuminant`.
 
     Returns
     -------
@@ -322,7 +323,7 @@ def astm_e308_table6_weights(wavelengths_nm: np.ndarray, observer, illuminant) -
     ----------
     wavelengths_nm : array_like, shape (K,)
         The measured wavelengths, nm: uniform 10 or 20 nm (the intervals E308 gives Table 6 for),
-        otherwise as for :func:`astm_e308_weights`.
+        otherwise as for :func:`astm_e308_weights`; see :term:`wavelength grid`.
     observer : str or Spectrum
         As for :func:`astm_e308_weights`.
     illuminant : str or Spectrum

@@ -174,7 +174,7 @@ def spectral_locus(observer=DEFAULT_OBSERVER, *, full: bool = False) -> Spectral
     Parameters
     ----------
     observer : str, default DEFAULT_OBSERVER
-        Observer name or alias (``"1931"``, ``"1964"``, ``"2015-2"``, ``"2015-10"``, …).
+        The observer whose locus is wanted; see :term:`observer`.
     full : bool, keyword-only
         False (default): only the monotonic part of the locus, from its bluest to its
         reddest chromaticity (see the module documentation); its ends are joined by the

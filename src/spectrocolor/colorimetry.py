@@ -152,17 +152,12 @@ def weights(wavelengths_nm, *, observer=DEFAULT_OBSERVER, illuminant=None, metho
     wavelengths_nm : array_like, shape (K,)
         The spectra's sampling grid, nm (must lie within the observer's range).
     observer : str, Spectrum or Observer, keyword-only
-        Observer name or alias (see :func:`spectrocolor.observer`; default CIE 1931 2°), a
-        user's colour-matching functions as a (3, K) :class:`Spectrum` (used as given, on its own
-        samples), or an :class:`~spectrocolor.observers.Observer` from
-        :func:`~spectrocolor.observers.resolve_observer`.
+        Whose colour-matching functions the weights hold (default CIE 1931 2°); a Spectrum is used
+        on its own samples; see :term:`observer`.
     illuminant : None, str, float, Spectrum or Illuminant, keyword-only
-        ``None`` (default) for lights (``W = x̄ȳz̄ · Δλ``, relative units of the light); otherwise
-        any form of :func:`spectrocolor.resolve_illuminant` (a CIE name, ``"blackbody:T"``,
-        ``"D:T"``, a temperature, a Spectrum sampled at the summation grid, an
-        :class:`~spectrocolor.illuminants.Illuminant`), and the spectra are
-        reflectance or transmittance factors (0–1): ``W`` is normalised so the perfect white has
-        ``Y = 100``.
+        ``None`` (default): the spectra are lights and ``W = x̄ȳz̄ · Δλ`` (relative units of the
+        light); otherwise the light the reflectance or transmittance factors (0–1) are seen under,
+        and ``W`` is normalised so the perfect white has ``Y = 100``; see :term:`illuminant`.
     method : str, keyword-only
         A name in :data:`SUMMATION_METHODS`: ``"sum"`` (default, summation at the given samples),
         ``"1nm"`` (linear interpolation to 1 nm, then summation) or ``"astm-e308"`` (ASTM
@@ -303,14 +298,15 @@ def white_point(
     Parameters
     ----------
     illuminant : str, float or Spectrum
-        Any form of :func:`spectrocolor.canonical_illuminant` except ``None``.
+        The light whose white is wanted, not ``None``; see :term:`illuminant`.
     observer : str or Spectrum, keyword-only
         As in :func:`weights` (default CIE 1931 2°).
     wavelengths_nm : array_like, optional, keyword-only
         The summation grid, nm. Default: the illuminant's own grid restricted to the observer's
-        range and to 380–780 nm (for the CIE tables: 5 nm, 380–780 nm, the range of CIE
-        015:2018 §7.2, which reproduces its published white points). A white for data on
-        another grid should be summed on that grid: pass ``wavelengths_nm=data.wavelengths_nm``.
+        range and to 380–780 nm (for the CIE tables: 5 nm, 380–780 nm, the range of CIE 015:2018
+        §7.2, which reproduces its published white points). A white for data on another grid should
+        be summed on that grid: pass ``wavelengths_nm=data.wavelengths_nm``; see
+        :term:`wavelength grid`.
     method : str, keyword-only
         As in :func:`weights`.
 

@@ -496,12 +496,9 @@ def resolve_illuminant(illuminant, argument: str = "illuminant") -> Illuminant |
     Parameters
     ----------
     illuminant : None, str, int, float, Spectrum or Illuminant
-        ``None``; a CIE name in any spelling (``"D65"``, ``"d65"``, ``"FL 11"``, ``"led_b1"``);
-        ``"blackbody:T"`` (also ``"planck:T"``, ``"bb:T"``, with or without ``K``) for a
-        Planckian radiator at ``T`` kelvin (100 K to 10⁶ K); ``"D:T"`` (also ``"daylight:T"``)
-        for the CIE daylight series at ``T`` kelvin (4000–25000 K); a number, taken as a
-        blackbody temperature in kelvin; a :class:`Spectrum` with one distribution; or an
-        :class:`Illuminant` (returned as it is).
+        ``None``, a CIE name, ``"blackbody:T"``, ``"D:T"``, a temperature in kelvin, a
+        :class:`Spectrum` with one distribution, or an :class:`Illuminant` (returned as it is); see
+        :term:`illuminant` for the spellings and ranges.
     argument : str, default "illuminant"
         The name of the caller's argument, used in the error message.
 
@@ -659,8 +656,8 @@ def illuminant(name, wavelengths_nm=None, method: str = "linear") -> Spectrum:
     wavelengths_nm : array_like, optional
         Grid to return, nm. ``None``: the table's own grid (A: 300–780 nm, E: 300–830 nm, 5 nm;
         blackbody 360–830 nm at 1 nm; daylight 300–830 nm at 5 nm). Tabulated illuminants are
-        interpolated with ``method`` (default linear, as CIE 015 recommends for the daylight
-        series) and never extrapolated.
+        interpolated with ``method`` (default linear, as CIE 015 recommends for the daylight series)
+        and never extrapolated; see :term:`wavelength grid`.
     method : str, default "linear"
         Interpolation for tabulated illuminants (see :meth:`Spectrum.resample`).
 

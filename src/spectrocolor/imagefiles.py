@@ -324,8 +324,7 @@ def read_image(path, *, memory_budget=None) -> np.ndarray:
     path : str or os.PathLike
         A PNG, TIFF, JPEG or GIF file (or another format Pillow reads).
     memory_budget : int or str, keyword-only, optional
-        Most bytes the codes may take (e.g. ``"2GiB"``); default the budget in force
-        (:func:`spectrocolor.budget.memory_budget`).
+        The most bytes the image's codes may take; see :term:`memory budget`.
 
     Returns
     -------
@@ -399,8 +398,7 @@ def read_png(path, *, memory_budget=None) -> np.ndarray:
     path : str or os.PathLike
         The PNG file.
     memory_budget : int or str, keyword-only, optional
-        Most bytes the codes may take (e.g. ``"2GiB"``); default the budget in force
-        (:func:`spectrocolor.budget.memory_budget`).
+        The most bytes the decoded codes may take; see :term:`memory budget`.
 
     Returns
     -------
@@ -529,7 +527,7 @@ def iter_png_rows(source, *, rows_per_block: int | None = None, memory_budget=No
         Rows per block; default as many as fit in a block of the memory budget
         (``spectrocolor.budget.block_rows``).
     memory_budget : int or str, optional
-        The budget blocks are sized by (see :func:`spectrocolor.budget.memory_budget`).
+        The budget the blocks of rows are sized by; see :term:`memory budget`.
     name : str, optional
         What to call the source in error messages.
 
@@ -815,8 +813,7 @@ def write_image(path, image, *, metadata: dict | None = None, quality: int = 95)
     SpectrumError
         An unknown suffix, or a shape or dtype the format cannot hold.
     spectrocolor.safe_write.OutputError
-        The file could not be written completely (full disk, no permission ...); it is written
-        beside ``path``, read back and only then renamed over it, so a previous file survives.
+        The file could not be written (full disk, no permission, …); see :term:`atomic write`.
 
     Examples
     --------
@@ -904,7 +901,7 @@ def write_gif(path, frames: Iterable, *, frame_ms: int = 100, loop: int = 0) -> 
     SpectrumError
         No frames, frames of different sizes, or not uint8 codes.
     spectrocolor.safe_write.OutputError
-        The file could not be written; a previous file is unchanged.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -1007,7 +1004,7 @@ def write_png_blocks(
         Blocks of the wrong shape or dtype, or not ``height`` rows in all (a programming error:
         the target is left unchanged).
     spectrocolor.safe_write.OutputError
-        The file cannot be written; any previous file is unchanged.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -1079,7 +1076,7 @@ def write_tiff_blocks(
     ValueError
         Blocks that do not add up to ``shape`` (the target is left unchanged).
     spectrocolor.safe_write.OutputError
-        The file cannot be written; any previous file is unchanged.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------

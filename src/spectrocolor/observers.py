@@ -162,10 +162,9 @@ def resolve_observer(observer, argument: str = "observer") -> Observer:
     Parameters
     ----------
     observer : str, Spectrum or Observer
-        A canonical name or an alias of :data:`OBSERVERS` (``"1931"``, ``"2deg"``, ``"1964"``,
-        ``"10deg"``, ``"2015-2"``, ``"2015-10"``) in any case, spaces, underscores and
-        "degree" for "deg" tolerated; a user's colour-matching functions as a (3, K)
-        :class:`Spectrum`; or an :class:`Observer` (returned as it is).
+        A name or alias of :data:`OBSERVERS` (``"1931"``, ``"1964"``, ``"2015-2"``, ``"2015-10"``,
+        …), colour-matching functions as a (3, K) :class:`Spectrum`, or an :class:`Observer`
+        (returned as it is); see :term:`observer` for the spellings.
     argument : str, default "observer"
         The caller's argument name, for the error message.
 

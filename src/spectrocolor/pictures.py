@@ -288,7 +288,7 @@ def save_image(image, path) -> Path:
     ColorimetryError
         For an image that is not (H, W, 3) uint8, or another extension.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -338,7 +338,7 @@ def write_swatches(rgb8, path, **options) -> Path:
     ColorimetryError
         For malformed codes or options, or another file extension.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -373,7 +373,7 @@ def write_strip(rgb8, path, **options) -> Path:
     ColorimetryError
         For malformed codes or options, or another file extension.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     References
     ----------
@@ -415,8 +415,7 @@ def write_image(path, image, *, metadata: dict | None = None) -> Path:
     SpectrumError
         An unsupported suffix, shape or dtype (e.g. floats for PNG: quantise them first).
     spectrocolor.safe_write.OutputError
-        The file could not be written completely (full disk, no permission ...); it is written
-        beside ``path``, read back and only then renamed over it, so a previous file survives.
+        The picture could not be written; see :term:`atomic write`.
 
     Examples
     --------

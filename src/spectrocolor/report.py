@@ -194,12 +194,11 @@ def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, obse
     spectra : Spectrum
         Reflectance factors (0-1) of N samples, values (N, K) or (K,) for one.
     illuminant : str, float, Spectrum or Illuminant, keyword-only
-        Any form of :func:`spectrocolor.resolve_illuminant` except ``None`` (default D65; seed
-        001 uses C). The white point for dominant wavelength and purity is the perfect reflector
-        under it (Visser section 1.8).
+        The light of the report (default D65; seed 001 uses C), not ``None``; its perfect reflector
+        is the white point of dominant wavelength and purity (Visser section 1.8); see
+        :term:`illuminant`.
     observer : str or Observer, keyword-only
-        Default CIE 1931 2° (seed 001), or another observer name (any form of
-        :func:`spectrocolor.resolve_observer`).
+        The observer of the report (default CIE 1931 2°, as seed 001); see :term:`observer`.
     method : str, keyword-only
         Summation method of :func:`spectrocolor.weights` (default ``"sum"``).
 
@@ -317,7 +316,7 @@ def write_report(report: MeasurementReport, path, format: str | None = None, *,
     ColorimetryError
         For an unknown format.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -96,8 +96,8 @@ def atomic_path(path, verify: Callable[[Path], None] | None = None) -> Iterator[
     Raises
     ------
     OutputError
-        The folder does not exist or is not writable, the disk is full, the name is too long,
-        the file is too large ...: the previous file at ``path`` is unchanged.
+        The folder does not exist or is not writable, the disk is full, the name is too long, the
+        file is too large ...: the previous file at ``path`` is unchanged; see :term:`atomic write`.
 
     Examples
     --------
@@ -249,7 +249,7 @@ def write_bytes(path, data: bytes, verify: Callable[[Path], None] | None = None)
     Raises
     ------
     OutputError
-        As :func:`atomic_path`; a previous file at ``path`` is left unchanged.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -282,7 +282,7 @@ def write_text(path, text: str) -> Path:
     Raises
     ------
     OutputError
-        As :func:`atomic_path`; a previous file at ``path`` is left unchanged.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -466,8 +466,8 @@ def check_outputs(outputs: dict[str, object], inputs: Iterable[object] = (), *,
     Raises
     ------
     OutputError
-        An output is an input, exists without ``force``, is a folder, repeats another output,
-        or lies in a folder that does not exist.
+        An output is an input, exists without ``force``, is a folder, repeats another output, or
+        lies in a folder that does not exist; see :term:`atomic write` (the overwrite policy).
 
     Notes
     -----

@@ -54,8 +54,7 @@ def resolve_observer(observer) -> tuple[str, Spectrum]:
     Parameters
     ----------
     observer : str, Spectrum or Observer
-        An observer name or alias, colour-matching functions of shape (3, K), or a resolved
-        :class:`~spectrocolor.observers.Observer`.
+        The observer, in any form or resolved; see :term:`observer`.
 
     Returns
     -------
@@ -127,8 +126,7 @@ def illuminant_on(grid: np.ndarray, illuminant) -> np.ndarray:
     grid : numpy.ndarray, shape (K,)
         The summation grid, nm.
     illuminant : str, float, Spectrum or Illuminant
-        Any form of :func:`~spectrocolor.illuminants.resolve_illuminant` except ``None`` (public
-        callers pass the resolved value).
+        The light, not ``None`` (public callers pass the resolved value); see :term:`illuminant`.
 
     Returns
     -------

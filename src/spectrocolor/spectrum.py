@@ -178,8 +178,8 @@ class Spectrum:
     Parameters
     ----------
     wavelengths_nm : array_like, shape (K,)
-        Strictly increasing, finite, positive wavelengths in nanometres (a largest value below
-        100 is refused as probably micrometres).
+        Strictly increasing, finite, positive wavelengths in nanometres (a largest value below 100
+        is refused as probably micrometres); see :term:`wavelength grid`.
     values : array_like, shape (..., K)
         A single spectrum ``(K,)``, a batch ``(N, K)`` or an image ``(H, W, K)``. Reflectances and
         transmittances are factors on the 0–1 scale; lights are in the units of the data. Float32

@@ -141,8 +141,8 @@ def cct(xy=None, *, XYZ=None, observer=DEFAULT_OBSERVER) -> CCT:
     XYZ : array_like, shape (..., 3), keyword-only, optional
         Tristimulus values instead of ``xy`` (any scale). Give exactly one of the two.
     observer : str, keyword-only
-        Observer for the Planckian locus; it must be the observer the colour was computed
-        with (default CIE 1931 2°, the one CCT is normally quoted for).
+        Observer for the Planckian locus; it must be the observer the colour was computed with
+        (default CIE 1931 2°, the one CCT is normally quoted for); see :term:`observer`.
 
     Returns
     -------

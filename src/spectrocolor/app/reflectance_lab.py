@@ -62,8 +62,7 @@ def reflectance_lab(x: float, y: float, Y: float, illuminant="D65", observer: st
     Y : float
         Luminance factor, percent of the perfect white (0 < Y ≤ 100).
     illuminant : str or float
-        A named light (any form of :func:`spectrocolor.canonical_illuminant` but ``None`` and
-        a Spectrum); default D65.
+        The lab's light, a name or a temperature (default D65); see :term:`illuminant`.
     observer : str
         Observer name (default CIE 1931 2°).
     step_nm : str

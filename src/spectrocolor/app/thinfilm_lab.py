@@ -158,8 +158,8 @@ def thinfilm_lab(film: str = "soap", model: str = "airy", angle_deg: float = 0.0
     film, model, angle_deg, max_thickness_nm
         As :func:`reflectance_table`.
     illuminant : str or float
-        Any form of :func:`spectrocolor.canonical_illuminant` except ``None`` and a Spectrum
-        (default ``"blackbody:6504"``, seed 000's light).
+        The lab's light, a name or a temperature (default ``"blackbody:6504"``, seed 000's light);
+        see :term:`illuminant`.
     observer : str
         An observer name (default CIE 1931 2°).
     display : str

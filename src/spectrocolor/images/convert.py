@@ -290,8 +290,7 @@ def run_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_m
     rows_per_block : int, optional
         Rows per block; default: as many as fit in ``max_block_mib`` MiB of float64 spectra.
     max_block_mib : float, optional
-        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
-        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
+        Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : ndarray or np.memmap, shape (N, ..., plan.channels), optional
         Where to write (e.g. a ``tifffile.memmap`` or ``np.memmap`` for outputs larger than
         memory); a new array by default.
@@ -363,8 +362,7 @@ def iter_blocks(values, plan: ConversionPlan, *, rows_per_block=None, max_block_
     rows_per_block : int, optional
         Rows per block; default: as many as fit in ``max_block_mib`` MiB of float64 spectra.
     max_block_mib : float, optional
-        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
-        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
+        Memory of one block of float64 spectra, MiB; see :term:`block`.
     progress : bool
         Show a progress bar over rows (tqdm) on standard error.
 
@@ -428,8 +426,7 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
     rows_per_block : int, keyword-only, optional
         Rows per block; default as many as fit in ``max_block_mib``.
     max_block_mib : float, keyword-only, optional
-        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
-        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
+        Memory of one block of float64 spectra, MiB; see :term:`block`.
     metadata : dict, keyword-only, optional
         TIFF only: JSON-serialisable facts stored in the image description.
     progress : bool, keyword-only, default False
@@ -447,7 +444,7 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
         from one with codes), values
         that are not (H, W, K), metadata for a PNG.
     spectrocolor.safe_write.OutputError
-        The file cannot be written; any previous file at ``path`` is unchanged.
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -500,11 +497,11 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     wavelengths_nm : array_like, shape (K,), optional
         Band wavelengths in nm (arrays only).
     illuminant : str or Spectrum, optional
-        With an illuminant, the values are reflectances (0-1 after ``scale``) and the result is
-        XYZ100 (the perfect white has Y = 100). Without, the values are a light's spectral
-        radiance (or any radiometric quantity) and XYZ = sum of value x cmf x dλ.
+        With one, the values are reflectance factors (0–1 after ``scale``) and the result is XYZ100;
+        without, they are a light's radiance (or any radiometric quantity) and XYZ = Σ value · cmf ·
+        dλ; see :term:`illuminant`.
     observer : str, keyword-only, default DEFAULT_OBSERVER
-        "1931", "1964", "2015-2", "2015-10" and the aliases of :func:`spectrocolor.observer`.
+        The observer of the result; see :term:`observer`.
     method : str, keyword-only, default "sum"
         "sum" or "1nm", as for :func:`spectrocolor.weights`.
     scale : float, keyword-only, default 1.0
@@ -513,8 +510,7 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
     max_block_mib : float, keyword-only, optional
-        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
-        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
+        Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
         Where to write (e.g. a memory map for outputs larger than memory); default a new array.
     progress : bool, keyword-only, default False
@@ -585,8 +581,7 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
     max_block_mib : float, keyword-only, optional
-        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
-        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
+        Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
         Where to write (e.g. a memory map for outputs larger than memory); default a new array.
     progress : bool, keyword-only, default False
@@ -673,8 +668,7 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     rows_per_block : int, keyword-only, optional
         Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
     max_block_mib : float, keyword-only, optional
-        Memory of one block of float64 spectra, MiB; default a sixteenth of the memory budget
-        (:func:`spectrocolor.budget.block_bytes`: 64 MiB of the default 1 GiB).
+        Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
         Where to write (e.g. a memory map for outputs larger than memory); default a new array.
     progress : bool, keyword-only, default False

@@ -96,8 +96,9 @@ def read_cube(
         The file (``.npy``, ``.npz``, ``.tif``/``.tiff``, ENVI ``.hdr`` or its raw file,
         ``.nc``/``.h5``/``.hdf5``) or a folder of one-band PNG/TIFF images.
     wavelengths_nm : array_like, shape (K,), optional
-        Band wavelengths in nm. Required for ``.npy``; for other formats it replaces the
-        wavelengths stored in the file (its length must still match the band count).
+        Band wavelengths in nm. Required for ``.npy``; for other formats it replaces the wavelengths
+        stored in the file (its length must still match the band count); see
+        :term:`wavelength grid`.
     wavelength_units : str, optional
         Units of the wavelengths stored in the file when the file does not say ("nm" or "um");
         for a folder, the units of the numbers in the file names.
@@ -108,10 +109,9 @@ def read_cube(
         factor, data ignore value and bad-band list (they are then in ``metadata``). Default
         False: applied, and ``metadata["applied"]`` says what was done.
     memory_budget : int or str, keyword-only, optional
-        Most bytes the cube may take in memory when its format is read whole (``.npz``,
-        compressed TIFF, MATLAB v5, a folder of images), e.g. ``"2GiB"``; default the budget in
-        force (:func:`spectrocolor.budget.memory_budget`: 1 GiB unless
-        ``SPECTROCOLOR_MEMORY_BUDGET`` says otherwise). Lazily read cubes are streamed instead.
+        The most bytes the cube may take when its format is read whole (``.npz``, compressed TIFF,
+        MATLAB v5, a folder of images); lazily read cubes are streamed instead; see
+        :term:`memory budget`.
 
     Returns
     -------

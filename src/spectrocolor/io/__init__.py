@@ -97,10 +97,10 @@ def parse_spectra(text: str | bytes, source: str = "<text>", percent: bool | Non
     source : str, default "<text>"
         Name used in messages (normally the file name).
     percent : bool or None, default None
-        ``None``: follow the file where its format declares percent or fraction (Argyll
-        ``SPECTRAL_NORM``, ``CTI3``, ``SPECTRAL_PCT``/``SPECTRAL_DEC`` fields) and otherwise keep
-        the values as written; ``True``: the values are percentages (divided by 100); ``False``:
-        they are fractions. Contradicting the file's declaration is an error.
+        Whether the values are percentages (``True``), fractions (``False``) or on the scale the
+        file declares (``None``: Argyll ``SPECTRAL_NORM``, ``CTI3``,
+        ``SPECTRAL_PCT``/``SPECTRAL_DEC``; where the file does not say, as written); see
+        :term:`percent`.
     encoding : str or None, keyword-only, default None
         For ``bytes``: the codec to decode them with (``cp1252``, ``latin-1``, ``utf-16`` …)
         instead of detecting it. Text that is already a ``str`` takes none.
@@ -176,8 +176,7 @@ def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str
     path : str or os.PathLike
         The measurement file.
     percent : bool or None, keyword-only, default None
-        As for :func:`parse_spectra`: ``None`` follows the file's declaration, ``True`` divides
-        by 100, ``False`` keeps fractions.
+        As for :func:`parse_spectra`; see :term:`percent`.
     encoding : str or None, keyword-only, default None
         ``None`` detects it: a byte-order mark (UTF-8, UTF-16, UTF-32), else UTF-8, else cp1252
         only when every byte is a printable cp1252 character (see
@@ -244,7 +243,7 @@ def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:
     SpectrumError
         For a non-Spectrum or an unknown suffix.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -431,8 +431,7 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
         The full-scale value the file declares (100 for percent, 1 for fractions, Argyll's
         ``SPECTRAL_NORM``), or ``None`` where the format does not say.
     percent : bool or None
-        The caller's option: ``True`` (the values are percentages), ``False`` (fractions) or
-        ``None`` (follow the file; where the file does not say, keep the values as written).
+        The caller's option: ``True``, ``False`` or ``None``; see :term:`percent`.
     source, how : str
         File name and what declared the scale, for messages.
 

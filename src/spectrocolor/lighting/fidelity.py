@@ -205,8 +205,8 @@ def colour_fidelity(spd, *, resample_hint: str = RESAMPLE_HINT) -> Fidelity:
     Raises
     ------
     SpectrumError
-        For a grid other than 1 or 5 nm, and for a single light that is refused (no power,
-        negative power, not finite, not covering 380–780 nm); in a batch such a light gets NaN.
+        As for :func:`~spectrocolor.lighting.cri.colour_rendering_index`: a grid other than 1 or 5
+        nm, or a single light that is refused; in a batch such a light gets NaN.
 
     References
     ----------

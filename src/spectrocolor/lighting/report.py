@@ -203,7 +203,7 @@ def write_light_report(report: LightReport, path, format: str | None = None, *, 
     ColorimetryError
         For an unknown format.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------

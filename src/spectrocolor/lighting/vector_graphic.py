@@ -203,7 +203,7 @@ def write_vector_graphic(fidelity: Fidelity, path, index=(), *, title: str | Non
     ColorimetryError
         For another suffix or an ``index`` that does not pick one light.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -195,9 +195,9 @@ def spectrum_view(spectrum: Spectrum, *, illuminant=_AUTO, observer=DEFAULT_OBSE
     spectrum : Spectrum
         Any batch shape.
     illuminant : "auto", None, str, float or Spectrum, keyword-only, default "auto"
-        ``"auto"``: reflectances under :data:`~spectrocolor.DEFAULT_ILLUMINANT` when the metadata
-        or the 0–1 value range say so, else lights; ``None``: lights; anything else: reflectances
-        under that illuminant (any form :func:`spectrocolor.canonical_illuminant` accepts).
+        ``"auto"``: reflectances under :data:`~spectrocolor.DEFAULT_ILLUMINANT` when the metadata or
+        the 0–1 value range say so, else lights; ``None``: lights; any light: reflectances under it;
+        see :term:`illuminant`.
     observer : str or Spectrum, keyword-only
         Default CIE 1931 2°.
     rows : int, keyword-only, default SHOWN_ROWS

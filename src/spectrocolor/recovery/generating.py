@@ -241,11 +241,11 @@ def generating_functions(illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSE
     Parameters
     ----------
     illuminant : str or Spectrum, default "D65"
-        The light (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a Spectrum on the grid).
+        The light that weights the functions; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm.
+        The functions' samples; see :term:`wavelength grid`.
     lambda1_nm : array_like, optional
         The values of λ₁ (nm) to evaluate, within the grid's range; default every grid sample.
         Class 1 is evaluated at each (for both ends), class 2 at those at least half a step

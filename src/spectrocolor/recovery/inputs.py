@@ -62,7 +62,7 @@ def grid_key(wavelengths) -> tuple[float, float, float]:
     Parameters
     ----------
     wavelengths : tuple of float or array_like
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid, nm.
+        The grid; see :term:`wavelength grid`.
 
     Returns
     -------
@@ -107,7 +107,7 @@ def setup_for(wavelengths, observer, illuminant) -> tuple[Setup, str, str]:
     Parameters
     ----------
     wavelengths : tuple of float or array_like
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid, nm.
+        The grid; see :term:`wavelength grid`.
     observer : str, Spectrum or Observer
         Observer name or alias, colour-matching functions on the grid, or a resolved Observer.
     illuminant : str, float, Spectrum or Illuminant

@@ -31,11 +31,11 @@ def max_luminance_factor(xy, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_
     xy : array_like, shape (..., 2)
         CIE chromaticities (x, y) with y > 0.
     illuminant : str or Spectrum, default "D65"
-        The light (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a Spectrum on the grid).
+        The light the limit is computed under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm.
+        The reflectances' samples; see :term:`wavelength grid`.
 
     Returns
     -------

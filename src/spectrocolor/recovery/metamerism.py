@@ -51,8 +51,7 @@ def cohen_projector(wavelengths_nm, *, illuminant=DEFAULT_ILLUMINANT, observer=D
     wavelengths_nm : array_like, shape (K,)
         The grid, nm.
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light under which the projector keeps the colours; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
         Observer name or alias.
 
@@ -85,8 +84,7 @@ def fundamental_metamer(spectrum: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, ob
     spectrum : Spectrum
         Reflectance factors (0–1), ``(..., K)``.
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light the sample's colour is taken under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
         Observer name or alias.
 
@@ -121,8 +119,7 @@ def metameric_black(spectrum: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, observ
     spectrum : Spectrum
         Reflectance factors (0–1), ``(..., K)``.
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light under which the black has no colour; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
         Observer name or alias.
 
@@ -172,12 +169,10 @@ def metamerism_index(
     spectrum1, spectrum2 : Spectrum
         Reflectance factors (0–1) on the same grid; broadcast against each other.
     reference : str, float, Spectrum or Illuminant, keyword-only
-        The illuminant under which the pair matches (default ``"D65"``), in any form of
-        :func:`spectrocolor.resolve_illuminant` (``"blackbody:T"``, ``"D:T"``, a Spectrum on the
-        grid, …).
+        The light under which the pair matches (default ``"D65"``); see :term:`illuminant`.
     test : str, float, Spectrum or Illuminant, keyword-only
-        The illuminant under which the mismatch is measured (default ``"A"``,
-        :data:`DEFAULT_TEST_ILLUMINANT`), in the same forms.
+        The light under which the mismatch is measured (default ``"A"``,
+        :data:`DEFAULT_TEST_ILLUMINANT`); see :term:`illuminant`.
     observer : str, Spectrum or Observer, keyword-only
         Observer name or alias (default CIE 1931 2°), or colour-matching functions.
 

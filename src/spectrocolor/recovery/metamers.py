@@ -59,8 +59,8 @@ class MismatchRegion:
     extreme_metamers : Spectrum (n, K)
         The extreme metamers themselves (0/1 except at a few samples).
     illuminant, second_illuminant, observer : str
-        The conditions used (the lights' labels, as :func:`spectrocolor.illuminant_label`, and
-        the observer's name).
+        The conditions used: the lights' labels (:func:`spectrocolor.illuminant_label`) and the
+        observer's name; see :term:`illuminant`.
 
     Examples
     --------
@@ -201,15 +201,12 @@ def metamer_mismatch_region(
         The colour under ``illuminant`` (perfect white ``Y = 100``); it must lie in the
         object-colour solid.
     illuminant, second_illuminant : str, float, Spectrum or Illuminant, keyword-only
-        The illuminant the metamers match under (default ``"D65"``), and the one they are seen
-        under (default ``"A"``, :data:`DEFAULT_SECOND_ILLUMINANT`); each in any form of
-        :func:`spectrocolor.resolve_illuminant` but ``None`` (``"blackbody:3000"``, ``"D:5000"``,
-        a temperature in kelvin, a Spectrum on the grid, …).
+        The light the metamers match under (default ``"D65"``) and the one they are seen under
+        (default ``"A"``, :data:`DEFAULT_SECOND_ILLUMINANT`); not ``None``; see :term:`illuminant`.
     observer : str, Spectrum or Observer, keyword-only
-        Observer name or alias, colour-matching functions on the grid, or an
-        :class:`~spectrocolor.observers.Observer` (default :data:`~spectrocolor.DEFAULT_OBSERVER`).
+        The observer of both colours (default CIE 1931 2°); see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The reflectances' samples; see :term:`wavelength grid`.
     directions : int or ndarray (n, 3)
         Number of directions (spread evenly on the sphere) or the directions themselves.
 
@@ -302,13 +299,12 @@ def smoothest_metamer(
         Colours under ``illuminant`` and ``second_illuminant`` (each white ``Y = 100``).
 
     illuminant, second_illuminant : str, float, Spectrum or Illuminant, keyword-only
-        The two lights (defaults ``"D65"`` and ``"A"``), each in any form of
-        :func:`spectrocolor.resolve_illuminant` but ``None``.
+        The lights of ``XYZ`` (default ``"D65"``) and of ``XYZ_second`` (default ``"A"``); not
+        ``None``; see :term:`illuminant`.
     observer : str, Spectrum or Observer, keyword-only
-        Observer name or alias, colour-matching functions on the grid, or an
-        :class:`~spectrocolor.observers.Observer` (default :data:`~spectrocolor.DEFAULT_OBSERVER`).
+        The observer of both colours (default CIE 1931 2°); see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The reflectances' samples; see :term:`wavelength grid`.
 
     Returns
     -------
@@ -431,13 +427,12 @@ def most_different_metamer(
         0 ≤ amount < 1: the metamer's colour under ``second_illuminant`` lies this fraction
         of the way from the sample's to the farthest point of the mismatch region.
     illuminant, second_illuminant : str, float, Spectrum or Illuminant, keyword-only
-        The two lights (defaults ``"D65"`` and ``"A"``), each in any form of
-        :func:`spectrocolor.resolve_illuminant` but ``None``.
+        The light the metamer matches the sample under (default ``"D65"``) and the one where it
+        differs (default ``"A"``); not ``None``; see :term:`illuminant`.
     observer : str, Spectrum or Observer, keyword-only
-        Observer name or alias, colour-matching functions on the grid, or an
-        :class:`~spectrocolor.observers.Observer` (default :data:`~spectrocolor.DEFAULT_OBSERVER`).
+        The observer of both colours (default CIE 1931 2°); see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The reflectances' samples; see :term:`wavelength grid`.
     directions : int, default 200
         Directions used to sample the mismatch region.
 

@@ -69,12 +69,11 @@ def object_colour_membership(
     XYZ : array_like, shape (..., 3)
         Colours, XYZ100 (the perfect white under ``illuminant`` has Y = 100).
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light the colours were computed under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The reflectances' samples; see :term:`wavelength grid`.
 
     Returns
     -------
@@ -132,12 +131,11 @@ def optimal_colours(
     Parameters
     ----------
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light the optimal colours are seen under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The optimal reflectances' samples; see :term:`wavelength grid`.
     directions : int or array_like (M, 3)
         Number of directions spread evenly over the sphere, or the directions themselves.
 
@@ -198,12 +196,11 @@ def macadam_limits(
     luminance_factor : float
         ``Y`` in percent of the perfect white, strictly between 0 and 100.
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light the object colours are seen under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The optimal reflectances' samples; see :term:`wavelength grid`.
     samples : int, default 720
         Number of hue angles, spread uniformly over the full turn: 3 to
         :data:`MAX_HUE_SAMPLES` (each angle costs one pass over the solid's facets, so the

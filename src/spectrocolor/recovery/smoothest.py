@@ -188,9 +188,9 @@ def smoothest_reflectance(
         Tristimulus values on the scale where the perfect white under ``illuminant`` has
         ``Y = 100``.
     illuminant : str or Spectrum
-        CIE illuminant name (default ``"D65"``) or a Spectrum sampled on the grid.
+        The light the colour is seen under (default ``"D65"``); see :term:`illuminant`.
     observer : str or Spectrum
-        Observer name or alias (default ``"1931"``).
+        The observer of the colour (default ``"1931"``); see :term:`observer`.
     wavelengths : (start_nm, stop_nm, step_nm) or uniform array
         The grid of the recovered reflectance (default 380–780 nm in 5 nm steps).
     bounds : {"unit", "nonnegative", None}

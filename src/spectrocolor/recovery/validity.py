@@ -373,12 +373,11 @@ def domain_of_validity(
     Parameters
     ----------
     illuminant : str or Spectrum, default "D65"
-        The light the colours are seen under (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a
-        Spectrum sampled on the grid).
+        The light the reflectances are seen under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm: the reflectances' samples.
+        The reflectances' samples; see :term:`wavelength grid`.
 
     Returns
     -------
@@ -450,11 +449,11 @@ def boundary_locus(illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSERVER,
     Parameters
     ----------
     illuminant : str or Spectrum, default "D65"
-        The light (a CIE name, ``"blackbody:T"``, ``"D:T"``, or a Spectrum on the grid).
+        The light the boundary is traced under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        Observer name or alias, or colour-matching functions on the grid.
+        The observer of the colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        ``(start_nm, stop_nm, step_nm)`` or a uniform grid in nm.
+        The reflectances' samples; see :term:`wavelength grid`.
 
     Returns
     -------

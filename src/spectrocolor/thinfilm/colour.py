@@ -92,9 +92,8 @@ def film_colours(films, *, quantity: str = "reflectance", illuminant=SEED_000_IL
     quantity : str, keyword-only, default "reflectance"
         ``"reflectance"`` or ``"transmittance"`` (FilmOptics only).
     illuminant : str, float or Spectrum, keyword-only
-        Any form of :func:`spectrocolor.canonical_illuminant` except ``None`` (a film's
-        reflectance needs a light); default ``"blackbody:6504"``, seed 000's light. A Spectrum
-        must contain every sample of the films' grid.
+        The light the films are seen under (default ``"blackbody:6504"``, seed 000's light), not
+        ``None``; a Spectrum must contain every sample of the films' grid; see :term:`illuminant`.
     observer : str or Spectrum, keyword-only
         Any name :func:`spectrocolor.observer` accepts (default CIE 1931 2°).
     exposure : str, keyword-only, default "global-max"

@@ -60,8 +60,8 @@ def oil_on_water(thickness_nm, wavelengths_nm, *, oil: Medium | None = None, ang
     thickness_nm : array_like, shape (...)
         Oil film thickness in nm (non-negative).
     wavelengths_nm : array_like, shape (K,)
-        Vacuum wavelengths in nm, within the oil's and water's ranges (350–1000 nm for the
-        default oil).
+        Vacuum wavelengths in nm, within the oil's and water's ranges (350–1000 nm for the default
+        oil); see :term:`wavelength grid`.
     oil : Medium, keyword-only, optional
         The oil; default the illustrative typical oil (Cauchy, n_d = 1.470, V_d = 50).
     angle_deg : array_like, keyword-only, default 0.0

@@ -212,8 +212,7 @@ def colour_table(film, max_thickness_nm: float, *, thickness_step_nm: float = 0.
     wavelengths_nm : array_like, shape (K,), keyword-only, optional
         Spectral grid, nm (default 380-780 nm at 5 nm).
     memory_budget : int or str, keyword-only, optional
-        The memory budget (e.g. ``"2GiB"``; default the budget in force,
-        :func:`spectrocolor.budget.memory_budget`).
+        The most memory the table may take; see :term:`memory budget`.
     **colour_options : dict
         Passed to :func:`~spectrocolor.thinfilm.colour.film_colours` (illuminant, observer,
         exposure, gain, space, gamut).
@@ -584,7 +583,7 @@ def draining_film_gif(path, table: ColourTable, width: int, height: int, times_s
     SpectrumError
         For no times, or thicknesses beyond the table.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -123,7 +123,7 @@ def save_table(table: UpsamplingTable, path) -> Path:
     SpectrumError
         For something other than an UpsamplingTable.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (any previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -176,8 +176,7 @@ def load_table(path, *, memory_budget=None) -> UpsamplingTable:
     path : str or os.PathLike
         The table file.
     memory_budget : int or str, keyword-only, optional
-        Most bytes the table may take in memory (e.g. ``"2GiB"``); default the budget in force
-        (:func:`spectrocolor.budget.memory_budget`).
+        The most bytes the table may take in memory; see :term:`memory budget`.
 
     Returns
     -------

@@ -109,8 +109,7 @@ def relight(table: UpsamplingTable, rgb_linear, illuminant, adaptation: str | No
     rgb_linear : array_like (..., 3)
         Linear RGB of the table's space (see :func:`rgb_linear_from_image`).
     illuminant : str, float, Spectrum or Illuminant
-        The new light, e.g. ``"A"``, ``"blackbody:3000"``, ``"D:5000"`` (any form of
-        :func:`spectrocolor.resolve_illuminant`).
+        The new light, e.g. ``"A"``, ``"blackbody:3000"``, ``"D:5000"``; see :term:`illuminant`.
     adaptation : str or None
         None (default): viewer adapted to the original light; else a method of
         :func:`spectrocolor.adapt` (e.g. ``"bradford"``) for a viewer adapted to the new light.

@@ -391,7 +391,8 @@ def upsampling_table(space="sRGB", illuminant="D65", observer="1931",
         Table coordinates: a display space's linear RGB (default ``"sRGB"``; e.g.
         ``"Rec. 2020"``) or ``"XYZ"`` (XYZ100 divided by the perfect white).
     illuminant : str or Spectrum
-        The light under which the reflectances produce the colours (default ``"D65"``).
+        The light under which the reflectances produce the colours (default ``"D65"``); see
+        :term:`illuminant`.
     observer : str
         Observer name or alias (default ``"1931"``).
     wavelengths : (start_nm, stop_nm, step_nm)
@@ -402,9 +403,8 @@ def upsampling_table(space="sRGB", illuminant="D65", observer="1931",
         Solve exactly at the six tetrahedron centroids of every cell to record the measured
         roughness excess (``6 (n−1)³`` extra solves); otherwise ``cell_excess_measured`` is NaN.
     memory_budget : int or str, keyword-only, optional
-        Most memory the build may take (e.g. ``"2GiB"``); default the budget in force
-        (:func:`spectrocolor.budget.memory_budget`). The build takes about
-        ``table_build_bytes`` (n = 65 on the default grid: 2 GiB).
+        The most memory the build may take (about ``table_build_bytes``; n = 65 on the default grid:
+        2 GiB); see :term:`memory budget`.
 
     Returns
     -------

@@ -227,7 +227,7 @@ def save_texel_coefficients(table: UpsamplingTable, rgb_linear, path,
     ColorimetryError
         As :func:`texel_bytes`.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (a previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -280,7 +280,7 @@ def write_texel_blocks(path, table: UpsamplingTable, blocks: Iterable[np.ndarray
     ColorimetryError
         As :func:`texel_bytes`, and for blocks that are not ``height`` rows of ``(width, 3)``.
     spectrocolor.safe_write.OutputError
-        If the file cannot be written (a previous file is left unchanged).
+        The file could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -356,8 +356,7 @@ def load_texel_coefficients(path, table: UpsamplingTable | None = None, *,
     table : UpsamplingTable, optional
         The table it should belong to: refused unless ``n``, ``K`` and the fingerprint match.
     memory_budget : int or str, keyword-only, optional
-        Most bytes the coefficients may take in memory (e.g. ``"2GiB"``); default the budget in
-        force (:func:`spectrocolor.budget.memory_budget`).
+        The most bytes the coefficients may take in memory; see :term:`memory budget`.
 
     Returns
     -------
