@@ -806,7 +806,7 @@ def write_image(path, image, *, metadata: dict | None = None, quality: int = 95)
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, in the format its suffix names.
 
     Raises
     ------
@@ -894,14 +894,15 @@ def write_gif(path, frames: Iterable, *, frame_ms: int = 100, loop: int = 0) -> 
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, now holding the animation.
 
     Raises
     ------
     SpectrumError
         No frames, frames of different sizes, or not uint8 codes.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The GIF could not be written, or did not read back with its size and frame count; see
+        :term:`atomic write`.
 
     Examples
     --------
@@ -996,7 +997,7 @@ def write_png_blocks(
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, a PNG of every block.
 
     Raises
     ------
@@ -1004,7 +1005,8 @@ def write_png_blocks(
         Blocks of the wrong shape or dtype, or not ``height`` rows in all (a programming error:
         the target is left unchanged).
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The PNG could not be written, or did not read back at ``width`` × ``height``; see
+        :term:`atomic write`.
 
     Examples
     --------
@@ -1069,14 +1071,15 @@ def write_tiff_blocks(
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, a TIFF of every block.
 
     Raises
     ------
     ValueError
         Blocks that do not add up to ``shape`` (the target is left unchanged).
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The TIFF could not be written, or did not read back with ``shape``; see
+        :term:`atomic write`.
 
     Examples
     --------

@@ -281,14 +281,15 @@ def save_image(image, path) -> Path:
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the encoded picture.
 
     Raises
     ------
     ColorimetryError
         For an image that is not (H, W, 3) uint8, or another extension.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The picture could not be written, or its size on disk is not the encoded size; see
+        :term:`atomic write`.
 
     Examples
     --------
@@ -331,14 +332,14 @@ def write_swatches(rgb8, path, **options) -> Path:
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the swatches.
 
     Raises
     ------
     ColorimetryError
         For malformed codes or options, or another file extension.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The swatch picture could not be written; see :term:`atomic write`.
 
     Examples
     --------
@@ -366,14 +367,14 @@ def write_strip(rgb8, path, **options) -> Path:
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the strip.
 
     Raises
     ------
     ColorimetryError
         For malformed codes or options, or another file extension.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The strip could not be written (:term:`atomic write`).
 
     References
     ----------

@@ -309,14 +309,14 @@ def write_report(report: MeasurementReport, path, format: str | None = None, *,
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the report (HTML, CSV or JSON).
 
     Raises
     ------
     ColorimetryError
         For an unknown format.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The report could not be written in its format (HTML, CSV or JSON); see :term:`atomic write`.
 
     Examples
     --------

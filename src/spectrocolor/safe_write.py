@@ -244,12 +244,12 @@ def write_bytes(path, data: bytes, verify: Callable[[Path], None] | None = None)
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, holding ``data``.
 
     Raises
     ------
     OutputError
-        The file could not be written; see :term:`atomic write`.
+        The bytes could not be written, or ``verify`` refused them; see :term:`atomic write`.
 
     Examples
     --------
@@ -277,12 +277,12 @@ def write_text(path, text: str) -> Path:
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, holding ``text``.
 
     Raises
     ------
     OutputError
-        The file could not be written; see :term:`atomic write`.
+        The text could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -435,7 +435,7 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``, the whole converted image.
 
     Raises
     ------
@@ -444,7 +444,8 @@ def write_converted(path, values, plan: ConversionPlan, *, rows_per_block=None,
         from one with codes), values
         that are not (H, W, K), metadata for a PNG.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The converted image could not be written; a previous file at ``path`` is kept
+        (:term:`atomic write`).
 
     Examples
     --------
@@ -508,13 +509,13 @@ def cube_to_xyz(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         Factor from the stored values to reflectance (e.g. 1/255 for 8-bit codes, 1/10000 for
         an ENVI reflectance scale factor of 10000). Applied exactly, folded into the weights.
     rows_per_block : int, keyword-only, optional
-        Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
+        Rows of the cube per block (default: as many as fit); see :term:`block`.
     max_block_mib : float, keyword-only, optional
         Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
-        Where to write (e.g. a memory map for outputs larger than memory); default a new array.
+        Where to write the XYZ (a memory map for results larger than memory); default a new array.
     progress : bool, keyword-only, default False
-        Show a tqdm progress bar over rows on standard error.
+        Show a progress bar over the cube's rows.
 
     Returns
     -------
@@ -579,13 +580,13 @@ def cube_to_lab(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
     white_XYZ : array_like, shape (3,), keyword-only, optional
         The reference white on the XYZ scale of the result (required for lights).
     rows_per_block : int, keyword-only, optional
-        Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
+        Rows per block; see :term:`block`.
     max_block_mib : float, keyword-only, optional
         Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
-        Where to write (e.g. a memory map for outputs larger than memory); default a new array.
+        Where to write L*, a*, b*; default a new array; see :term:`block`.
     progress : bool, keyword-only, default False
-        Show a tqdm progress bar over rows on standard error.
+        Show a tqdm progress bar on standard error.
 
     Returns
     -------
@@ -666,13 +667,13 @@ def cube_to_rgb(cube, wavelengths_nm=None, *, illuminant=None, observer=DEFAULT_
         an alpha channel (result (H, W, 4)): 0 on masked pixels, whose colour is 0, and 255,
         65535 or 1.0 elsewhere; or a colour (see :func:`masked_fill`).
     rows_per_block : int, keyword-only, optional
-        Rows (first-axis entries) per block; default as many as fit in ``max_block_mib``.
+        The height of a block in rows (default: as many as fit); see :term:`block`.
     max_block_mib : float, keyword-only, optional
         Memory of one block of float64 spectra, MiB; see :term:`block`.
     out : numpy.ndarray or numpy.memmap, shape (H, W, 3), keyword-only, optional
-        Where to write (e.g. a memory map for outputs larger than memory); default a new array.
+        An array or memory map to write the RGB into (default a new one).
     progress : bool, keyword-only, default False
-        Show a tqdm progress bar over rows on standard error.
+        Whether to show a progress bar over rows.
 
     Returns
     -------

@@ -236,14 +236,14 @@ def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:
     Returns
     -------
     pathlib.Path
-        The file written (beside ``path`` first, then renamed over it).
+        ``path``, written as an :term:`atomic write`.
 
     Raises
     ------
     SpectrumError
         For a non-Spectrum or an unknown suffix.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The spectra file could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -196,14 +196,14 @@ def write_light_report(report: LightReport, path, format: str | None = None, *, 
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the report in ``format``.
 
     Raises
     ------
     ColorimetryError
         For an unknown format.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        Nothing could be written; any previous report stays as it was (:term:`atomic write`).
 
     Examples
     --------

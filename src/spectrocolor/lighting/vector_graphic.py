@@ -196,14 +196,14 @@ def write_vector_graphic(fidelity: Fidelity, path, index=(), *, title: str | Non
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the graphic.
 
     Raises
     ------
     ColorimetryError
         For another suffix or an ``index`` that does not pick one light.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The graphic could not be written; see :term:`atomic write`.
 
     Examples
     --------

@@ -243,7 +243,7 @@ def generating_functions(illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSE
     illuminant : str or Spectrum, default "D65"
         The light that weights the functions; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        Whose colour-matching functions are weighted; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         The functions' samples; see :term:`wavelength grid`.
     lambda1_nm : array_like, optional

@@ -33,9 +33,9 @@ def max_luminance_factor(xy, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_
     illuminant : str or Spectrum, default "D65"
         The light the limit is computed under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        The observer of the luminance factor Y; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        The reflectances' samples; see :term:`wavelength grid`.
+        The limiting reflectances' samples; see :term:`wavelength grid`.
 
     Returns
     -------

@@ -71,9 +71,9 @@ def object_colour_membership(
     illuminant : str or Spectrum, default "D65"
         The light the colours were computed under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        The observer the colours were computed with; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        The reflectances' samples; see :term:`wavelength grid`.
+        The grid of the solid's reflectances; see :term:`wavelength grid`.
 
     Returns
     -------
@@ -133,9 +133,9 @@ def optimal_colours(
     illuminant : str or Spectrum, default "D65"
         The light the optimal colours are seen under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        Whose colour-matching functions give the optimal colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        The optimal reflectances' samples; see :term:`wavelength grid`.
+        The samples of the optimal reflectances; see :term:`wavelength grid`.
     directions : int or array_like (M, 3)
         Number of directions spread evenly over the sphere, or the directions themselves.
 
@@ -198,7 +198,7 @@ def macadam_limits(
     illuminant : str or Spectrum, default "D65"
         The light the object colours are seen under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        The observer of the limits; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         The optimal reflectances' samples; see :term:`wavelength grid`.
     samples : int, default 720

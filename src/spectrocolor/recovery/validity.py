@@ -375,7 +375,7 @@ def domain_of_validity(
     illuminant : str or Spectrum, default "D65"
         The light the reflectances are seen under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        The observer of the domain's colours; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
         The reflectances' samples; see :term:`wavelength grid`.
 
@@ -451,9 +451,9 @@ def boundary_locus(illuminant=DEFAULT_ILLUMINANT, *, observer=DEFAULT_OBSERVER,
     illuminant : str or Spectrum, default "D65"
         The light the boundary is traced under; see :term:`illuminant`.
     observer : str or Spectrum, default "1931"
-        The observer of the colours; see :term:`observer`.
+        The observer; see :term:`observer`.
     wavelengths : tuple of float or array_like, default (380.0, 780.0, 5.0)
-        The reflectances' samples; see :term:`wavelength grid`.
+        The samples of the boundary's reflectances, nm; see :term:`wavelength grid`.
 
     Returns
     -------

@@ -583,7 +583,8 @@ def draining_film_gif(path, table: ColourTable, width: int, height: int, times_s
     SpectrumError
         For no times, or thicknesses beyond the table.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        As for :func:`~spectrocolor.imagefiles.write_gif`, which writes it; see
+        :term:`atomic write`.
 
     Examples
     --------

@@ -116,14 +116,14 @@ def save_table(table: UpsamplingTable, path) -> Path:
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the table's bytes.
 
     Raises
     ------
     SpectrumError
         For something other than an UpsamplingTable.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The table could not be written, or its size on disk differs; see :term:`atomic write`.
 
     Examples
     --------

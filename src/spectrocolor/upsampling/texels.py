@@ -220,14 +220,14 @@ def save_texel_coefficients(table: UpsamplingTable, rgb_linear, path,
     Returns
     -------
     pathlib.Path
-        The file written.
+        ``path``, the coefficients' bytes.
 
     Raises
     ------
     ColorimetryError
         As :func:`texel_bytes`.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The coefficients could not be written or read back whole; see :term:`atomic write`.
 
     Examples
     --------
@@ -280,7 +280,8 @@ def write_texel_blocks(path, table: UpsamplingTable, blocks: Iterable[np.ndarray
     ColorimetryError
         As :func:`texel_bytes`, and for blocks that are not ``height`` rows of ``(width, 3)``.
     spectrocolor.safe_write.OutputError
-        The file could not be written; see :term:`atomic write`.
+        The file could not be written block by block, or its size on disk differs
+        (:term:`atomic write`).
 
     Examples
     --------
