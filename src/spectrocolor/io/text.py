@@ -433,6 +433,7 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
     percent : bool or None
         The caller's option: ``True`` (the values are percentages), ``False`` (fractions) or
         ``None`` (follow the file; where the file does not say, keep the values as written).
+        ``True`` on values that never exceed 1 warns (:class:`UserWarning`): they look like fractions.
     source, how : str
         File name and what declared the scale, for messages.
 
@@ -475,5 +476,8 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
     if percent is None:
         return values, "as written (the file does not declare percent or fraction; pass percent=True/False)"
     if percent:
+        from .conditions import warn_percent_of_fractions
+
+        warn_percent_of_fractions(values, source)  # percent said of 0–1 data: a warning, as on the CLI
         return values / 100.0, "divided by 100 (percent=True)"
     return values, "as written (percent=False)"
