@@ -486,13 +486,9 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
         "note": f"read {len(values)} spectra on {grid_text}; resampled to {len(wl)} bins "
                 f"({START_NM:g}-{STOP_NM:g} nm at {step_nm:g} nm) by {method} interpolation, "
                 f"scale '{scale}'",
-        "metadata": {k: str(v)[:300] for k, v in s.metadata.items() if k in _IMPORT_METADATA},
+        "metadata": {k: str(v)[:300] for k, v in s.metadata.items()  # encoding, declared_* conditions
+                     if k.startswith(("declared_", "encoding")) or k in ("format", "value_scale")},
     }
-
-
-#: What the import answer passes on from the file's metadata (the encoding, the declared conditions).
-_IMPORT_METADATA = ("format", "encoding", "encoding_note", "value_scale", "declared_illuminant",
-                    "declared_observer", "declared_geometry", "declared_by")
 
 
 def export_spectra(step_nm: float, names, spectra, path) -> None:

@@ -49,7 +49,7 @@ def illuminant_forms(cie_names: str = "D65, A, C, D50, FL11, LED-B1, …") -> st
 #: meaning "what the file declares" (:data:`spectrocolor.io.conditions.DECLARED`).
 DECLARED = "declared"
 #: How the ``declared`` default reads in the help.
-_DECLARED_HELP = "what the file declares (e.g. a ColorPort MEASUREMENT_SOURCE), else {}"
+_DECLARED_HELP = "{}, or what the file declares (e.g. ColorPort's MEASUREMENT_SOURCE)"
 
 
 def _illuminant_type(lights: bool, declared: bool = False):
@@ -80,7 +80,7 @@ def add_illuminant(parser: argparse.ArgumentParser, *, lights: bool = False, def
     if lights:
         help_text += "; 'none' when the file holds lights (sources) rather than reflectances"
     if declared:
-        help_text += f"; '{DECLARED}': {_DECLARED_HELP.format(default)}"
+        help_text += f"; '{DECLARED}': what the file declares, else {default}"
     shown = _DECLARED_HELP.format(default) if declared else default
     parser.add_argument("--illuminant", type=_illuminant_type(lights, declared),
                         default=DECLARED if declared else default, help=f"{help_text} (default {shown})")
