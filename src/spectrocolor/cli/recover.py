@@ -25,7 +25,7 @@ def register(subparsers) -> None:
     src.add_argument("--xyz", nargs=3, type=float, metavar=("X", "Y", "Z"))
     src.add_argument("--hex", nargs="+", metavar="RRGGBB", help="sRGB hex colours")
     src.add_argument("--csv", type=Path, help="CSV with columns X,Y,Z (one colour per row)")
-    p.add_argument("--xyz-scale", type=_scale, choices=(1.0, 100.0), default=None, metavar="{1,100}",
+    p.add_argument("--xyz-scale", type=_scale, default=None, metavar="{1,100}",
                    help="the scale of --xyz and --csv colours: 100 (perfect white Y = 100, the default "
                    "scale) or 1 (white Y = 1: the values are multiplied by 100); --xyz with every value "
                    "at most 1 must say which")
@@ -46,9 +46,12 @@ def register(subparsers) -> None:
 
 def _scale(text: str) -> float:
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected 1 or 100, got {text!r:.20}") from None
+        value = None
+    if value not in (1.0, 100.0):
+        raise argparse.ArgumentTypeError(f"expected 1 (white Y = 1) or 100 (white Y = 100), got {text!r:.20}")
+    return value
 
 
 _scale.__name__ = "scale"
