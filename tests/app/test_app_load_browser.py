@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+
 from appbrowser import choose, settle, state
 
 pytestmark = pytest.mark.browser
