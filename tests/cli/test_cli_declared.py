@@ -39,6 +39,12 @@ def test_xyz_uses_the_declared_d65_10_without_a_word(capsys):
     assert [float(r["Y"]) for r in _rows(out)] == XYZ[:, 1].tolist()
 
 
+def test_the_declaration_survives_range_and_interval(capsys):
+    assert cli.main(["xyz", D65_10, "--format", "cgats", "--interval", "20", "--range", "400", "700"]) == 0
+    out = capsys.readouterr().out
+    assert 'ILLUMINANT "D65"' in out and 'OBSERVER "CIE 1964 10°"' in out
+
+
 def test_a_differing_choice_is_one_line_on_stderr(capsys):
     assert cli.main(["describe", D50_2, "--format", "json", "--illuminant", "D65", "--observer", "10deg"]) == 0
     err = capsys.readouterr().err.strip().splitlines()

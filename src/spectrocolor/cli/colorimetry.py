@@ -70,6 +70,7 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
     check_files(args, (), ("file",), MAX_SPECTRAL_FILE_BYTES)  # a regular file, bounded: never /dev/zero
 
     spectra = read_measurements(args)
+    args.illuminant, args.observer = declared_conditions_of(spectra, args)  # before --interval drops metadata
     if spectra.names is None:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
     if args.range:
@@ -89,7 +90,6 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
                 "(use --method 1nm to integrate at 1 nm instead)"
             )
         spectra = Spectrum(grid[on_step], spectra.values[..., on_step], spectra.names)
-    args.illuminant, args.observer = declared_conditions_of(spectra, args)
     if args.illuminant is None:  # lights
         return spectra
     return reflectance_factors(spectra, args.file)
