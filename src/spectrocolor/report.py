@@ -37,8 +37,9 @@ import numpy as np
 from . import notebook_hooks
 from .colorimetry import DEFAULT_METHOD
 from .errors import ColorimetryError, SpectrumError
-from .illuminants import DEFAULT_ILLUMINANT, illuminant_label, resolve_illuminant
-from .observers import DEFAULT_OBSERVER, resolve_observer
+from .illuminants import illuminant_label, resolve_illuminant
+from .io.conditions import DECLARED, check_reflectance_scale, choose_conditions
+from .observers import resolve_observer
 from .plot import plain_text
 from .safe_write import write_text
 from .spectrum import Spectrum
@@ -84,6 +85,9 @@ class MeasurementReport:
         ``srgb8`` as "#rrggbb".
     white_XYZ : ndarray (3,)
         The perfect white under the illuminant on the samples' grid.
+    conditions_note : str
+        ``""``, or one line where the caller's illuminant/observer differ from what the spectra's
+        file declares ("the file declares D50/2°; computed under D65/10° as asked").
 
     Examples
     --------
@@ -115,6 +119,7 @@ class MeasurementReport:
     in_gamut: np.ndarray
     srgb_hex: tuple
     white_XYZ: np.ndarray
+    conditions_note: str = ""
 
     _repr_html_, _repr_svg_, __repr__ = notebook_hooks.html, notebook_hooks.svg, notebook_hooks.text  # notebooks
 
@@ -185,7 +190,7 @@ class MeasurementReport:
         }
 
 
-def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, observer=DEFAULT_OBSERVER,
+def measurement_report(spectra: Spectrum, *, illuminant=DECLARED, observer=DECLARED,
                        method: str = DEFAULT_METHOD) -> MeasurementReport:
     """Colorimetry of reflectance samples for a measurement report.
 
@@ -194,11 +199,14 @@ def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, obse
     spectra : Spectrum
         Reflectance factors (0-1) of N samples, values (N, K) or (K,) for one.
     illuminant : str, float, Spectrum or Illuminant, keyword-only
-        The light of the report (default D65; seed 001 uses C), not ``None``; its perfect reflector
-        is the white point of dominant wavelength and purity (Visser section 1.8); see
-        :term:`illuminant`.
+        The light of the report, not ``None`` (seed 001 uses C), or ``"declared"`` (the default):
+        the illuminant the spectra's file declares (``metadata["declared_illuminant"]``, see
+        :mod:`spectrocolor.io.conditions`), else D65. Its perfect reflector is the white point of
+        dominant wavelength and purity (Visser section 1.8). Where a named illuminant or observer
+        differs from the file's declaration, ``conditions_note`` says so; see :term:`illuminant`.
     observer : str or Observer, keyword-only
-        The observer of the report (default CIE 1931 2°, as seed 001); see :term:`observer`.
+        ``"declared"`` (the default): the file's declared observer, else CIE 1931 2° (seed 001);
+        or the observer of the report; see :term:`observer`.
     method : str, keyword-only
         Summation method of :func:`spectrocolor.weights` (default ``"sum"``).
 
@@ -211,7 +219,8 @@ def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, obse
     Raises
     ------
     SpectrumError
-        For input that is not a Spectrum of (N, K) or (K,) reflectances.
+        For input that is not a Spectrum of (N, K) or (K,) reflectances, or values above 1.5
+        (undeclared percentages: read the file with ``percent=True``).
     ColorimetryError
         For ``illuminant=None`` or an unknown illuminant, observer or method.
 
@@ -244,6 +253,8 @@ def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, obse
         raise SpectrumError(f"spectra must hold (N, K) samples; got shape {values.shape}")
     if not np.all(np.isfinite(values)):
         raise SpectrumError("spectra contain NaN or infinite reflectances")
+    check_reflectance_scale(spectra, "spectra")  # the command line's rule: percent is said, not guessed
+    illuminant, observer, note = choose_conditions(spectra, illuminant, observer)
     samples = Spectrum(spectra.wavelengths_nm, values, spectra.names)
     names = samples.names or tuple(f"sample {i + 1}" for i in range(values.shape[0]))
     viewer, light = resolve_observer(observer), resolve_illuminant(illuminant)  # once, here
@@ -278,6 +289,7 @@ def measurement_report(spectra: Spectrum, *, illuminant=DEFAULT_ILLUMINANT, obse
         in_gamut=np.asarray(rendering.in_gamut, dtype=bool),
         srgb_hex=tuple(str(h) for h in rendering.hex),
         white_XYZ=white,
+        conditions_note=note,
     )
 
 
@@ -358,6 +370,7 @@ def _conditions(report: MeasurementReport) -> dict:
         "white_xy": [round(float(v), 5) for v in report.white_xy],
         "swatch": "sRGB (IEC 61966-2-1), Bradford-adapted from the illuminant's white to D65, "
                   "desaturated toward the white at constant Y where out of gamut",
+        **({"conditions_note": report.conditions_note} if report.conditions_note else {}),
     }
 
 
@@ -366,6 +379,8 @@ def _csv(report: MeasurementReport) -> str:
     conditions = _conditions(report)
     buffer.write(f"# illuminant {conditions['illuminant']}, observer {conditions['observer']}, "
                  f"method {conditions['method']}, white XYZ {conditions['white_XYZ']}\n")
+    if report.conditions_note:
+        buffer.write(f"# {report.conditions_note}\n")
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(_COLUMNS)
     columns = report._columns()
@@ -572,6 +587,8 @@ def report_html(report: MeasurementReport, *, title: str | None = None,
         f"Z = {conditions['white_XYZ'][2]}; x = {conditions['white_xy'][0]}, "
         f"y = {conditions['white_xy'][1]}</dd>",
         f"<dt>swatch</dt><dd>{conditions['swatch']}; * marks colours outside sRGB</dd>",
+        *([f"<dt>conditions</dt><dd class='note'>{html.escape(report.conditions_note)}</dd>"]
+          if report.conditions_note else []),
         "</dl>",
         "<p>Dominant wavelength λ<sub>d</sub> and excitation purity are relative to the "
         "illuminant's white; where the colour lies toward the purple line the complementary "

@@ -132,8 +132,10 @@ def test_report_writes_cgats(tmp_path):
     result = run("report", str(CORPUS / "i1profiler.txt"), "--out", str(out), "--method", "astm-e308")
     assert result.returncode == 0, result.stderr
     keywords, fields, rows = _cgats_rows(out.read_text())
-    assert keywords["ILLUMINANT"] == "D65" and len(rows) == 3 and "LAB_L" in fields
-    XYZ = sc.tristimulus(sc.read_spectra(CORPUS / "i1profiler.txt"), observer="1931", illuminant="D65",
+    # the file declares MEASUREMENT_SOURCE "Illumination=D50 ObserverAngle=2": used, no option given
+    assert keywords["ILLUMINANT"] == "D50" and len(rows) == 3 and "LAB_L" in fields
+    assert result.stderr == ""  # nothing differs from the declaration: no note
+    XYZ = sc.tristimulus(sc.read_spectra(CORPUS / "i1profiler.txt"), observer="1931", illuminant="D50",
                          method="astm-e308")
     # exact: the report's own call on the same file, rounded by the same np.round(…, 4)
     np.testing.assert_array_equal([float(r["XYZ_Y"]) for r in rows], np.round(XYZ[:, 1], 4))
@@ -168,6 +170,7 @@ def test_every_command_has_the_same_shared_defaults():
     import argparse
 
     from spectrocolor.cli import build_parser
+    from spectrocolor.cli.options import DECLARED
     from spectrocolor.display.gamut import DEFAULT_GAMUT
 
     shared = {"illuminant": "D65", "observer": "1931", "gamut": DEFAULT_GAMUT}
@@ -178,5 +181,8 @@ def test_every_command_has_the_same_shared_defaults():
         for action in command._actions:
             if action.dest in shared:
                 seen.setdefault(action.dest, []).append(name)
+                if action.default == DECLARED:  # a measurement file's own conditions, else the library's
+                    assert name in ("xyz", "describe", "report") and shared[action.dest] in action.help
+                    continue
                 assert action.default == shared[action.dest], (name, action.dest, action.default)
     assert {"image", "render", "relight"} <= set(seen["gamut"])

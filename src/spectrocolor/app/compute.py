@@ -486,6 +486,8 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
         "note": f"read {len(values)} spectra on {grid_text}; resampled to {len(wl)} bins "
                 f"({START_NM:g}-{STOP_NM:g} nm at {step_nm:g} nm) by {method} interpolation, "
                 f"scale '{scale}'",
+        "metadata": {k: str(v)[:300] for k, v in s.metadata.items()  # encoding, declared_* conditions
+                     if k.startswith(("declared_", "encoding")) or k in ("format", "value_scale")},
     }
 
 

@@ -17,6 +17,8 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
 
 from __future__ import annotations
 
+import base64
+import binascii
 import tempfile
 from importlib import resources
 from pathlib import Path
@@ -77,6 +79,9 @@ MAX_SPECTRA = 4
 #: Spectra one imported file may hold; the page lets the user choose which to edit.
 MAX_IMPORT_SPECTRA = 64
 MAX_BINS = 301  # 400-700 nm at 1 nm
+#: Largest imported file, bytes (as text: characters), and its base64 length.
+MAX_IMPORT_BYTES = 1_000_000
+MAX_IMPORT_BASE64 = 4 * ((MAX_IMPORT_BYTES + 2) // 3)
 
 # Observer, Display, Gamut, Normalise and Adaptation (spectrocolor.app.choices) are checked
 # against the library's registries when a request arrives: a name registered there is accepted.
@@ -141,11 +146,38 @@ class MetamerRequest(ModelRequest):
 
 
 class ImportRequest(StrictRequest):
+    """An uploaded file: its text (``content``, already decoded) or, as the page sends it, its
+    bytes (``content_base64``), decoded on the server as the library decodes a file
+    (:func:`spectrocolor.io.decode_text`), so Latin-1/cp1252 exports read as they do on the
+    command line. ``observer``: the page's observer, for the note on the file's declared conditions."""
+
     filename: Annotated[str, Field(min_length=1, max_length=200)]
-    content: Annotated[str, Field(min_length=1, max_length=1_000_000)]
+    content: Annotated[str | None, Field(min_length=1, max_length=1_000_000)] = None
+    content_base64: Annotated[str | None, Field(min_length=1, max_length=MAX_IMPORT_BASE64)] = None
     step_nm: Step = 10
     method: Annotated[str, choice(INTERPOLATION_METHODS)] = "linear"
     scale: Annotated[str, choice(compute.IMPORT_SCALES.names_view())] = "peak"
+    observer: Observer | None = None
+
+    @model_validator(mode="after")
+    def _one_content(self):
+        if (self.content is None) == (self.content_base64 is None):
+            raise ValueError("give the file as content (text) or content_base64 (its bytes), one of them")
+        return self
+
+    def file_bytes(self) -> bytes | str:
+        """The file: bytes decoded from ``content_base64``, else the text ``content``."""
+        if self.content_base64 is None:
+            assert self.content is not None  # _one_content
+            return self.content
+        try:
+            data = base64.b64decode(self.content_base64, validate=True)
+        except (binascii.Error, ValueError):
+            raise SpectrumError(f"{self.filename}: content_base64 is not base64 (RFC 4648: A-Z a-z 0-9 + / =)") \
+                from None
+        if not data or len(data) > MAX_IMPORT_BYTES:
+            raise SpectrumError(f"{self.filename}: the file must be 1 to {MAX_IMPORT_BYTES} bytes, got {len(data)}")
+        return data
 
 
 class ExportRequest(StrictRequest):
@@ -332,13 +364,16 @@ def metamer(req: MetamerRequest):
 def import_(req: ImportRequest, request: Request):  # a plain def: run in FastAPI's threads
     """The spectra of an uploaded file, parsed in a worker process (429 when all stay busy)."""
     parsers: UploadParser = request.app.state.parsers
+    content = req.file_bytes()  # bytes are decoded in the worker, as read_spectra decodes a file
     suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
-    if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
+    raw = content if isinstance(content, bytes) else content.encode("utf-8")
+    if suffix == ".json" and json_depth(raw) > MAX_JSON_DEPTH:
         raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
     try:  # in a worker process: other clients keep being answered meanwhile
-        return parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
+        return parsers.parse(req.filename, content, suffix, float(req.step_nm),
                              req.method, req.scale, MAX_IMPORT_SPECTRA,
-                             client=request.client.host if request.client else None)
+                             client=request.client.host if request.client else None,
+                             observer=req.observer)
     except Busy:
         return JSONResponse({"error": "the server is busy reading other files; try again"},
                             status_code=429)

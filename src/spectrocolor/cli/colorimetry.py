@@ -13,13 +13,10 @@ import numpy as np
 
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import illuminant_label
+from ..io.conditions import PERCENT_SUSPICION  # reflectance factors above this are almost surely percentages
 from ..spectrum import Spectrum
 from . import UserError
 from .options import add_encoding, add_illuminant, add_observer
-
-#: Reflectance factors above this are almost surely percentages.
-_PERCENT_SUSPICION = 1.5
-
 
 #: What the spectral file argument accepts (every format :func:`spectrocolor.read_spectra` detects).
 FILE_HELP = (
@@ -40,8 +37,9 @@ def add_spectral_options(parser: argparse.ArgumentParser, *, lights: bool) -> No
 
     parser.add_argument("file", help=FILE_HELP)
     add_encoding(parser)
-    add_illuminant(parser, lights=lights, what="the reflectance/transmittance samples (seed 001's examples use C)")
-    add_observer(parser)
+    add_illuminant(parser, lights=lights, what="the reflectance/transmittance samples (seed 001's examples use C)",
+                   declared=True)
+    add_observer(parser, declared=True)
     parser.add_argument(
         "--interval",
         type=float,
@@ -67,12 +65,12 @@ def add_spectral_options(parser: argparse.ArgumentParser, *, lights: bool) -> No
 
 def load_samples(args: argparse.Namespace) -> Spectrum:
     """Read ``args.file`` and apply --range, --interval and --percent, checking reflectances."""
-    from ..spectrum_io import read_spectra
     from .files import MAX_SPECTRAL_FILE_BYTES, check_files
 
     check_files(args, (), ("file",), MAX_SPECTRAL_FILE_BYTES)  # a regular file, bounded: never /dev/zero
 
-    spectra = read_spectra(args.file, percent=True if args.percent else None, encoding=args.encoding)
+    spectra = read_measurements(args)
+    args.illuminant, args.observer = declared_conditions_of(spectra, args)  # before --interval drops metadata
     if spectra.names is None:
         spectra = Spectrum(spectra.wavelengths_nm, spectra.values, ("spectrum_1",))
     if args.range:
@@ -97,6 +95,36 @@ def load_samples(args: argparse.Namespace) -> Spectrum:
     return reflectance_factors(spectra, args.file)
 
 
+def read_measurements(args: argparse.Namespace) -> Spectrum:
+    """``args.file`` read with ``--percent`` and ``--encoding``; a reader's warning (``--percent``
+    on values that never exceed 1) is one ``warning:`` line on stderr."""
+    import warnings
+
+    from ..spectrum_io import read_spectra
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spectra = read_spectra(args.file, percent=True if args.percent else None, encoding=args.encoding)
+    for warning in caught:
+        text = str(warning.message).replace("percent was asked", "--percent was given")
+        print(f"spectrocolor {args.command}: warning: {text.replace('leave percent unset', 'leave out --percent')}",
+              file=sys.stderr)
+    return spectra
+
+
+def declared_conditions_of(spectra: Spectrum, args: argparse.Namespace):
+    """``(illuminant, observer)`` to compute under: ``declared`` replaced by what the file declares
+    (else D65, CIE 1931 2°); where the user's choice differs from the declaration, one line on
+    stderr says so."""
+    from ..io.conditions import choose_conditions
+
+    with command_line_hints():
+        illuminant, observer, note = choose_conditions(spectra, args.illuminant, args.observer)
+    if note:
+        print(f"spectrocolor {args.command}: {args.file}: {note}", file=sys.stderr)
+    return illuminant, observer
+
+
 def reflectance_factors(spectra: Spectrum, source: str) -> Spectrum:
     """The spectra, checked as reflectance factors on the 0–1 scale (read with ``--percent`` where
     the file holds undeclared percentages): negative values and values that look like percentages
@@ -109,7 +137,7 @@ def reflectance_factors(spectra: Spectrum, source: str) -> Spectrum:
             f"{source}: negative reflectance {values[row, k]:g} in {name!r} at {spectra.wavelengths_nm[k]:g} nm; "
             "reflectance factors are 0–1 (for lights give --illuminant none)"
         )
-    if values.max() > _PERCENT_SUSPICION:
+    if values.max() > PERCENT_SUSPICION:
         raise UserError(
             f"{source}: reflectance values reach {values.max():g}; if they are percentages pass --percent, "
             "if they are lights give --illuminant none"

@@ -45,8 +45,17 @@ def illuminant_forms(cie_names: str = "D65, A, C, D50, FL11, LED-B1, …") -> st
     return f"a CIE name ({cie_names}), {listed} (T in kelvin)"
 
 
-def _illuminant_type(lights: bool):
+#: ``--illuminant``/``--observer`` value (and default, for commands that read a measurement file)
+#: meaning "what the file declares" (:data:`spectrocolor.io.conditions.DECLARED`).
+DECLARED = "declared"
+#: How the ``declared`` default reads in the help.
+_DECLARED_HELP = "{}, or what the file declares (e.g. ColorPort's MEASUREMENT_SOURCE)"
+
+
+def _illuminant_type(lights: bool, declared: bool = False):
     def parse(text: str):
+        if declared and text.strip().lower() == DECLARED:
+            return DECLARED
         if text.strip().lower() == "none":
             if lights:
                 return None
@@ -61,13 +70,20 @@ def _illuminant_type(lights: bool):
 
 
 def add_illuminant(parser: argparse.ArgumentParser, *, lights: bool = False, default: str = DEFAULT_ILLUMINANT,
-                   what: str = "the samples") -> None:
-    """``--illuminant``: the light on ``what``; with ``lights``, ``none`` means the spectra are lights."""
+                   what: str = "the samples", declared: bool = False) -> None:
+    """``--illuminant``: the light on ``what``; with ``lights``, ``none`` means the spectra are lights.
+
+    With ``declared`` (commands that read a measurement file) the default is ``declared``: the
+    illuminant the file declares, else ``default``; the value ``declared`` may also be given.
+    """
     help_text = f"the light on {what}: {illuminant_forms()}"
     if lights:
         help_text += "; 'none' when the file holds lights (sources) rather than reflectances"
-    parser.add_argument("--illuminant", type=_illuminant_type(lights), default=default,
-                        help=f"{help_text} (default {default})")
+    if declared:
+        help_text += f"; '{DECLARED}': what the file declares, else {default}"
+    shown = _DECLARED_HELP.format(default) if declared else default
+    parser.add_argument("--illuminant", type=_illuminant_type(lights, declared),
+                        default=DECLARED if declared else default, help=f"{help_text} (default {shown})")
 
 
 def _observer_type(text: str) -> str:
@@ -80,12 +96,23 @@ def _observer_type(text: str) -> str:
 _observer_type.__name__ = "observer"
 
 
-def add_observer(parser: argparse.ArgumentParser) -> None:
-    """``--observer``: a shipped observer or alias (default CIE 1931 2°)."""
-    parser.add_argument("--observer", type=_observer_type, default="1931",
+def _declared_or_observer(text: str) -> str:
+    return DECLARED if text.strip().lower() == DECLARED else _observer_type(text)
+
+
+_declared_or_observer.__name__ = "observer"
+
+
+def add_observer(parser: argparse.ArgumentParser, *, declared: bool = False) -> None:
+    """``--observer``: a shipped observer or alias (default CIE 1931 2°; with ``declared``, what
+    the measurement file declares, else CIE 1931 2°)."""
+    default = _DECLARED_HELP.format("1931") if declared else "1931"
+    parser.add_argument("--observer", type=_declared_or_observer if declared else _observer_type,
+                        default=DECLARED if declared else "1931",
                         help="standard observer: " + "; ".join(f"{n} ({OBSERVERS.description(n)})"
                                                                for n in ("CIE 1931 2°", "CIE 1964 10°"))
-                        + "; also 2015-2, 2015-10; aliases 1931, 1964, 2deg, 10deg (default 1931)")
+                        + "; also 2015-2, 2015-10; aliases 1931, 1964, 2deg, 10deg"
+                        + (f"; '{DECLARED}'" if declared else "") + f" (default {default})")
 
 
 def add_gamut(parser: argparse.ArgumentParser, default: str = DEFAULT_GAMUT) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import csv
 from pathlib import Path
 
@@ -24,6 +25,10 @@ def register(subparsers) -> None:
     src.add_argument("--xyz", nargs=3, type=float, metavar=("X", "Y", "Z"))
     src.add_argument("--hex", nargs="+", metavar="RRGGBB", help="sRGB hex colours")
     src.add_argument("--csv", type=Path, help="CSV with columns X,Y,Z (one colour per row)")
+    p.add_argument("--xyz-scale", type=_scale, default=None, metavar="{1,100}",
+                   help="the scale of --xyz and --csv colours: 100 (perfect white Y = 100, the default "
+                   "scale) or 1 (white Y = 1: the values are multiplied by 100); --xyz with every value "
+                   "at most 1 must say which")
     add_illuminant(p, what="the colours (their perfect white has Y = 100)")
     add_observer(p)
     p.add_argument("--range", nargs=3, type=float, default=(380.0, 780.0, 5.0),
@@ -37,6 +42,32 @@ def register(subparsers) -> None:
     p.add_argument("--plot", type=Path, help="also write a PNG of the recovered curves")
     add_force(p)
     p.set_defaults(handler=_run)
+
+
+def _scale(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = None
+    if value not in (1.0, 100.0):
+        raise argparse.ArgumentTypeError(f"expected 1 (white Y = 1) or 100 (white Y = 100), got {text!r:.20}")
+    return value
+
+
+_scale.__name__ = "scale"
+
+
+def _on_scale(XYZ: np.ndarray, scale: float | None, asked: bool) -> np.ndarray:
+    """XYZ on the 100 scale: ``--xyz-scale 1`` multiplies by 100; an ``--xyz`` colour whose
+    values are all at most 1 without ``--xyz-scale`` is refused (a 0–1 colour read as XYZ100 is a
+    near-black reflectance)."""
+    if scale is None and asked and np.all(np.abs(XYZ) <= 1.0):
+        X, Y, Z = (f"{v:g}" for v in XYZ[0])
+        raise UserError(
+            f"--xyz {X} {Y} {Z}: every value is at most 1; is the colour on the 0–1 scale (white Y = 1)? "
+            "Pass --xyz-scale 1 (it is multiplied by 100), or --xyz-scale 100 if it is this dark on the "
+            "scale where white has Y = 100")
+    return XYZ * 100.0 if scale == 1.0 else XYZ
 
 
 def _hex_to_xyz(codes: list[str], illuminant: str, observer: str, grid) -> np.ndarray:
@@ -92,13 +123,15 @@ def _run(args) -> int:
 
     check_files(args, ("out", "plot"), ("csv",), MAX_SPECTRAL_FILE_BYTES)
     grid = tuple(args.range)
+    if args.xyz_scale is not None and args.hex is not None:
+        raise UserError("--xyz-scale applies to --xyz and --csv colours, not to --hex")
     if args.xyz is not None:
-        XYZ, names = np.array([args.xyz]), ["colour_1"]
+        XYZ, names = _on_scale(np.array([args.xyz]), args.xyz_scale, asked=True), ["colour_1"]
     elif args.hex is not None:
         XYZ, names = _hex_to_xyz(args.hex, args.illuminant, args.observer, grid), [
             "#" + h.lstrip("#").lower() for h in args.hex]
     else:
-        XYZ = _read_csv(args.csv)
+        XYZ = _on_scale(_read_csv(args.csv), args.xyz_scale, asked=False)
         names = [f"colour_{i + 1}" for i in range(len(XYZ))]
     bounds = None if args.bounds == "none" else args.bounds
     # one colour alone: the library's error (one line, with the white of this grid) says it all

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from . import UserError
-from .colorimetry import FILE_HELP, PERCENT_HELP, reflectance_factors
+from .colorimetry import FILE_HELP, PERCENT_HELP, command_line_hints, read_measurements, reflectance_factors
 from .files import MAX_SPECTRAL_FILE_BYTES, add_force, check_files
 from .options import add_encoding, add_illuminant, add_observer
 
@@ -26,8 +27,8 @@ def register(subparsers) -> None:
     )
     p.add_argument("file", metavar="FILE", help=FILE_HELP)
     add_encoding(p)
-    add_illuminant(p, what="the reflectance samples (seed 001 uses C)")
-    add_observer(p)
+    add_illuminant(p, what="the reflectance samples (seed 001 uses C)", declared=True)
+    add_observer(p, declared=True)
     p.add_argument("--method", choices=_methods(), default="sum",
                    help="summation method: sum, 1nm or astm-e308 (default sum)")
     p.add_argument("--percent", action="store_true", help=PERCENT_HELP)
@@ -53,11 +54,9 @@ def _methods() -> tuple[str, ...]:
 
 def _report(args: argparse.Namespace) -> int:
     from ..report import measurement_report, write_report
-    from ..spectrum_io import read_spectra
 
     check_files(args, ("out",), ("file",), MAX_SPECTRAL_FILE_BYTES)
-    spectra = reflectance_factors(
-        read_spectra(args.file, percent=True if args.percent else None, encoding=args.encoding), args.file)
+    spectra = reflectance_factors(read_measurements(args), args.file)
     if args.page_rows < 1:
         raise UserError(f"--page-rows must be at least 1; got {args.page_rows}")
     suffix = Path(args.out).suffix.lstrip(".").lower()
@@ -67,7 +66,10 @@ def _report(args: argparse.Namespace) -> int:
         raise UserError(f"--out {args.out!r}: give a .html, .csv, .json or .cgats file, or --format")
     if args.format and suffix in _FORMATS and suffix != args.format:
         raise UserError(f"--format {args.format} would write {args.format.upper()} into {args.out!r}; make them agree")
-    report = measurement_report(spectra, illuminant=args.illuminant, observer=args.observer, method=args.method)
+    with command_line_hints():
+        report = measurement_report(spectra, illuminant=args.illuminant, observer=args.observer, method=args.method)
+    if report.conditions_note:  # the user's conditions differ from the file's: said here and in the report
+        print(f"spectrocolor report: {args.file}: {report.conditions_note}", file=sys.stderr)
     if fmt == "cgats":
         from ..io.writers import table_to_cgats
         from ..safe_write import write_text

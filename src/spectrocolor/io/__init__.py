@@ -31,11 +31,13 @@ import numpy as np
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
 from . import cgats, delimited, tm27
+from .conditions import DeclaredConditions, check_reflectance_scale, choose_conditions, declared_conditions
 from .text import Decoded, apply_scale, decode_text, read_decoded
 from .writers import spectra_to_cgats, spectra_to_csv, table_to_cgats
 
 __all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "spectra_to_cgats", "table_to_cgats",
-           "decode_text", "Decoded"]
+           "decode_text", "Decoded", "declared_conditions", "choose_conditions", "DeclaredConditions",
+           "check_reflectance_scale"]
 
 #: Formats tried, in order, with what each expects (error messages list them).
 FORMATS = (

@@ -10,7 +10,10 @@ Spectral fields are recognised by name: ``SPECTRAL_NM380`` (i1Profiler), ``SPECT
 ``SPECTRAL_380``, ``SPEC_380`` (ArgyllCMS), ``NM380``/``nm_380`` (Barbieri and others),
 ``SPECTRAL_PCT_380``/``SPECTRAL_DEC_380`` (percent / decimal). Sample names come from
 ``SAMPLE_NAME``, else ``SAMPLE_ID`` (or ``SampleID``); every other field (``LAB_L``, ``XYZ_X``, ``RGB_R`` …) is kept as
-text in ``metadata["sample_fields"]``, every keyword in ``metadata["keywords"]``.
+text in ``metadata["sample_fields"]``, every keyword in ``metadata["keywords"]``. The illuminant,
+observer and geometry the keywords declare (``MEASUREMENT_SOURCE "Illumination=D50
+ObserverAngle=2°"``, ``WEIGHTING_FUNCTION``, ``MEASUREMENT_GEOMETRY`` …) are read by
+:func:`spectrocolor.io.conditions.parse_declaration` into ``declared_*`` entries.
 
 **Percent or fraction**, as the file declares it: Argyll's ``SPECTRAL_NORM`` keyword (values are
 divided by it); ``SPECTRAL_PCT_…`` fields (percent) or ``SPECTRAL_DEC_…`` fields (fraction); an
@@ -32,6 +35,7 @@ import re
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
+from .conditions import parse_declaration
 from .text import apply_scale, number, number_table, wavelength_of
 
 _TOKEN = re.compile(r'"([^"]*)"|(\S+)')
@@ -120,7 +124,10 @@ def _tables(text: str, source: str):
                 raise SpectrumError(f"{source}, line {number_}: BEGIN_DATA before any BEGIN_DATA_FORMAT field list")
             state = "data"
         elif number_ > 1 and head != "KEYWORD":
-            keywords[head] = " ".join(tokens[1:])
+            value = " ".join(tokens[1:])
+            if head == "WEIGHTING_FUNCTION" and keywords.get(head):  # one line per function (CGATS.17)
+                value = f"{keywords[head]}; {value}"
+            keywords[head] = value
     if state == "data":
         raise SpectrumError(f"{source}: BEGIN_DATA without END_DATA (the file is cut short)")
     if state == "format":
@@ -161,7 +168,9 @@ def parse_cgats(text: str, source: str, percent: bool | None = None) -> Spectrum
         ``(N, K)`` values (``(K,)`` for one row) on the 0–1 scale where the file or ``percent`` says
         so, names from SAMPLE_NAME/SAMPLE_ID; ``metadata`` with ``format``, ``keywords``,
         ``sample_fields``, ``value_scale`` and, where the keywords give them, ``instrument``,
-        ``illuminant``, ``geometry``, ``date``.
+        ``illuminant``, ``geometry``, ``date``, and the conditions the file declares
+        (``declared_illuminant``, ``declared_observer``, ``declared_geometry``, ``declared_by``:
+        see :mod:`spectrocolor.io.conditions`).
 
     Examples
     --------
@@ -229,6 +238,7 @@ def _table_spectra(identifier, keywords, fields, rows, spectral, source, percent
         found = next((keywords[k] for k in keys if keywords.get(k)), None)
         if found is not None:
             metadata[fact] = found
+    metadata.update(parse_declaration(keywords))
     if others:
         metadata["sample_fields"] = {fields[i]: tuple(row[i] for _, row in rows) for i in others}
     try:

@@ -431,7 +431,8 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
         The full-scale value the file declares (100 for percent, 1 for fractions, Argyll's
         ``SPECTRAL_NORM``), or ``None`` where the format does not say.
     percent : bool or None
-        The caller's option: ``True``, ``False`` or ``None``; see :term:`percent`.
+        The caller's option: ``True``, ``False`` or ``None``; see :term:`percent`. ``True`` on
+        values that never exceed 1 warns (:class:`UserWarning`): they look like fractions.
     source, how : str
         File name and what declared the scale, for messages.
 
@@ -474,5 +475,8 @@ def apply_scale(values: np.ndarray, declared: float | None, percent: bool | None
     if percent is None:
         return values, "as written (the file does not declare percent or fraction; pass percent=True/False)"
     if percent:
+        from .conditions import warn_percent_of_fractions
+
+        warn_percent_of_fractions(values, source)  # percent said of 0–1 data: a warning, as on the CLI
         return values / 100.0, "divided by 100 (percent=True)"
     return values, "as written (percent=False)"

@@ -225,6 +225,8 @@ def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
     geometry = [info.get("ReflectionGeometry") or info.get("TransmissionGeometry") for info in facts]
     if any(geometry):
         metadata["geometry"] = geometry[0] if len(set(geometry)) == 1 else tuple(geometry)
+        if len(set(geometry)) == 1:  # one geometry for every distribution: the file declares it
+            metadata["declared_geometry"] = str(geometry[0])[:80]
     for fact, keys in (
         ("instrument", ("Header/MeasurementEquipment", "Equipment/Model", "Equipment/Name")),
         ("date", ("Header/ReportDate", "Header/DocumentCreationDate")),

@@ -305,10 +305,17 @@ async function saveFile(format) {
     setTimeout(() => URL.revokeObjectURL(a.href), 1000);
   } catch (err) { fail(`Save ${format.toUpperCase()}`, err); }
 }
+/** A file's bytes as base64: the server decodes the text as the library does (BOM, UTF-8, else cp1252). */
+async function fileBase64(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  let binary = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary);
+}
 async function loadFile(file) {
   try {
-    const r = await apiJSON("/api/import", {filename: file.name, content: await file.text(), step_nm: S.step,
-      method: "linear", scale: $("upload-scale").value});
+    const r = await apiJSON("/api/import", {filename: file.name, content_base64: await fileBase64(file),
+      step_nm: S.step, method: "linear", scale: $("upload-scale").value, observer: S.observer});
     const slots = editorCount() - (S.setting === 3 ? 1 : 0);
     const place = (picks) => {
       remember();
