@@ -260,6 +260,7 @@ def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spec
         values, note = apply_scale(spectrum.values, None, percent, source, "")
         kind = {"\t": "TSV", ";": "CSV (; with decimal comma)", ",": "CSV"}[delimiter]
         metadata = {**spectrum.metadata, "format": f"{kind}, paired wavelength/value columns", "value_scale": note}
+        metadata.update(_cary(metadata, paired[3] != header_line))
         return Spectrum(spectrum.wavelengths_nm, values, spectrum.names, metadata)
     wavelength_columns = [(c, wavelength_of(cell)) for c, cell in enumerate(header)]
     wavelength_columns = [(c, nm) for c, nm in wavelength_columns if nm is not None]
@@ -422,10 +423,13 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
     width = 2 * len(names)
     columns: list[array] = [array("d") for _ in range(width)]
     trailer = 0
+    notes: list[str] = []
     for line_number, line in lines:
         cells = cells_of(line_number, line)
         if trailer or NUMBER_START.match(cells[0].strip()) is None:
             trailer += 1
+            if len(notes) < _MAX_NOTES:  # Cary's sample names, Collection Time, method: kept, bounded
+                notes.append(",".join(c.strip() for c in cells if c.strip())[:200])
             continue
         extra = next((i for i in range(width, len(cells)) if cells[i].strip()), None)
         if extra is not None:
@@ -447,6 +451,7 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
     metadata: dict = {"value_kinds": tuple(kinds)}
     if trailer:
         metadata["lines_after_data"] = trailer
+        metadata["notes_after_data"] = tuple(notes)
     for p, name in enumerate(names):
         grid = np.frombuffer(columns[2 * p], dtype=float)
         value = np.frombuffer(columns[2 * p + 1], dtype=float)
@@ -475,3 +480,29 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
         return Spectrum(target, stacked if len(names) > 1 else stacked[0], names, metadata)
     except SpectrumError as exc:
         raise SpectrumError(f"{source}: {exc}") from None
+
+
+#: Lines after a paired table's data kept in ``metadata["notes_after_data"]``.
+_MAX_NOTES = 200
+_CARY_NOTE = re.compile(r"Collection Time|Scan Software Version|\bCary\b|Method Log|Baseline", re.IGNORECASE)
+
+
+def _cary(metadata: dict, two_rows: bool) -> dict:
+    """``format``/``instrument``/``date`` for an Agilent Cary WinUV export, else nothing.
+
+    Cary WinUV writes sample names over ``Wavelength (nm),%R`` pairs and, after the data, the
+    method notes (``Collection Time: …``, ``Instrument …Cary 5000``, ``Scan Software Version``);
+    either says Cary. Other paired tables keep the generic format name.
+    """
+    notes = metadata.get("notes_after_data", ())
+    if not (two_rows or any(_CARY_NOTE.search(note) for note in notes)):
+        return {}
+    found: dict = {"format": f"{metadata['format']} (Agilent Cary WinUV)", "instrument": "Agilent Cary (WinUV)"}
+    for note in notes:
+        model = re.search(r"\bCary[ ,:]*([0-9A-Za-z]+(?: ?[A-Za-z]+)?)", note)
+        if model and "instrument" in note.lower():
+            found["instrument"] = f"Agilent Cary {model[1]}"
+        stamp = re.match(r"Collection Time\s*:?\s*,?\s*(.+)", note)
+        if stamp and "date" not in found:
+            found["date"] = stamp[1].strip(" ,")
+    return found
