@@ -347,6 +347,8 @@ def _instrument(maker: str, fields: dict[str, list[str]]) -> str:
 def _stated(fields: dict[str, list[str]]) -> dict[str, tuple[float, ...]]:
     stated: dict[str, tuple[float, ...]] = {}
     for key, column in fields.items():
+        if re.search(r"\[\s*fc\s*\]|\(\s*fc\s*\)", key, re.IGNORECASE):  # foot-candles, not lux
+            continue
         bare = re.sub(r"\[[^\]]*\]|\([^)]*\)", "", key).strip()
         name = "x" if bare == "x" else "y" if bare == "y" else None
         if name is None:

@@ -59,6 +59,8 @@ from ..errors import SpectrumError
 from ..spectrum import Spectrum, wavelength_grid
 from .text import apply_scale, number, plain_ascii_numbers
 
+#: Most wavelengths ``resample_nm`` may make (0.001 nm over 200–1100 nm is 900 001).
+MAX_RESAMPLED = 1_000_000
 #: What an OceanView/SpectraSuite export holds, for messages.
 EXPECTED = "'Key: value' header lines, '>>>>>Begin Spectral Data<<<<<', then wavelength<TAB>value rows"
 
@@ -353,6 +355,9 @@ def resampled(spectrum: Spectrum, step_nm, source: str) -> Spectrum:
         raise SpectrumError(f"resample_nm: expected a positive step in nm such as 1 or 5, got {step_nm!r:.40}")
     step = float(step_nm)
     grid = spectrum.wavelengths_nm
+    if float(grid[-1] - grid[0]) > MAX_RESAMPLED * step:
+        raise SpectrumError(f"resample_nm: {step:g} nm over {grid[0]:g}–{grid[-1]:g} nm makes more than "
+                            f"{MAX_RESAMPLED} wavelengths; choose a larger step such as 1 or 5")
     start, stop = math.ceil(grid[0] / step - 1e-9) * step, math.floor(grid[-1] / step + 1e-9) * step
     count = (stop - start) / step + 1 if stop >= start else 0
     if count < 2:
