@@ -42,7 +42,11 @@ import numpy as np
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
+from . import cary
 from .text import apply_scale, number, plain_ascii_numbers, wavelength_of
+
+#: Lines after a paired table's data kept in ``metadata["notes_after_data"]`` (Cary's method block).
+_MAX_NOTES = 200
 
 #: The start of a number (data rows of a paired table begin with one).
 NUMBER_START = re.compile(r"[+-]?\.?[0-9]")
@@ -260,7 +264,7 @@ def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spec
         values, note = apply_scale(spectrum.values, None, percent, source, "")
         kind = {"\t": "TSV", ";": "CSV (; with decimal comma)", ",": "CSV"}[delimiter]
         metadata = {**spectrum.metadata, "format": f"{kind}, paired wavelength/value columns", "value_scale": note}
-        metadata.update(_cary(metadata, paired[3] != header_line))
+        metadata.update(cary.recognise(metadata, paired[3] != header_line))
         return Spectrum(spectrum.wavelengths_nm, values, spectrum.names, metadata)
     wavelength_columns = [(c, wavelength_of(cell)) for c, cell in enumerate(header)]
     wavelength_columns = [(c, nm) for c, nm in wavelength_columns if nm is not None]
@@ -481,28 +485,3 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
     except SpectrumError as exc:
         raise SpectrumError(f"{source}: {exc}") from None
 
-
-#: Lines after a paired table's data kept in ``metadata["notes_after_data"]``.
-_MAX_NOTES = 200
-_CARY_NOTE = re.compile(r"Collection Time|Scan Software Version|\bCary\b|Method Log|Baseline", re.IGNORECASE)
-
-
-def _cary(metadata: dict, two_rows: bool) -> dict:
-    """``format``/``instrument``/``date`` for an Agilent Cary WinUV export, else nothing.
-
-    Cary WinUV writes sample names over ``Wavelength (nm),%R`` pairs and, after the data, the
-    method notes (``Collection Time: …``, ``Instrument …Cary 5000``, ``Scan Software Version``);
-    either says Cary. Other paired tables keep the generic format name.
-    """
-    notes = metadata.get("notes_after_data", ())
-    if not (two_rows or any(_CARY_NOTE.search(note) for note in notes)):
-        return {}
-    found: dict = {"format": f"{metadata['format']} (Agilent Cary WinUV)", "instrument": "Agilent Cary (WinUV)"}
-    for note in notes:
-        model = re.search(r"\bCary[ ,:]*([0-9A-Za-z]+(?: ?[A-Za-z]+)?)", note)
-        if model and "instrument" in note.lower():
-            found["instrument"] = f"Agilent Cary {model[1]}"
-        stamp = re.match(r"Collection Time\s*:?\s*,?\s*(.+)", note)
-        if stamp and "date" not in found:
-            found["date"] = stamp[1].strip(" ,")
-    return found

@@ -101,19 +101,20 @@ def identify(text: str) -> str | None:
     True
     """
     head = text[:_HEAD]
-    if re.search(r"^\s*\"?Spectral Data\s*[0-9]{3}", head, re.MULTILINE | re.IGNORECASE):
+    # [ \t]*, not \s*: \s* would cross line ends, and a head of blank lines would take quadratic time
+    if re.search(r"^[ \t]{0,20}\"?Spectral Data[ ]?[0-9]{3}", head, re.MULTILINE | re.IGNORECASE):
         return "Sekonic"
     first_cells = {_label(line.split("\t" if "\t" in line else ",")[0])
                    for line in head.splitlines()[:600] if line.strip()}
     lowered = {cell.lower() for cell in first_cells}
-    if re.search(r"Spectrum\s*\[0\]", head) and re.search(r"\bTcp\b", head):
+    if re.search(r"Spectrum ?\[0\]", head) and re.search(r"\bTcp\b", head):
         return "Konica Minolta"
     has_nm_rows = any(_NM_LABEL.match(cell) for cell in first_cells)
     if has_nm_rows and "lux" in lowered:
         return "UPRtek"
-    if re.search(r"\bTcp\b", head) and (has_nm_rows or re.search(r"[,\t]\s*\"?360\s*nm\"?\s*[,\t]", head)):
+    if re.search(r"\bTcp\b", head) and (has_nm_rows or re.search(r"[,\t] ?\"?360 ?nm\"? ?[,\t]", head)):
         return "Konica Minolta"
-    if re.search(r"\bCL-(?:500A|70F|S10w)\b", head) and (has_nm_rows or re.search(r"360\s*nm", head)):
+    if re.search(r"\bCL-(?:500A|70F|S10w)\b", head) and (has_nm_rows or re.search(r"360 ?nm", head)):
         return "Konica Minolta"
     return None
 
