@@ -220,3 +220,16 @@ def test_resample_nm_applies_to_any_format_and_says_so():
 ])
 def test_makers_are_told_by_content(text, maker):
     assert identify(text) == maker
+
+
+def test_oceanview_from_a_decimal_comma_windows_machine_with_crlf():
+    text = OCEANVIEW.replace(".", ",").replace("\n", "\r\n").replace("1,000000E-1", "1.000000E-1")
+    s = parse_spectra(text, "komma.txt")
+    # exact: the same digits with a comma for the point, parsed as the same decimal numbers
+    assert np.array_equal(s.wavelengths_nm, sc.read_spectra(CORPUS / "oceanview_flame.txt").wavelengths_nm)
+    assert s.metadata["pixels"] == 2048
+
+
+def test_a_generic_table_is_not_taken_for_an_instrument_export():
+    for text in ("wavelength_nm,Tcp lamp\n380,1\n390,2\n", "Sample,380,390,400\nLUX,1,2,3\n"):
+        assert parse_spectra(text, "t.csv").metadata["format"].startswith("CSV")
