@@ -239,8 +239,13 @@ def _rows_layout(text, delimiter, fail, source):
         if nm is not None:
             columns.append(c)
             grid.append(nm)
-    others = [c for c in range(len(header)) if c not in set(columns)]
-    fields: dict[str, list[str]] = {header[c] or f"column {c + 1}": [] for c in others}
+    spectral = set(columns)
+    others = [c for c in range(len(header)) if c not in spectral]
+    keys: dict[int, str] = {}
+    for c in others:  # a name used twice (or none) gets its column number: one list per column
+        key = header[c] or f"column {c + 1}"
+        keys[c] = key if key not in keys.values() else f"{key} (column {c + 1})"
+    fields: dict[str, list[str]] = {keys[c]: [] for c in others}
     data = array("d")
     rows = 0
     for line_number, line in lines:
@@ -248,7 +253,7 @@ def _rows_layout(text, delimiter, fail, source):
         if len(cells) != len(header):
             raise fail(line_number, f"{len(cells)} cells, but the header (line {header_line}) names {len(header)}")
         for c in others:
-            fields[header[c] or f"column {c + 1}"].append(cells[c])
+            fields[keys[c]].append(cells[c])
         where = f"{source}: this is {_WHAT['Konica Minolta']}; line {line_number}"
         data.extend(number(cells[c], f"{where}, column {header[c]!r}") for c in columns)
         rows += 1
@@ -285,7 +290,11 @@ def _key_value_layout(text, delimiter, maker, fail, source):
         if len(texts) != width:
             raise fail(line_number, f"{label!r} holds {len(texts)} value(s), but the first spectral row holds "
                        f"{width}; every row needs one value per measurement")
-        if not blocks or nm <= blocks[-1][0][-1]:
+        turned = False
+        if blocks:  # a new block where the wavelengths repeat or turn back (Sekonic: 5 nm, then 1 nm)
+            previous = blocks[-1][0]
+            turned = len(previous) >= 2 and (nm - previous[-1]) * (previous[1] - previous[0]) < 0
+        if not blocks or nm == blocks[-1][0][-1] or turned:
             blocks.append(([], array("d"), line_number))
         grid, data, _ = blocks[-1]
         where = f"{source}: this is {_WHAT[maker]}; line {line_number}, {label!r}"
@@ -295,12 +304,16 @@ def _key_value_layout(text, delimiter, maker, fail, source):
         raise fail(None, f"no spectral rows; expected {EXPECTED[maker]}")
     chosen = min(range(len(blocks)), key=lambda b: (_finest_step(blocks[b][0]), -b))
     grid, data, _ = blocks[chosen]
+    values = np.frombuffer(data, dtype=float).reshape(len(grid), width)
     notes = {}
+    if len(grid) > 1 and grid[1] < grid[0]:  # written from long to short: sorted ascending
+        grid, values = grid[::-1], values[::-1]
+        notes["wavelength_order"] = "descending in the file; sorted ascending (values reordered with them)"
     if len(blocks) > 1:
         described = [f"{g[0]:g}–{g[-1]:g} nm, {len(g)} rows from line {first}" for g, _, first in blocks]
         notes["spectral_blocks"] = (f"{len(blocks)} spectral blocks ({'; '.join(described)}); the finest, "
                                     f"block {chosen + 1}, was read")
-    values = np.frombuffer(data, dtype=float).reshape(len(grid), width).T
+    values = values.T
     unit_scale, unit_said = _unit(maker, unit_label, fail)
     columns = {key: (list(v) + [""] * width)[:width] for key, v in fields.items()}
     names = _names(columns, width)
@@ -308,7 +321,7 @@ def _key_value_layout(text, delimiter, maker, fail, source):
 
 
 def _finest_step(grid: list[float]) -> float:
-    return float(np.min(np.diff(grid))) if len(grid) > 1 else math.inf
+    return float(np.min(np.abs(np.diff(grid)))) if len(grid) > 1 else math.inf
 
 
 def _unit(maker: str, label: str | None, fail) -> tuple[float, str]:
