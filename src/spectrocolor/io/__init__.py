@@ -52,8 +52,8 @@ FORMATS = (
     ("JSON", '{"wavelengths_nm": […], "spectra": {name: […]}}'),
     ("IES TM-27 XML", tm27.EXPECTED),
     ("CGATS/Argyll", cgats.EXPECTED),
-    ("Ocean Optics OceanView/SpectraSuite", oceanview.EXPECTED),
-    *((f"{maker} light meter", expected) for maker, expected in lightmeters.EXPECTED.items()),
+    ("OceanView/SpectraSuite", "a '>>>>>Begin Spectral Data<<<<<' line"),
+    ("light meters", lightmeters.SUMMARY),
     ("CSV/TSV", delimited.EXPECTED),
 )
 

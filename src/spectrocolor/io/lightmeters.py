@@ -55,6 +55,9 @@ EXPECTED = {
     "Sekonic": "'Illuminance [lx],…' and 'Spectral Data 380[nm],value' lines",
     "Konica Minolta": "'Tcp' with 'Spectrum[0]…' or '360nm' columns, or 'Tcp,…' and '360nm,value' lines",
 }
+#: The three in one line, for the list of formats tried.
+SUMMARY = ("UPRtek 'LUX'/'380nm' lines, Sekonic 'Spectral Data 380[nm]' lines, Konica Minolta 'Tcp' with "
+           "'Spectrum[0]'/'360nm'")
 _WHAT = {"UPRtek": "a UPRtek light-meter export", "Sekonic": "a Sekonic C-700/C-800/C-7000 export",
          "Konica Minolta": "a Konica Minolta CL-500A/CL-70F export"}
 #: How far into the text the maker is identified (the headers are a few kilobytes).
