@@ -9,7 +9,10 @@ WinUV)``, ``["instrument"]``, ``["date"]`` from the first ``Collection Time``).
 
 References
 ----------
-Agilent Technologies, *Cary WinUV Software* help (Scan application: file save formats, CSV).
+The layout as public material shows it: the Cary 300 export quoted in ComPlat's
+chemotion_saurus converter profiles (``Collection Time:``, ``Scan Software Version:``,
+``Instrument Cary 300`` after descending paired data) and the description this project's
+``tests/data/io/make_dialects.py`` was written from.
 """
 
 from __future__ import annotations

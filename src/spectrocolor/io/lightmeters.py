@@ -30,10 +30,17 @@ is recognised but malformed gets one line naming the maker's format and the line
 
 References
 ----------
-Konica Minolta, *Illuminance Spectrophotometer CL-500A Instruction Manual* and *CL-S10w Data
-Management Software Instruction Manual* (measured items, 360–780 nm at 1 nm). UPRtek, *MK350N
-Premium / uSpectrum PC software user manual* (saved items, 380–780 nm at 1 nm). Sekonic,
-*C-800 SpectroMaster / C-800 Utility user manual* (CSV items, 5 nm and 1 nm spectral data).
+The layouts as public material shows them (read, not copied): the UPRtek (CV600) and Sekonic
+(C-800) example files of colour-science's test resources and its documented readers
+``SpectralDistribution_UPRTek``/``SpectralDistribution_Sekonic`` (which also take the last,
+1 nm, Sekonic block); a CL-500A memory CSV published with the LightOcular study
+(github.com/mi3nts/LightOcular, ``raw/Minolta``: ``Spectrum[0]`` … ``Spectrum[420]`` for
+360–780 nm). The units come from a rough check on those files (683 × the values near 555 nm ×
+107 nm, the width of ȳ, against the stated illuminance, which settles the factor of 1000):
+mW·m⁻²·nm⁻¹ for UPRtek (about 660 lx for its 695 lx), W·m⁻²·nm⁻¹ for Sekonic (29 for 30.1 lx)
+and the CL-500A (8800 for 6385 lx, a bluish daylight). The CL-S10w
+key/value layout and the Sekonic ``[mW/m²nm]`` label follow the makers' item names; no such
+file was available to check.
 """
 
 from __future__ import annotations

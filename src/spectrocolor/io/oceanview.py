@@ -41,9 +41,9 @@ reading, the rows must number exactly what the header claims.
 
 References
 ----------
-Ocean Optics, *OceanView Installation and Operation Manual* (file save formats, processing
-nodes); Ocean Optics, *SpectraSuite Spectrometer Operating Software Installation and Operation
-Manual* (tab-delimited output).
+The layout as public material shows it (read, not copied): the OceanView Flame export among
+colour-science's test resources, and Ocean Optics' OceanView and SpectraSuite manuals' account
+of tab-delimited saving and processing nodes (absolute irradiance in µW·cm⁻²·nm⁻¹).
 """
 
 from __future__ import annotations
