@@ -9,8 +9,18 @@ JSON                        first character ``{``                               
 IES TM-27-14/-20 XML        document element ``<IESTM2714>``                       :mod:`.tm27`
 CGATS.17, i1Profiler,       a ``BEGIN_DATA_FORMAT`` line                           :mod:`.cgats`
 Argyll ``.ti3``/``.sp``
+Ocean Optics OceanView,     a ``>>>>>Begin Spectral Data<<<<<`` line               :mod:`.oceanview`
+SpectraSuite ``.txt``
+Light meters: UPRtek,       ``LUX``/``380nm`` lines; ``Spectral Data 380[nm]``;    :mod:`.lightmeters`
+Sekonic, Konica Minolta     ``Tcp`` with ``Spectrum[0]``/``360nm``
+CL-500A/CL-70F
 CSV/TSV/``;``, long/wide    anything else, by its header                           :mod:`.delimited`
+(Agilent Cary WinUV pairs)
 ==========================  =====================================================  ==============
+
+Light meters and OceanView give lights (``metadata["quantity"]``, ``["unit"]``; the meter's own
+illuminance, CCT … in ``["stated"]``); OceanView keeps its irregular pixel wavelengths unless
+``resample_nm=`` asks for a uniform grid.
 
 No registry package reads these formats to this standard without pulling in a large dependency
 (colour-science reads TM-27-14 only; no maintained CGATS reader on PyPI keeps sample names,
@@ -30,7 +40,7 @@ import numpy as np
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
-from . import cgats, delimited, tm27
+from . import cgats, delimited, lightmeters, oceanview, tm27
 from .conditions import DeclaredConditions, check_reflectance_scale, choose_conditions, declared_conditions
 from .text import Decoded, apply_scale, decode_text, read_decoded
 from .writers import spectra_to_cgats, spectra_to_csv, table_to_cgats
@@ -44,6 +54,8 @@ FORMATS = (
     ("JSON", '{"wavelengths_nm": […], "spectra": {name: […]}}'),
     ("IES TM-27 XML", tm27.EXPECTED),
     ("CGATS/Argyll", cgats.EXPECTED),
+    ("OceanView/SpectraSuite", "a '>>>>>Begin Spectral Data<<<<<' line"),
+    ("light meters", lightmeters.SUMMARY),
     ("CSV/TSV", delimited.EXPECTED),
 )
 
@@ -88,7 +100,7 @@ def _only_numbers(value, where: str) -> None:
 
 
 def parse_spectra(text: str | bytes, source: str = "<text>", percent: bool | None = None, *,
-                  encoding: str | None = None) -> Spectrum:
+                  encoding: str | None = None, resample_nm: float | None = None) -> Spectrum:
     """Spectra from a file's text, the format detected from the content (see the module docstring).
 
     Parameters
@@ -106,6 +118,11 @@ def parse_spectra(text: str | bytes, source: str = "<text>", percent: bool | Non
     encoding : str or None, keyword-only, default None
         For ``bytes``: the codec to decode them with (``cp1252``, ``latin-1``, ``utf-16`` …)
         instead of detecting it. Text that is already a ``str`` takes none.
+    resample_nm : float or None, keyword-only, default None
+        ``None`` keeps the file's wavelengths as they are (an OceanView export's irregular
+        pixel wavelengths included; ``metadata["grid"]`` says so); a step such as ``1``
+        interpolates linearly onto a uniform grid of that step inside the measured range and
+        records it in ``metadata["resampled"]`` (:func:`spectrocolor.io.oceanview.resampled`).
 
     Returns
     -------
@@ -131,11 +148,13 @@ def parse_spectra(text: str | bytes, source: str = "<text>", percent: bool | Non
     if percent not in (None, True, False):
         raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
     if isinstance(text, (bytes, bytearray, memoryview)):
-        return _parse_decoded(decode_text(bytes(text), source, encoding), source, percent)
-    if encoding is not None:
+        spectrum = _parse_decoded(decode_text(bytes(text), source, encoding), source, percent)
+    elif encoding is not None:
         raise SpectrumError(f"encoding: applies to bytes; {source} was given as str (already decoded), "
                             "so leave encoding unset or pass the file's bytes")
-    return _parse_text(text, source, percent)
+    else:
+        spectrum = _parse_text(text, source, percent)
+    return spectrum if resample_nm is None else oceanview.resampled(spectrum, resample_nm, source)
 
 
 def _parse_decoded(decoded: Decoded, source: str, percent: bool | None) -> Spectrum:
@@ -156,6 +175,10 @@ def _parse_text(text: str, source: str, percent: bool | None) -> Spectrum:
         raise SpectrumError(f"{source}: XML, but not IES TM-27; expected {tm27.EXPECTED}")
     if cgats.looks_like_cgats(text):
         return cgats.parse_cgats(text, source, percent)
+    if oceanview.looks_like_oceanview(text):
+        return oceanview.parse_oceanview(text, source, percent)
+    if (maker := lightmeters.identify(text)) is not None:
+        return lightmeters.parse_lightmeter(text, source, percent, maker)
     try:
         return delimited.parse_delimited(text, source, percent)
     except SpectrumError as exc:
@@ -165,7 +188,8 @@ def _parse_text(text: str, source: str, percent: bool | None) -> Spectrum:
         raise SpectrumError(f"{exc}. Formats tried: {tried}") from None
 
 
-def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str | None = None) -> Spectrum:
+def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str | None = None,
+                 resample_nm: float | None = None) -> Spectrum:
     """Read the spectra in a measurement file: CSV/TSV (long or wide, ``;`` with decimal commas),
     CGATS.17 (i1Profiler, X-Rite, Barbieri), ArgyllCMS ``.ti3``/``.sp``, IES TM-27 XML or JSON.
 
@@ -184,6 +208,9 @@ def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str
         only when every byte is a printable cp1252 character (see
         :func:`spectrocolor.io.decode_text`); or the codec to use (``"cp1252"``,
         ``"latin-1"``, ``"utf-16"``, ``"mac-roman"`` …).
+    resample_nm : float or None, keyword-only, default None
+        As for :func:`parse_spectra`: ``None`` keeps the file's wavelengths (irregular ones
+        too), a step interpolates onto a uniform grid and says so in ``metadata["resampled"]``.
 
     Returns
     -------
@@ -221,7 +248,8 @@ def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str
         raise SpectrumError(f"{path}: is a folder, not a spectral file (CSV, CGATS, TM-27 XML or JSON)")
     if percent not in (None, True, False):
         raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
-    return _parse_decoded(read_decoded(path, encoding), str(path), percent)
+    spectrum = _parse_decoded(read_decoded(path, encoding), str(path), percent)
+    return spectrum if resample_nm is None else oceanview.resampled(spectrum, resample_nm, str(path))
 
 
 def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:

@@ -42,7 +42,11 @@ import numpy as np
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
+from . import cary
 from .text import apply_scale, number, plain_ascii_numbers, wavelength_of
+
+#: Lines after a paired table's data kept in ``metadata["notes_after_data"]`` (Cary's method block).
+_MAX_NOTES = 200
 
 #: The start of a number (data rows of a paired table begin with one).
 NUMBER_START = re.compile(r"[+-]?\.?[0-9]")
@@ -260,6 +264,7 @@ def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spec
         values, note = apply_scale(spectrum.values, None, percent, source, "")
         kind = {"\t": "TSV", ";": "CSV (; with decimal comma)", ",": "CSV"}[delimiter]
         metadata = {**spectrum.metadata, "format": f"{kind}, paired wavelength/value columns", "value_scale": note}
+        metadata.update(cary.recognise(metadata, paired[3] != header_line))
         return Spectrum(spectrum.wavelengths_nm, values, spectrum.names, metadata)
     wavelength_columns = [(c, wavelength_of(cell)) for c, cell in enumerate(header)]
     wavelength_columns = [(c, nm) for c, nm in wavelength_columns if nm is not None]
@@ -422,10 +427,13 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
     width = 2 * len(names)
     columns: list[array] = [array("d") for _ in range(width)]
     trailer = 0
+    notes: list[str] = []
     for line_number, line in lines:
         cells = cells_of(line_number, line)
         if trailer or NUMBER_START.match(cells[0].strip()) is None:
             trailer += 1
+            if len(notes) < _MAX_NOTES:  # Cary's sample names, Collection Time, method: kept, bounded
+                notes.append(",".join(c.strip() for c in cells if c.strip())[:200])
             continue
         extra = next((i for i in range(width, len(cells)) if cells[i].strip()), None)
         if extra is not None:
@@ -447,6 +455,7 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
     metadata: dict = {"value_kinds": tuple(kinds)}
     if trailer:
         metadata["lines_after_data"] = trailer
+        metadata["notes_after_data"] = tuple(notes)
     for p, name in enumerate(names):
         grid = np.frombuffer(columns[2 * p], dtype=float)
         value = np.frombuffer(columns[2 * p + 1], dtype=float)
@@ -475,3 +484,4 @@ def _paired(layout, lines, cells_of, source: str, decimal_comma: bool) -> Spectr
         return Spectrum(target, stacked if len(names) > 1 else stacked[0], names, metadata)
     except SpectrumError as exc:
         raise SpectrumError(f"{source}: {exc}") from None
+

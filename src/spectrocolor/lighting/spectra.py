@@ -35,6 +35,9 @@ CHUNK = 2048
 
 #: How a refused grid interval is to be fixed, said from Python (the command line says its own).
 RESAMPLE_HINT = "resample it, e.g. spd.resample(wavelength_grid({start:g}, {stop:g}, 1), 'sprague')"
+#: The hint for irregular samples (spectrometer pixels), where Sprague interpolation does not apply.
+_IRREGULAR_HINT = ("resample it, e.g. spd.resample(wavelength_grid({start:g}, {stop:g}, 1), 'linear') (Sprague "
+                   "needs uniform samples), or read the file with read_spectra(..., resample_nm=1)")
 
 
 @dataclass(frozen=True)
@@ -183,7 +186,8 @@ def checked_lights(spd, metric: str, argument: str = "spd", *, start_nm: float |
         raise SpectrumError(
             f"{argument}: {need.label} needs a uniform "
             f"{' or '.join(f'{s:g} nm' for s in need.intervals_nm)} grid, got {spacing}; "
-            + resample_hint.format(start=start, stop=stop))
+            + (resample_hint if step is not None or resample_hint != RESAMPLE_HINT else _IRREGULAR_HINT)
+            .format(start=start, stop=stop))
     values = np.asarray(spd.values, dtype=np.float64)
     shape = spd.batch_shape
     values = values.reshape(-1, values.shape[-1])
