@@ -38,7 +38,7 @@ import numpy as np
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
 from . import cgats, cxf, delimited, qtx, sniff, tm27, xlsx
-from .text import Decoded, apply_scale, decode_text, read_checked
+from .text import Decoded, apply_scale, decode_text
 from .writers import spectra_to_cgats, spectra_to_csv, table_to_cgats
 
 __all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "spectra_to_cgats", "table_to_cgats",
@@ -243,7 +243,7 @@ def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str
         raise SpectrumError(f"{path}: is a folder, not a spectral file (CSV, CGATS, TM-27 XML or JSON)")
     if percent not in (None, True, False):
         raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
-    return _parse_bytes(read_checked(path, encoding), str(path), percent, encoding)
+    return _parse_bytes(sniff.read_checked(path, encoding), str(path), percent, encoding)
 
 
 def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:

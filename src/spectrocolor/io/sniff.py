@@ -34,8 +34,10 @@ from __future__ import annotations
 
 import io
 import zipfile
+from pathlib import Path
 
 from ..errors import SpectrumError
+from .text import MAX_FILE_BYTES, codec_name
 
 #: ``(signature, offset, name, advice)``: formats recognised by their first bytes but not read here.
 _SIGNATURES = (
@@ -140,3 +142,45 @@ def _zip_kind(data: bytes, source: str) -> str:
         found = f"a ZIP archive ({len(names)} members: {shown or 'none'})"
         advice = "unpack it and read the spectral file inside"
     raise SpectrumError(f"{source}: this is {found}; {advice}")
+
+
+def read_checked(path: Path, encoding: str | None = None) -> bytes:
+    """The file's bytes, the ``encoding`` name and the file's size checked first.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+    encoding : str or None, default None
+        Checked to be a known text codec (an unknown name is the caller's error, reported
+        before the file is read); the bytes are not decoded here.
+
+    Returns
+    -------
+    bytes
+        The whole file, for :func:`binary_format` and then the text decoder.
+
+    Raises
+    ------
+    SpectrumError
+        For an unknown encoding or a file larger than
+        :data:`spectrocolor.io.text.MAX_FILE_BYTES`.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "a.csv"
+    ...     _ = path.write_bytes(b"nm,a")
+    ...     read_checked(path)
+    b'nm,a'
+    """
+    if encoding is not None:
+        codec_name(encoding)
+    size = path.stat().st_size
+    if size > MAX_FILE_BYTES:
+        raise SpectrumError(
+            f"{path}: {size} bytes; spectral tables are read up to {MAX_FILE_BYTES} bytes "
+            "(split the file, or read a spectral image with read_cube)"
+        )
+    return path.read_bytes()

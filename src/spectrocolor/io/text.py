@@ -295,48 +295,15 @@ def read_decoded(path: Path, encoding: str | None = None) -> Decoded:
     ...     read_decoded(path).text
     'wavelength_nm,µ'
     """
-    return decode_text(read_checked(path, encoding), str(path), encoding)
-
-
-def read_checked(path: Path, encoding: str | None = None) -> bytes:
-    """The file's bytes, after checking the ``encoding`` name and the file's size.
-
-    Parameters
-    ----------
-    path : pathlib.Path
-        The file.
-    encoding : str or None, default None
-        Checked to be a known text codec (an unknown name is the caller's error, reported
-        before the file is read).
-
-    Returns
-    -------
-    bytes
-        The whole file.
-
-    Raises
-    ------
-    SpectrumError
-        For an unknown encoding or a file larger than :data:`MAX_FILE_BYTES`.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     path = pathlib.Path(folder) / "a.csv"
-    ...     _ = path.write_bytes(b"nm,a")
-    ...     read_checked(path)
-    b'nm,a'
-    """
     if encoding is not None:
-        codec_name(encoding)
+        codec_name(encoding)  # an unknown name is the caller's error, before the file is read
     size = path.stat().st_size
     if size > MAX_FILE_BYTES:
         raise SpectrumError(
             f"{path}: {size} bytes; spectral tables are read up to {MAX_FILE_BYTES} bytes "
             "(split the file, or read a spectral image with read_cube)"
         )
-    return path.read_bytes()
+    return decode_text(path.read_bytes(), str(path), encoding)
 
 
 def wavelength_of(label: str) -> float | None:
