@@ -150,3 +150,17 @@ def test_cxf_writer_round_trips_every_name_xml_can_hold_and_refuses_the_rest(nam
     assert result.names == spectrum.names
     # exact: repr() writes the shortest decimal that reads back as the same double
     assert np.array_equal(result.values.reshape(spectrum.values.shape), spectrum.values)
+
+
+@SETTINGS
+@given(values=st.lists(st.floats(0, 1), min_size=4, max_size=4), start=st.integers(360, 400))
+def test_report_to_cxf_round_trips_the_spectra(values, start):
+    from spectrocolor.io.cxf import report_to_cxf
+
+    spectrum = Spectrum(np.arange(start, start + 400, 100), values, ["tile"])
+    result = _outcome(lambda: report_to_cxf(spectrum, sc.measurement_report(spectrum, illuminant="D65")))
+    if isinstance(result, SpectrumError):  # a grid the report cannot use is refused in one line
+        return
+    back = parse_spectra(result, "r.cxf")
+    # exact: repr() writes the shortest decimal that reads back as the same double
+    assert back == spectrum and back.metadata["illuminant"] == "D65"

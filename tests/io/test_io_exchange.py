@@ -279,3 +279,23 @@ def test_cli_reads_a_workbook_through_the_real_entry_point():
                            "--illuminant", "D50"], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert NAMES[0] in done.stdout
+
+
+def test_cli_report_writes_cxf_with_the_spectra_and_their_colours(tmp_path):
+    import subprocess
+    import sys
+    import xml.etree.ElementTree as ElementTree
+
+    out = tmp_path / "report.cxf"
+    done = subprocess.run([sys.executable, "-m", "spectrocolor", "report", str(CORPUS / "xrite.cxf"), "--illuminant",
+                           "D50", "--out", str(out)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    back = read_spectra(out)
+    assert back == _read("xrite.cxf") and back.names == NAMES  # == compares grid and values exactly
+    assert (back.metadata["illuminant"], back.metadata["observer"]) == ("D50", "2°")
+    ns = {"cc": "http://colorexchangeformat.com/CxF3-core"}
+    lab = ElementTree.parse(out).getroot().findall(".//cc:ColorCIELab", ns)
+    assert len(lab) == 3
+    report = sc.measurement_report(_read("xrite.cxf"), illuminant="D50").records()
+    # the report's rounded numbers, written by repr() and read back by float(): the same doubles
+    assert float(lab[0].find("cc:L", ns).text) == report[0]["L*"]  # exact: repr/float round trip

@@ -53,7 +53,7 @@ from ..spectrum import Spectrum
 from .text import apply_scale, number, number_table
 from .tm27 import _document_element, refuse_declarations
 
-__all__ = ["looks_like_cxf", "parse_cxf", "spectra_to_cxf", "NAMESPACE", "EXPECTED"]
+__all__ = ["looks_like_cxf", "parse_cxf", "spectra_to_cxf", "report_to_cxf", "NAMESPACE", "EXPECTED"]
 
 #: The CxF3 core namespace.
 NAMESPACE = "http://colorexchangeformat.com/CxF3-core"
@@ -293,7 +293,22 @@ def _xml_text(text, what: str) -> str:
     return text
 
 
-def spectra_to_cxf(spectrum: Spectrum) -> str:
+def _colour_elements(colour, what: str) -> list[str]:
+    """``ColorCIEXYZ``/``ColorCIELab`` lines for one sample's ``{"XYZ": (X, Y, Z), "Lab": (L, a, b)}``."""
+    lines = []
+    for key, tag, parts in (("XYZ", "ColorCIEXYZ", ("X", "Y", "Z")), ("Lab", "ColorCIELab", ("L", "A", "B"))):
+        values = colour.get(key)
+        if values is None or any(v is None for v in values):
+            continue  # not computed (NaN in a report): left out
+        numbers = [float(v) for v in values]
+        if len(numbers) != 3 or not all(np.isfinite(numbers)):
+            raise SpectrumError(f"{what}[{key!r}]: expected three finite numbers, got {values!r:.60}")
+        inner = "".join(f"<cc:{p}>{v!r}</cc:{p}>" for p, v in zip(parts, numbers, strict=True))
+        lines.append(f'          <cc:{tag} ColorSpecification="cs1">{inner}</cc:{tag}>')
+    return lines
+
+
+def spectra_to_cxf(spectrum: Spectrum, colours=None) -> str:
     """A CxF3 document holding ``spectrum`` as reflectance spectra (see the module docstring).
 
     Parameters
@@ -302,6 +317,11 @@ def spectra_to_cxf(spectrum: Spectrum) -> str:
         One spectrum or an ``(N, K)`` batch on a regular wavelength grid (nm), values on the 0–1
         scale. ``metadata`` ``illuminant``, ``observer`` (``"2°"``/``"10°"`` or the CxF3
         words), ``geometry`` and ``instrument`` are written when they are single strings.
+    colours : sequence of dict, optional
+        One per sample: ``{"XYZ": (X, Y, Z), "Lab": (L*, a*, b*)}`` (either may be missing or
+        hold None), written beside the spectrum as ``ColorCIEXYZ``/``ColorCIELab`` under the
+        same colour specification (the command line's ``report --out x.cxf``). The reader skips
+        them.
 
     Returns
     -------
@@ -337,6 +357,8 @@ def spectra_to_cxf(spectrum: Spectrum) -> str:
         facts["observer"] = words.get(observer, observer)
     names = [_xml_text(name, "spectrum name") for name in spectrum.names] if spectrum.names else [
         f"sample_{i + 1}" for i in range(values.shape[0])]
+    if colours is not None and len(colours) != values.shape[0]:
+        raise SpectrumError(f"colours: {len(colours)} entries for {values.shape[0]} spectra; give one per sample")
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              f'<cc:CxF xmlns:cc="{NAMESPACE}">',
              "  <cc:FileInformation>",
@@ -350,6 +372,7 @@ def spectra_to_cxf(spectrum: Spectrum) -> str:
                   "        <cc:ColorValues>",
                   f'          <cc:ReflectanceSpectrum ColorSpecification="cs1" StartWL="{start!r}">{text}'
                   "</cc:ReflectanceSpectrum>",
+                  *([] if colours is None else _colour_elements(colours[i - 1], f"colours[{i - 1}]")),
                   "        </cc:ColorValues>",
                   "      </cc:Object>"]
     lines += ["    </cc:ObjectCollection>",
@@ -375,3 +398,32 @@ def spectra_to_cxf(spectrum: Spectrum) -> str:
               "</cc:CxF>",
               ""]
     return "\n".join(lines)
+
+
+def report_to_cxf(spectra: Spectrum, report) -> str:
+    """A CxF3 document of measured spectra with a measurement report's XYZ and L*a*b*.
+
+    Parameters
+    ----------
+    spectra : Spectrum
+        The reflectances the report was computed from.
+    report : spectrocolor.report.MeasurementReport
+        Its ``illuminant`` and ``observer`` are declared in the colour specification; its
+        ``records()`` give each sample's ``X``, ``Y``, ``Z``, ``L*``, ``a*``, ``b*``.
+
+    Returns
+    -------
+    str
+        The document (:func:`spectra_to_cxf`).
+
+    Examples
+    --------
+    >>> from spectrocolor import measurement_report
+    >>> tiles = Spectrum([400, 500, 600, 700], [[0.5, 0.5, 0.5, 0.5]], ["grey"])
+    >>> text = report_to_cxf(tiles, measurement_report(tiles, illuminant="D65"))
+    >>> "<cc:Illuminant>D65</cc:Illuminant>" in text, "<cc:ColorCIELab" in text
+    (True, True)
+    """
+    metadata = {**(spectra.metadata or {}), "illuminant": str(report.illuminant), "observer": str(report.observer)}
+    colours = [{"XYZ": (r["X"], r["Y"], r["Z"]), "Lab": (r["L*"], r["a*"], r["b*"])} for r in report.records()]
+    return spectra_to_cxf(Spectrum(spectra.wavelengths_nm, spectra.values, spectra.names, metadata), colours)
