@@ -244,6 +244,8 @@ def parse_cxf(text: str, source: str, percent: bool | None = None) -> Spectrum:
     (('Red',), [400.0, 500.0, 600.0], 'D50', '2°')
     """
     refuse_declarations(text, source, "CxF3")
+    # the text, its UTF-8 for expat and the element tree: a few copies of the document at once
+    check_bytes(4 * len(text), f"{source}: {len(text)} characters of CxF3 XML parsed as a tree")
     try:
         root = ElementTree.fromstring(text)
     except ElementTree.ParseError as exc:
