@@ -299,3 +299,29 @@ def test_cli_report_writes_cxf_with_the_spectra_and_their_colours(tmp_path):
     report = sc.measurement_report(_read("xrite.cxf"), illuminant="D50").records()
     # the report's rounded numbers, written by repr() and read back by float(): the same doubles
     assert float(lab[0].find("cc:L", ns).text) == report[0]["L*"]  # exact: repr/float round trip
+
+
+def test_qtx_section_words_and_prefixes_vary_by_software():
+    text = ("[PRODUCT STANDARD_DATA 0]\nSTANDARD_NAME=Navy\nSTANDARD_REFLLOW=400\nSTANDARD_REFLINTERVAL=20\n"
+            "STANDARD_REFLPOINTS=3\nSTANDARD_R=10.5,20,30,\n\n[PRODUCT TRIAL_DATA 0]\nTRIAL_NAME=Navy lot 7\n"
+            "TRIAL_REFLLOW=400\nTRIAL_REFLINTERVAL=20\nTRIAL_REFLPOINTS=3\nTRIAL_R=11,21,29\n")
+    s = parse_spectra(text, "navy.qtx")
+    assert s.names == ("Navy", "Navy lot 7") and s.metadata["sample_fields"]["kind"] == ("standard", "batch")
+    # exact: small integers times 20 added to 400
+    assert np.array_equal(s.wavelengths_nm, [400, 420, 440])
+    np.testing.assert_allclose(s.values, [[0.105, 0.2, 0.3], [0.11, 0.21, 0.29]], rtol=0, atol=1e-16)
+
+
+def test_cxf_object_with_several_measurement_conditions_names_each():
+    two = _CXF.replace("</cc:ReflectanceSpectrum>\n        </cc:ColorValues>",
+                       '</cc:ReflectanceSpectrum>\n<cc:ReflectanceSpectrum ColorSpecification="CS_M2">'
+                       + " ".join(["0.5"] * 36) + "</cc:ReflectanceSpectrum>\n        </cc:ColorValues>", 1)
+    two = two.replace("</cc:ColorSpecificationCollection>",
+                      '<cc:ColorSpecification Id="CS_M2"><cc:TristimulusSpec><cc:Illuminant>D65</cc:Illuminant>'
+                      "<cc:Observer>10_Degree</cc:Observer></cc:TristimulusSpec><cc:MeasurementSpec>"
+                      '<cc:WavelengthRange StartWL="380" Increment="10"/></cc:MeasurementSpec>'
+                      "</cc:ColorSpecification></cc:ColorSpecificationCollection>")
+    s = parse_spectra(two, "two.cxf")
+    assert s.names == (f"{NAMES[0]} [CS_D50_2]", f"{NAMES[0]} [CS_M2]", NAMES[1], NAMES[2])
+    assert s.metadata["illuminant"] == ("D50", "D65", "D50", "D50")
+    assert s.metadata["observer"] == ("2°", "10°", "2°", "2°")
