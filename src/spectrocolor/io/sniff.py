@@ -110,6 +110,8 @@ def binary_format(data: bytes, source: str) -> str | None:
     if data.startswith(_ZIP):
         return _zip_kind(data, source)
     for signature, offset, name, advice in _SIGNATURES:
+        if offset and data[:1] != b"\x00":
+            continue  # an ICC profile starts with its size (big-endian, under 16 MiB): a text never does
         if data[offset:offset + len(signature)] == signature:
             raise SpectrumError(f"{source}: this is {name}; {advice}")
     return None
