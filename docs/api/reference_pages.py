@@ -42,6 +42,8 @@ ALSO_DOCUMENTED: dict[str, tuple[str, ...]] = {
                    "decode_png", "png_header", "iter_png_rows", "PNGHeader", "MAX_PIXELS",
                    "write_png_blocks", "write_tiff_blocks", "paeth_filter"),
     "images.convert": ("masked_fill",),
+    "io.cxf": ("spectra_to_cxf", "report_to_cxf"),
+    "io.xlsx": ("parse_xlsx", "sheet_names"),
     "lighting.cri": ("ROUNDINGS",),
     "lighting.photometry": ("spectral_values",),
     "lighting.summary": ("HEADLINE",),

@@ -23,6 +23,8 @@ from spectrocolor.errors import ColorimetryError, SpectrumError
 from spectrocolor.illuminants import canonical_illuminant
 from spectrocolor.io import parse_spectra
 from spectrocolor.io.cgats import looks_like_cgats
+from spectrocolor.io.cxf import looks_like_cxf
+from spectrocolor.io.qtx import looks_like_qtx
 from spectrocolor.io.tm27 import looks_like_tm27
 
 FACTOR = 16  # the large input is this many times the small one
@@ -80,6 +82,17 @@ def test_the_nesting_guard_counts_what_a_parser_sees():
     assert json_depth(b'"' + b'\\"' * 20_000) == 0
     assert json_depth(b'["\\\\", [[1]]]') == 3  # an escaped backslash ends before the quote
     assert json_depth(b'["\\"[[[[", [1]]') == 2  # an escaped quote does not end the string
+
+
+@pytest.mark.parametrize(("function", "make"), [
+    (looks_like_qtx, lambda n: "[" + "STD " * n),
+    (looks_like_qtx, lambda n: "[x STANDARD_DATA\n" * n),
+    (looks_like_qtx, lambda n: " \n" * n + "[" * n),
+    (looks_like_cxf, lambda n: "<!--" + " " * n + "-->"),
+    (looks_like_cxf, lambda n: "<a>" * n),
+], ids=["qtx-open-bracket", "qtx-no-index", "qtx-brackets", "cxf-comment", "cxf-nesting"])
+def test_recognising_qtx_and_cxf_is_linear(function, make):
+    assert_linear(function, make, 2000)
 
 
 @pytest.mark.parametrize("make", [

@@ -32,7 +32,7 @@ def register(subparsers) -> None:
     p.add_argument("--method", choices=_methods(), default="sum",
                    help="summation method: sum, 1nm or astm-e308 (default sum)")
     p.add_argument("--percent", action="store_true", help=PERCENT_HELP)
-    p.add_argument("--out", required=True, help="output file (.html, .csv, .json or .cgats)")
+    p.add_argument("--out", required=True, help="output file (.html, .csv, .json, .cgats or .cxf)")
     add_force(p)
     p.add_argument("--format", choices=_FORMATS, default=None,
                    help="output format (default: from the --out suffix)")
@@ -43,7 +43,7 @@ def register(subparsers) -> None:
     p.set_defaults(handler=_report)
 
 
-_FORMATS = ("html", "csv", "json", "cgats")
+_FORMATS = ("html", "csv", "json", "cgats", "cxf")
 
 
 def _methods() -> tuple[str, ...]:
@@ -63,7 +63,7 @@ def _report(args: argparse.Namespace) -> int:
     suffix = {"htm": "html"}.get(suffix, suffix)
     fmt = args.format or suffix
     if fmt not in _FORMATS:
-        raise UserError(f"--out {args.out!r}: give a .html, .csv, .json or .cgats file, or --format")
+        raise UserError(f"--out {args.out!r}: give a .html, .csv, .json, .cgats or .cxf file, or --format")
     if args.format and suffix in _FORMATS and suffix != args.format:
         raise UserError(f"--format {args.format} would write {args.format.upper()} into {args.out!r}; make them agree")
     with command_line_hints():
@@ -77,6 +77,11 @@ def _report(args: argparse.Namespace) -> int:
         keywords = {"DESCRIPTOR": f"spectrocolor report of {args.file}", "ILLUMINANT": report.illuminant,
                     "OBSERVER": report.observer, "SUMMATION_METHOD": report.method}
         write_text(args.out, table_to_cgats(report.records(), keywords))
+    elif fmt == "cxf":  # the spectra with their XYZ and L*a*b*, under the report's illuminant and observer
+        from ..io.cxf import report_to_cxf
+        from ..safe_write import write_text
+
+        write_text(args.out, report_to_cxf(spectra, report))
     else:
         write_report(report, args.out, fmt, title=args.title, page_rows=args.page_rows)
     print(f"wrote {args.out}: {len(report)} samples, illuminant {report.illuminant}, observer "

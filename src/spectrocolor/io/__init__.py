@@ -5,8 +5,11 @@
 ==========================  =====================================================  ==============
 format                      recognised by                                          module
 ==========================  =====================================================  ==============
+Excel ``.xlsx`` workbook    ZIP signature with ``xl/workbook.xml`` (bytes only)    :mod:`.xlsx`
 JSON                        first character ``{``                                  here
 IES TM-27-14/-20 XML        document element ``<IESTM2714>``                       :mod:`.tm27`
+X-Rite CxF3 (ISO 17972-1)   document element ``<cc:CxF>``                          :mod:`.cxf`
+Datacolor QTX               a ``[STANDARD_DATA n]`` (``BATCH_``, ``TRIAL_``) line  :mod:`.qtx`
 CGATS.17, i1Profiler,       a ``BEGIN_DATA_FORMAT`` line                           :mod:`.cgats`
 Argyll ``.ti3``/``.sp``
 Ocean Optics OceanView,     a ``>>>>>Begin Spectral Data<<<<<`` line               :mod:`.oceanview`
@@ -22,12 +25,16 @@ Light meters and OceanView give lights (``metadata["quantity"]``, ``["unit"]``; 
 illuminance, CCT … in ``["stated"]``); OceanView keeps its irregular pixel wavelengths unless
 ``resample_nm=`` asks for a uniform grid.
 
+Bytes are looked at before any text decoding (:mod:`.sniff`): a workbook is read, and a format
+recognised by its signature but not read (``.xls``, PDF, images, HDF5/MATLAB, ICC profiles,
+other ZIP archives …) gets one line naming it and what to do instead.
+
 No registry package reads these formats to this standard without pulling in a large dependency
 (colour-science reads TM-27-14 only; no maintained CGATS reader on PyPI keeps sample names,
 keywords and the percent declaration), so the readers are written here on the standard library.
-A file that is none of them gets one line naming the formats tried and what each expects.
+A text file that is none of them gets one short line naming the formats tried.
 
-Writers: :func:`write_spectra` (``.csv``, ``.json``, ``.cgats``), and the text writers in
+Writers: :func:`write_spectra` (``.csv``, ``.json``, ``.cgats``, ``.cxf``), and the text writers in
 :mod:`.writers` used by the command line.
 """
 
@@ -40,9 +47,9 @@ import numpy as np
 
 from ..errors import SpectrumError
 from ..spectrum import Spectrum
-from . import cgats, delimited, lightmeters, oceanview, tm27
+from . import cgats, cxf, delimited, lightmeters, oceanview, qtx, sniff, tm27, xlsx
 from .conditions import DeclaredConditions, check_reflectance_scale, choose_conditions, declared_conditions
-from .text import Decoded, apply_scale, decode_text, read_decoded
+from .text import Decoded, apply_scale, decode_text
 from .writers import spectra_to_cgats, spectra_to_csv, table_to_cgats
 
 __all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "spectra_to_cgats", "table_to_cgats",
@@ -53,6 +60,8 @@ __all__ = ["read_spectra", "parse_spectra", "write_spectra", "spectra_to_csv", "
 FORMATS = (
     ("JSON", '{"wavelengths_nm": […], "spectra": {name: […]}}'),
     ("IES TM-27 XML", tm27.EXPECTED),
+    ("X-Rite CxF3", cxf.EXPECTED),
+    ("Datacolor QTX", qtx.EXPECTED),
     ("CGATS/Argyll", cgats.EXPECTED),
     ("OceanView/SpectraSuite", "a '>>>>>Begin Spectral Data<<<<<' line"),
     ("light meters", lightmeters.SUMMARY),
@@ -148,13 +157,22 @@ def parse_spectra(text: str | bytes, source: str = "<text>", percent: bool | Non
     if percent not in (None, True, False):
         raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
     if isinstance(text, (bytes, bytearray, memoryview)):
-        spectrum = _parse_decoded(decode_text(bytes(text), source, encoding), source, percent)
+        spectrum = _parse_bytes(bytes(text), source, percent, encoding)
     elif encoding is not None:
         raise SpectrumError(f"encoding: applies to bytes; {source} was given as str (already decoded), "
                             "so leave encoding unset or pass the file's bytes")
     else:
         spectrum = _parse_text(text, source, percent)
     return spectrum if resample_nm is None else oceanview.resampled(spectrum, resample_nm, source)
+
+
+def _parse_bytes(data: bytes, source: str, percent: bool | None, encoding: str | None) -> Spectrum:
+    """A file's bytes: a workbook or a named binary format first (:mod:`.sniff`), else text."""
+    if sniff.binary_format(data, source) == "xlsx":
+        return xlsx.parse_xlsx(data, source, percent)
+    decoded = decode_text(data, source, encoding)
+    del data  # not held while the text is parsed (read_spectra's peak memory: tests/io/test_io_memory.py)
+    return _parse_decoded(decoded, source, percent)
 
 
 def _parse_decoded(decoded: Decoded, source: str, percent: bool | None) -> Spectrum:
@@ -172,7 +190,11 @@ def _parse_text(text: str, source: str, percent: bool | None) -> Spectrum:
     if head.startswith("<"):
         if tm27.looks_like_tm27(text):
             return tm27.parse_tm27(text, source, percent)
-        raise SpectrumError(f"{source}: XML, but not IES TM-27; expected {tm27.EXPECTED}")
+        if cxf.looks_like_cxf(text):
+            return cxf.parse_cxf(text, source, percent)
+        raise SpectrumError(f"{source}: XML, but not IES TM-27 ({tm27.EXPECTED}) nor X-Rite CxF3 (<cc:CxF>)")
+    if qtx.looks_like_qtx(text):
+        return qtx.parse_qtx(text, source, percent)
     if cgats.looks_like_cgats(text):
         return cgats.parse_cgats(text, source, percent)
     if oceanview.looks_like_oceanview(text):
@@ -184,14 +206,15 @@ def _parse_text(text: str, source: str, percent: bool | None) -> Spectrum:
     except SpectrumError as exc:
         if "not a spectral table" not in str(exc) and "no data" not in str(exc):
             raise
-        tried = "; ".join(f"{name}: {expected}" for name, expected in FORMATS)
-        raise SpectrumError(f"{exc}. Formats tried: {tried}") from None
+        tried = ", ".join(name for name, _ in FORMATS)
+        raise SpectrumError(f"{exc}. Formats tried: {tried}, .xlsx (docs/measurement_data.md)") from None
 
 
 def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str | None = None,
                  resample_nm: float | None = None) -> Spectrum:
     """Read the spectra in a measurement file: CSV/TSV (long or wide, ``;`` with decimal commas),
-    CGATS.17 (i1Profiler, X-Rite, Barbieri), ArgyllCMS ``.ti3``/``.sp``, IES TM-27 XML or JSON.
+    CGATS.17 (i1Profiler, X-Rite, Barbieri), ArgyllCMS ``.ti3``/``.sp``, IES TM-27 XML, X-Rite
+    CxF3, Datacolor QTX, an Excel ``.xlsx`` workbook (its first sheet) or JSON.
 
     The format is told by the content, not the file name. See :func:`parse_spectra` for
     ``percent`` and what the result holds; wavelengths must be strictly increasing, and a
@@ -248,7 +271,7 @@ def read_spectra(path: str | Path, *, percent: bool | None = None, encoding: str
         raise SpectrumError(f"{path}: is a folder, not a spectral file (CSV, CGATS, TM-27 XML or JSON)")
     if percent not in (None, True, False):
         raise SpectrumError(f"percent: expected True, False or None (follow the file), got {percent!r:.40}")
-    spectrum = _parse_decoded(read_decoded(path, encoding), str(path), percent)
+    spectrum = _parse_bytes(sniff.read_checked(path, encoding), str(path), percent, encoding)
     return spectrum if resample_nm is None else oceanview.resampled(spectrum, resample_nm, str(path))
 
 
@@ -295,6 +318,8 @@ def write_spectra(spectrum: Spectrum, path: str | Path) -> Path:
         text = spectra_to_csv(spectrum)
     elif suffix == ".cgats":
         text = spectra_to_cgats(spectrum)
+    elif suffix == ".cxf":
+        text = cxf.spectra_to_cxf(spectrum)
     else:
-        raise SpectrumError(f"path: unknown spectral file type {path.suffix!r}; use .csv, .json or .cgats")
+        raise SpectrumError(f"path: unknown spectral file type {path.suffix!r}; use .csv, .json, .cgats or .cxf")
     return write_text(path, text)

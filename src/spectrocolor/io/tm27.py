@@ -106,8 +106,10 @@ def _refuse_declaration(*_):
     raise _Declaration
 
 
-def _refuse_declarations(text: str, source: str) -> None:
+def refuse_declarations(text: str | bytes, source: str, needs: str = "spectral XML (TM-27, CxF3)") -> None:
     """SpectrumError if the document has a DOCTYPE or declares an entity, wherever it is.
+
+    ``needs`` names the format in the message (CxF3 and SpreadsheetML need no DTD either).
 
     expat reads the whole document once (linear) with handlers that stop at the first DOCTYPE,
     ENTITY or NOTATION declaration: no prefix of the text is trusted, so a DOCTYPE after 70 kB
@@ -122,7 +124,7 @@ def _refuse_declarations(text: str, source: str) -> None:
         parser.Parse(text, True)
     except _Declaration:
         raise SpectrumError(f"{source}: XML with a DOCTYPE or ENTITY declaration is not accepted "
-                            "(TM-27 needs none)") from None
+                            f"({needs} needs none)") from None
     except (expat.ExpatError, ValueError) as exc:
         raise SpectrumError(f"{source}: not well-formed XML ({exc})") from None
 
@@ -178,7 +180,7 @@ def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
     >>> s.names, s.values.tolist(), s.metadata["spectral_quantity"]
     (('LED',), [0.5, 1.0], 'relative')
     """
-    _refuse_declarations(text, source)
+    refuse_declarations(text, source)
     try:
         root = ElementTree.fromstring(text)
     except ElementTree.ParseError as exc:
