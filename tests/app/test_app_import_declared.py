@@ -77,3 +77,23 @@ def test_text_content_still_works_and_has_no_note_without_a_declaration(client):
 def test_bad_bodies_get_one_clear_422(client, body, needle):
     r = client.post("/api/import", json=body)
     assert r.status_code == 422 and needle in r.json()["error"], r.text
+
+
+@pytest.mark.parametrize("name", ["workbook.xlsx", "xrite.cxf", "datacolor.qtx"])
+def test_the_page_imports_the_exchange_formats_as_the_library_reads_them(client, name):
+    """A workbook (binary), a CxF3 document and a cp1252 QTX file through the page's Load (bytes)."""
+    r = _post(client, name)
+    assert r.status_code == 200, r.text
+    spectra = sc.read_spectra(CORPUS / name)
+    assert r.json()["names"] == list(spectra.names)[: len(r.json()["names"])]
+    expected = spectra.resample(compute.grid(10.0), "linear").values * compute.FULL_LEVEL
+    # one resampling and one product per value: a few ulps of 30
+    np.testing.assert_allclose(r.json()["levels"], np.clip(expected, 0, compute.FULL_LEVEL)[: len(r.json()["levels"])],
+                               rtol=0, atol=1e-12)
+
+
+def test_the_page_offers_every_format_the_library_reads():
+    page = (Path(sc.__file__).parent / "app" / "static" / "index.html").read_text(encoding="utf-8")
+    accepted = page.split('id="file" type="file" accept="', 1)[1].split('"', 1)[0].split(",")
+    for suffix in (".csv", ".txt", ".json", ".cgats", ".ti3", ".xml", ".cxf", ".qtx", ".xlsx"):
+        assert suffix in accepted
