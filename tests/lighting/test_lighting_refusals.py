@@ -149,3 +149,20 @@ def test_the_command_line_reports_refused_lights_with_their_reason(tmp_path, cap
     lights = json.loads((tmp_path / "r.json").read_text())["lights"]
     assert lights[0]["not_computed"] is None and lights[0]["Ra"] is not None
     assert lights[1]["not_computed"].startswith("negative power") and lights[1]["LER_lm_per_W"] is None
+
+
+def test_an_irregular_spectrometer_grid_gets_the_option_that_works(tmp_path, capsys):
+    """An OceanView export (2048 pixels at irregular wavelengths): the hint names --resample linear,
+    since Sprague needs uniform data, and that option then gives CIE A's indices (A is its own reference)."""
+    from pathlib import Path
+
+    source = Path(__file__).parents[1] / "data" / "io" / "oceanview_flame.txt"
+    out = str(tmp_path / "r.json")
+    assert main(["light", str(source), "--out", out]) == 2
+    error = capsys.readouterr().err
+    assert "irregular" in error and "--resample linear" in error and "--resample sprague" not in error
+    assert main(["light", str(source), "--out", out, "--resample", "sprague"]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "--resample sprague" in error and "--resample linear" in error
+    assert main(["light", str(source), "--out", out, "--resample", "linear"]) == 0
+    assert "FLMS01234" in capsys.readouterr().out

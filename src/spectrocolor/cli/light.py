@@ -20,6 +20,9 @@ _PRINTED = 10
 #: How to fix a grid the colour metrics refuse, said with this command's own option.
 _RESAMPLE_HINT = ("add --resample sprague (or --resample linear / cubic) to interpolate the spectra to 1 nm "
                   "first (CIE 167 recommends sprague for uniform data)")
+#: The same for an irregular grid (a spectrometer's pixel wavelengths), which Sprague cannot take.
+_IRREGULAR_HINT = ("add --resample linear (or --resample cubic) to interpolate the irregular samples to 1 nm "
+                   "first (sprague needs uniformly spaced data)")
 
 
 def register(subparsers) -> None:
@@ -68,10 +71,19 @@ def _resampled(spectra, method: str | None, source: str):
     if method is None:
         return spectra
     grid = spectra.wavelengths_nm
+    if method == "sprague" and not _uniform(grid):
+        raise UserError(f"--resample sprague: FILE {source} has an irregular grid ({len(grid)} samples, "
+                        f"{grid[0]:g}-{grid[-1]:g} nm, e.g. a spectrometer's pixels); {_IRREGULAR_HINT}")
     start, stop = math.ceil(grid[0] - 1e-9), math.floor(grid[-1] + 1e-9)
     if stop - start < 1:
         raise UserError(f"FILE {source}: {grid[0]:g}-{grid[-1]:g} nm is too short to resample to 1 nm")
     return spectra.resample(wavelength_grid(start, stop, 1), method)
+
+
+def _uniform(grid: np.ndarray) -> bool:
+    """Whether the wavelengths are evenly spaced (to 1e-6 of a step: a grid written with a few decimals)."""
+    steps = np.diff(grid)
+    return steps.size == 0 or bool(np.all(np.abs(steps - steps[0]) <= 1e-6 * abs(steps[0])))
 
 
 def _print_table(report) -> None:
@@ -91,7 +103,8 @@ def _light(args: argparse.Namespace) -> int:
     fmt = _output_format(args)
     check_files(args, ("out", "graphic"), ("file",), MAX_SPECTRAL_FILE_BYTES)
     spectra = _resampled(read_spectra(args.file, encoding=args.encoding), args.resample, args.file)
-    report = light_report(spectra, resample_hint=_RESAMPLE_HINT)
+    hint = _RESAMPLE_HINT if _uniform(spectra.wavelengths_nm) else _IRREGULAR_HINT
+    report = light_report(spectra, resample_hint=hint)
     write_light_report(report, args.out, fmt, title=args.title)
     if args.graphic is not None:
         from ..lighting.vector_graphic import write_vector_graphic
