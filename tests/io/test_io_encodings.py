@@ -40,7 +40,7 @@ CASES = {
     "utf8_bom.csv": ("utf-8", "UTF-8 byte-order mark", NAMES, "CSV, long", None),
     "comma_trailing.csv": ("utf-8", "valid UTF-8", NAMES, "CSV, long", None),
     "semicolon_trailing.csv": ("utf-8", "valid UTF-8", NAMES, "CSV (; with decimal comma), wide", None),
-    "cary_paired.csv": ("utf-8", "valid UTF-8", NAMES, "CSV, paired wavelength/value columns", True),
+    "cary_paired.csv": ("utf-8", "valid UTF-8", NAMES, "CSV, paired wavelength/value columns", None),  # %R says
 }
 
 
@@ -73,6 +73,16 @@ def test_colorport_keeps_its_degree_sign_and_cary_says_what_it_did():
     cary = _read("cary_paired.csv")
     assert "descending" in cary.metadata["wavelength_order"] and cary.metadata["value_kinds"] == ("%R",) * 3
     assert cary.metadata["lines_after_data"] == 5 and "resampled" not in cary.metadata
+    assert cary.metadata["value_scale"] == "divided by 100 as the file declares (value columns titled %R)"
+
+
+def test_cary_percent_columns_are_a_declaration_that_percent_false_contradicts():
+    with pytest.raises(SpectrumError, match=r"declares its values on percent \(value columns titled %R\); "
+                                            r"percent=False contradicts it"):
+        sc.read_spectra(CORPUS / "cary_paired.csv", percent=False)
+    # exact: the same text read twice, divided by the same 100
+    asked = sc.read_spectra(CORPUS / "cary_paired.csv", percent=True)
+    assert np.array_equal(asked.values, _read("cary_paired.csv").values)
 
 
 def test_encoding_argument_overrides_detection():
@@ -150,7 +160,8 @@ def test_descending_long_and_wide_tables_are_sorted_ascending():
 
 def test_paired_columns_on_one_header_row_and_on_different_grids():
     one_row = sc.parse_spectra("Wavelength (nm),%T,Wavelength (nm),%T\n500,1,500,2\n400,3,400,4\n", "x.csv")
-    assert one_row.names == ("%T 1", "%T 2") and one_row.values.tolist() == [[3, 1], [4, 2]]
+    assert one_row.names == ("%T 1", "%T 2") and "titled %T" in one_row.metadata["value_scale"]
+    np.testing.assert_allclose(one_row.values, [[0.03, 0.01], [0.04, 0.02]], rtol=1e-15)  # %T: divided by 100
     differ = sc.parse_spectra(
         "a,,b,\nWavelength (nm),Abs,Wavelength (nm),Abs,\n400,1,410,5,\n420,3,430,7,\n440,5,450,9,\n", "x.csv")
     assert differ.wavelengths_nm.tolist() == [420, 440]

@@ -261,7 +261,8 @@ def parse_delimited(text: str, source: str, percent: bool | None = None) -> Spec
     paired = _paired_header(header, lines, raw_cells, header_line)
     if paired is not None:
         spectrum = _paired(paired, lines, raw_cells, source, decimal_comma)
-        values, note = apply_scale(spectrum.values, None, percent, source, "")
+        declared, how = _declared_percent(paired[1])
+        values, note = apply_scale(spectrum.values, declared, percent, source, how)
         kind = {"\t": "TSV", ";": "CSV (; with decimal comma)", ",": "CSV"}[delimiter]
         metadata = {**spectrum.metadata, "format": f"{kind}, paired wavelength/value columns", "value_scale": note}
         metadata.update(cary.recognise(metadata, paired[3] != header_line))
@@ -359,6 +360,14 @@ def _wide(rows, wavelength_columns, source: str, decimal_comma: bool) -> Spectru
 
 #: ``metadata["wavelength_order"]`` of a file written from long to short wavelengths.
 _DESCENDING = "descending in the file; sorted ascending (values reordered with them)"
+
+
+def _declared_percent(kinds) -> tuple[float | None, str]:
+    """``(100.0, how)`` when every value column is titled ``%R`` or ``%T`` (Cary's percent
+    reflectance or transmittance), else ``(None, "")``: the file does not say."""
+    if kinds and all(re.fullmatch(r"%\s*[RT]", kind.strip(), re.IGNORECASE) for kind in kinds):
+        return 100.0, f"value columns titled {'/'.join(sorted({kind.strip() for kind in kinds}))}"
+    return None, ""
 
 
 def _is_wavelength_title(cell: str) -> bool:
