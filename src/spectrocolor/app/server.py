@@ -13,20 +13,35 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
   from a temporary file that a worker process creates, at most :data:`MAX_PARSERS` at a time
   (:mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay
   busy).
+
+Fairness (issue 31): the event loop does no work that grows with a body beyond the linear body
+guard. ``/api/model``, ``/api/evaluate``, ``/api/metamer`` and ``/api/export`` -- the page's
+interactive requests -- are *decoded, validated, computed and written* in a lane of worker
+processes of their own (:data:`INTERACTIVE_WORKERS`, :func:`_pooled_answer`): the server only
+passes the body's bytes to a worker and the answer's bytes back, so a 2 MB hostile body costs
+the loop a copy, and the labs' uploads and relit photos, in their own pools, never hold the
+workers a dragged slider needs. Every pool limits each client, keyed by its address and the
+token its tab sends (:func:`spectrocolor.app.guards.client_key`); the routes whose bodies are
+small have a small body limit (:data:`SMALL_BODY_BYTES`), which bounds what FastAPI decodes in
+the loop for the lab routes.
 """
 
 from __future__ import annotations
 
+import json
 import tempfile
+from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
+from fastapi.routing import APIRoute
 from fastapi.staticfiles import StaticFiles
-from pydantic import Field, model_validator
+from pydantic import Field, ValidationError, model_validator
+from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException
 
 from ..display.chain import CHAIN_NORMALISATIONS, WHITE_ADAPTATIONS
@@ -36,6 +51,7 @@ from ..display.spaces import RGB_SPACES
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import LIGHT_KINDS
 from ..interpolation import METHODS as INTERPOLATION_METHODS
+from ..numba_support import call_noting_numpy_path, note_numpy_path
 from ..spreadsheet import neutralise_cell
 from . import compute
 from .choices import (
@@ -55,13 +71,14 @@ from .choices import (
     observer_labels,
     select_options,
 )
-from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
+from .guards import BodyLimit, LocalOnly, allowed_hosts, client_key, json_depth
 from .kernels import KernelStatusHeader
 from .lab_routes import router as lab_router
 from .relight_routes import router as relight_router
-from .request_models import Level, StrictRequest
+from .request_models import Level, StrictRequest, validation_message
 from .responses import FiniteJSONResponse
 from .uploads import Busy, UploadParser
+from .workers import WorkerDied, WorkerPool, WorkerTimeout
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
 MAX_BODY_BYTES = 2_000_000
@@ -77,6 +94,22 @@ MAX_SPECTRA = 4
 #: Spectra one imported file may hold; the page lets the user choose which to edit.
 MAX_IMPORT_SPECTRA = 64
 MAX_BINS = 301  # 400-700 nm at 1 nm
+#: Body limit of the routes whose bodies are small (the page's interactive requests, the labs'),
+#: bytes: five spectra of 301 levels written with 17 digits take about 30 kB.
+SMALL_BODY_BYTES = 64_000
+#: The interactive lane: worker processes for the page's model, evaluate, metamer and export
+#: requests, kept apart from the uploads' and the labs' pools so that a long job there never
+#: delays a dragged slider. One client (address and tab) uses one worker at a time, so another
+#: client always finds one; a computation past INTERACTIVE_TIMEOUT_S has its worker killed (as
+#: long as the labs allow: where the kernels compile on first use, the first one takes ~20 s).
+INTERACTIVE_WORKERS = 2
+INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S = 10.0, 60.0
+#: Requests of one client (or of one remote address) waiting for the lane; beyond, 429 at once.
+INTERACTIVE_WAITING_PER_CLIENT = 4
+
+_interactive = WorkerPool(INTERACTIVE_WORKERS, INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S,
+                          per_client=1, max_waiting=8 * INTERACTIVE_WORKERS,
+                          max_waiting_per_client=INTERACTIVE_WAITING_PER_CLIENT)
 
 # Observer, Display, Gamut, Normalise and Adaptation (spectrocolor.app.choices) are checked
 # against the library's registries when a request arrives: a name registered there is accepted.
@@ -180,13 +213,8 @@ def _check_illuminant(levels, step_nm) -> None:
         raise ValueError("illuminant is dark everywhere (all levels 0): nothing is lit")
 
 
-def _message(exc: RequestValidationError) -> str:
-    parts = []
-    for err in exc.errors():
-        where = ".".join(str(p) for p in err.get("loc", ()) if p != "body")
-        msg = str(err.get("msg", "invalid")).removeprefix("Value error, ")
-        parts.append(f"{where}: {msg}" if where else msg)
-    return "; ".join(parts[:5]) + (f" (and {len(parts) - 5} more)" if len(parts) > 5 else "")
+def _message(exc: RequestValidationError | ValidationError) -> str:
+    return validation_message(exc.errors())
 
 
 def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
@@ -207,7 +235,10 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     static = Path(str(resources.files("spectrocolor.app") / "static"))
     parsers = UploadParser(MAX_PARSERS, PARSER_WAIT_S, PARSER_TIMEOUT_S)
     app.state.parsers = parsers  # for POST /api/import
+    app.state.interactive = _interactive  # for the page's interactive requests
+    app.router.on_startup.append(_warm_interactive)
     app.router.on_shutdown.append(parsers.close)
+    app.router.on_shutdown.append(_interactive.close)
     _add_guards(app, port, check_host)
     _add_error_handlers(app)
 
@@ -227,7 +258,11 @@ def _add_guards(app: FastAPI, port: int | None, check_host: bool) -> None:
     # added last = outermost: Host/Origin first, then the body count, then whether a result
     # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
     app.add_middleware(KernelStatusHeader)
-    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
+    small = {route.path: SMALL_BODY_BYTES for route in (*router.routes, *lab_router.routes)
+             if isinstance(route, APIRoute) and "POST" in (route.methods or ())
+             and route.path != "/api/import"}
+    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH,
+                       path_limits=small)
     app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
 
 
@@ -308,50 +343,161 @@ def presets(step_nm: str = "10"):
 
 
 @router.post("/api/model")
-def model(req: DisplayRequest):
-    """:func:`spectrocolor.app.compute.model` for one set of display choices."""
-    return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
-                         req.normalise, req.adaptation)
+async def model(request: Request):
+    """:func:`spectrocolor.app.compute.model` for one set of display choices (a
+    :class:`DisplayRequest`), in the interactive lane."""
+    return await _pooled(request, "model")
 
 
 @router.post("/api/evaluate")
-def evaluate(req: EvaluateRequest):
-    """:func:`spectrocolor.app.compute.evaluate` of the spectra sent."""
-    return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
-                            req.gamut, req.spectra, req.illuminant, req.pairs,
-                            req.adaptation)
+async def evaluate(request: Request):
+    """:func:`spectrocolor.app.compute.evaluate` of the spectra sent (an
+    :class:`EvaluateRequest`), in the interactive lane."""
+    return await _pooled(request, "evaluate")
 
 
 @router.post("/api/metamer")
-def metamer(req: MetamerRequest):
-    """:func:`spectrocolor.app.compute.metamer` of the target."""
-    return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
-
-
-@router.post("/api/import")
-def import_(req: ImportRequest, request: Request):  # a plain def: run in FastAPI's threads
-    """The spectra of an uploaded file, parsed in a worker process (429 when all stay busy)."""
-    parsers: UploadParser = request.app.state.parsers
-    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
-    if suffix == ".json" and json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
-        raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
-    try:  # in a worker process: other clients keep being answered meanwhile
-        return parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
-                             req.method, req.scale, MAX_IMPORT_SPECTRA,
-                             client=request.client.host if request.client else None)
-    except Busy:
-        return JSONResponse({"error": "the server is busy reading other files; try again"},
-                            status_code=429)
+async def metamer(request: Request):
+    """:func:`spectrocolor.app.compute.metamer` of the target (a :class:`MetamerRequest`), in
+    the interactive lane."""
+    return await _pooled(request, "metamer")
 
 
 @router.post("/api/export")
-def export(req: ExportRequest):
-    """The spectra as a CSV or JSON file to download."""
+async def export(request: Request):
+    """The spectra as a CSV or JSON file to download (an :class:`ExportRequest`), written in
+    the interactive lane."""
+    return await _pooled(request, "export")
+
+
+@router.post("/api/import")
+async def import_(request: Request):
+    """The spectra of an uploaded file (an :class:`ImportRequest`), parsed in a worker process
+    (429 when all stay busy). Its body, up to 2 MB, is decoded and validated in the upload
+    pool's workers too (:func:`_decoded_import`): decoding it here would hold the event loop."""
+    parsers: UploadParser = request.app.state.parsers
+    client = client_key(request)
+    try:
+        decoded = await run_in_threadpool(parsers.pool.run, _decoded_import,
+                                          await request.body(), client=client)
+        if isinstance(decoded, str):
+            return JSONResponse({"error": decoded}, status_code=422)
+        return await run_in_threadpool(_import, decoded, parsers, client)
+    except Busy:
+        return JSONResponse({"error": "the server is busy reading other files; try again"},
+                            status_code=429)
+    except (WorkerTimeout, WorkerDied):
+        raise SpectrumError("the upload could not be read (too large or too slow to decode); "
+                            "import a smaller file") from None
+
+
+def _decoded_import(body: bytes) -> ImportRequest | str:
+    """Worker side: the :class:`ImportRequest` of ``body``, or the one line refusing it."""
+    try:
+        req = ImportRequest.model_validate(json.loads(body))
+    except (ValueError, RecursionError) as exc:  # not JSON, or refused by the model
+        return _message(exc) if isinstance(exc, ValidationError) else \
+            f"the body is not JSON ({str(exc)[:120]})"
+    if req.filename.lower().endswith(".json") and \
+            json_depth(req.content.encode("utf-8")) > MAX_JSON_DEPTH:
+        return f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels"
+    return req
+
+
+def _import(req: ImportRequest, parsers: UploadParser, client) -> Response:
+    """The import answer, parsed in a worker and written here, in a thread (not the loop)."""
+    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
+    # in a worker process: other clients keep being answered meanwhile
+    return FiniteJSONResponse(parsers.parse(req.filename, req.content, suffix, float(req.step_nm),
+                                            req.method, req.scale, MAX_IMPORT_SPECTRA,
+                                            client=client))
+
+
+def _export_file(req: ExportRequest) -> tuple[bytes, str, dict]:
+    """Worker side: the file of :func:`export`, its media type and its headers."""
     with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
         path = Path(folder) / f"spectra.{req.format}"
         names = [neutralise_cell(n) for n in req.names] if req.format == "csv" else req.names
         compute.export_spectra(float(req.step_nm), names, req.spectra, path)
         body = path.read_bytes()
     media = "text/csv" if req.format == "csv" else "application/json"
-    return Response(body, media_type=media, headers={
-        "Content-Disposition": f'attachment; filename="spectra.{req.format}"'})
+    return body, media, {"Content-Disposition": f'attachment; filename="spectra.{req.format}"'}
+
+
+def _model_answer(req: DisplayRequest) -> dict:
+    return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
+                         req.normalise, req.adaptation)
+
+
+def _evaluate_answer(req: EvaluateRequest) -> dict:
+    return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
+                            req.gamut, req.spectra, req.illuminant, req.pairs, req.adaptation)
+
+
+def _metamer_answer(req: MetamerRequest) -> dict:
+    return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
+
+
+#: The interactive lane's routes: the request model and what answers it (in the worker).
+_POOLED: dict[str, tuple[type[StrictRequest], Callable[[Any], Any]]] = {
+    "model": (DisplayRequest, _model_answer),
+    "evaluate": (EvaluateRequest, _evaluate_answer),
+    "metamer": (MetamerRequest, _metamer_answer),
+    "export": (ExportRequest, _export_file),
+}
+_JSON = "application/json"
+
+
+def _error(status: int, message: str) -> tuple[int, bytes, str, dict]:
+    return status, json.dumps({"error": message}).encode("utf-8"), _JSON, {}
+
+
+def _pooled_answer(route: str, body: bytes) -> tuple[int, bytes, str, dict]:
+    """Worker side: decode, validate and answer one request of the interactive lane.
+
+    Returns ``(status, body, media type, headers)``: the answer, or the server's one error shape
+    for a body that is not JSON, a request the models refuse or the library's refusal (422).
+    """
+    request_model, answer = _POOLED[route]
+    try:
+        data = json.loads(body)
+    except (ValueError, RecursionError) as exc:  # UnicodeDecodeError is a ValueError
+        return _error(422, f"the body is not JSON ({str(exc)[:120]})")
+    try:
+        req = request_model.model_validate(data)
+    except ValidationError as exc:
+        return _error(422, _message(exc))
+    try:
+        result = answer(req)
+        if route == "export":
+            return 200, *result
+        return 200, bytes(FiniteJSONResponse(result).body), _JSON, {}
+    except (SpectrumError, ColorimetryError) as exc:
+        return _error(422, str(exc))
+
+
+def _warm_interactive() -> None:
+    """Start the interactive lane's workers with the server, each answering the default model."""
+    for _ in range(INTERACTIVE_WORKERS):
+        _interactive.warm(_pooled_answer, "model", b"{}")
+
+
+async def _pooled(request: Request, route: str) -> Response:
+    """Answer ``route`` in the interactive lane; the loop only hands the body's bytes over."""
+    body = await request.body()  # already read and counted by BodyLimit
+    try:
+        (status, content, media, headers), used_numpy_path = await run_in_threadpool(
+            _interactive.run, call_noting_numpy_path, _pooled_answer, route, body,
+            client=client_key(request))
+    except Busy:
+        return JSONResponse({"error": "the server is busy answering this page's or other "
+                             "pages' requests; try again"}, status_code=429)
+    except WorkerTimeout:
+        raise ColorimetryError(f"this computation took more than {INTERACTIVE_TIMEOUT_S:g} s "
+                               "and was stopped; choose other settings") from None
+    except WorkerDied:
+        raise ColorimetryError("the worker computing this stopped (out of memory?); choose "
+                               "other settings") from None
+    if used_numpy_path:
+        note_numpy_path()
+    return Response(content, status_code=status, media_type=media, headers=headers)
