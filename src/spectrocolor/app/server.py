@@ -14,16 +14,11 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
   (:mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay
   busy).
 
-Fairness (issue 31): the event loop does no work that grows with a body beyond the linear body
-guard. ``/api/model``, ``/api/evaluate``, ``/api/metamer`` and ``/api/export`` -- the page's
-interactive requests -- are *decoded, validated, computed and written* in a lane of worker
-processes of their own (:data:`INTERACTIVE_WORKERS`, :func:`_pooled_answer`): the server only
-passes the body's bytes to a worker and the answer's bytes back, so a 2 MB hostile body costs
-the loop a copy, and the labs' uploads and relit photos, in their own pools, never hold the
-workers a dragged slider needs. Every pool limits each client, keyed by its address and the
-token its tab sends (:func:`spectrocolor.app.guards.client_key`); the routes whose bodies are
-small have a small body limit (:data:`SMALL_BODY_BYTES`), which bounds what FastAPI decodes in
-the loop for the lab routes.
+Fairness (issue 31): ``/api/model``, ``/api/evaluate``, ``/api/metamer`` and ``/api/export``
+are *decoded, validated, computed and written* in a lane of worker processes of their own
+(:func:`_pooled_answer`), apart from the uploads' and photos' pools; the loop only passes bytes.
+Pools limit each client by address and tab token (:func:`spectrocolor.app.guards.client_key`);
+small routes take small bodies (:data:`SMALL_BODY_BYTES`), bounding FastAPI's decoding in the loop.
 """
 
 from __future__ import annotations

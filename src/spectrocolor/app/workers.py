@@ -36,6 +36,10 @@ every worker still listed. It needs nothing from the workers, so it also ends a 
 compiled code holding its interpreter lock. On every system a watchdog thread in each worker
 also checks twice a second that its parent is still the process that started it (it cannot run
 while the worker holds its interpreter lock, hence the two others).
+
+Why this file is long: the pool's admission rules (per client, per address, the waiting line),
+its workers' life and the two ways they end with the server are one mechanism; the reaper is
+a few lines of it, and each part reads the others' state under one lock.
 """
 
 from __future__ import annotations
