@@ -128,6 +128,15 @@ def test_the_interactive_routes_compute_in_worker_processes(client, monkeypatch,
     assert answer.content == expected.content  # exact bytes: one deterministic computation
 
 
+def test_the_presets_are_computed_in_a_worker_process(client, monkeypatch):
+    expected = client.get("/api/presets?step_nm=5")
+    assert expected.status_code == 200, expected.text
+    monkeypatch.setattr(compute, "presets", _fail)
+    answer = client.get("/api/presets?step_nm=5")
+    assert answer.status_code == 200, answer.text
+    assert answer.content == expected.content  # exact bytes: one deterministic computation
+
+
 def test_the_lanes_refusals_keep_the_one_error_shape(client):
     for body, expected in ((b"{not json", "not JSON"), (b'{"step_nm": 3}', "step_nm"),
                            (b'{"spectra": [[40.0]]}', "spectra")):

@@ -168,6 +168,10 @@ class MetamerRequest(ModelRequest):
         return self
 
 
+class PresetsRequest(StrictRequest):
+    step_nm: Step = 10
+
+
 class ImportRequest(StrictRequest):
     filename: Annotated[str, Field(min_length=1, max_length=200)]
     content: Annotated[str, Field(min_length=1, max_length=1_000_000)]
@@ -327,41 +331,37 @@ def options():
 
 
 @router.get("/api/presets")
-def presets(step_nm: str = "10"):
-    """The preset distributions on one grid (``step_nm`` as the page sends it)."""
+async def presets(request: Request, step_nm: str = "10"):
+    """The presets on one grid (``step_nm`` as the page sends it), in the lane (0.13 s at 1 nm)."""
     steps = [f"{s:g}" for s in compute.STEPS_NM]
     if step_nm not in steps:
         return JSONResponse(
             {"error": f"step_nm: {step_nm[:20]!r} is not one of {', '.join(steps)} (nm)"},
             status_code=422)
-    return compute.presets(float(step_nm))
+    return await _pooled(request, "presets", json.dumps({"step_nm": int(step_nm)}).encode())
 
 
 @router.post("/api/model")
 async def model(request: Request):
-    """:func:`spectrocolor.app.compute.model` for one set of display choices (a
-    :class:`DisplayRequest`), in the interactive lane."""
+    """:func:`spectrocolor.app.compute.model` of a :class:`DisplayRequest`, in the lane."""
     return await _pooled(request, "model")
 
 
 @router.post("/api/evaluate")
 async def evaluate(request: Request):
-    """:func:`spectrocolor.app.compute.evaluate` of the spectra sent (an
-    :class:`EvaluateRequest`), in the interactive lane."""
+    """:func:`spectrocolor.app.compute.evaluate` of an :class:`EvaluateRequest`, in the lane."""
     return await _pooled(request, "evaluate")
 
 
 @router.post("/api/metamer")
 async def metamer(request: Request):
-    """:func:`spectrocolor.app.compute.metamer` of the target (a :class:`MetamerRequest`), in
-    the interactive lane."""
+    """:func:`spectrocolor.app.compute.metamer` of a :class:`MetamerRequest`, in the lane."""
     return await _pooled(request, "metamer")
 
 
 @router.post("/api/export")
 async def export(request: Request):
-    """The spectra as a CSV or JSON file to download (an :class:`ExportRequest`), written in
-    the interactive lane."""
+    """The spectra of an :class:`ExportRequest` as a CSV or JSON file, written in the lane."""
     return await _pooled(request, "export")
 
 
@@ -439,6 +439,7 @@ _POOLED: dict[str, tuple[type[StrictRequest], Callable[[Any], Any]]] = {
     "evaluate": (EvaluateRequest, _evaluate_answer),
     "metamer": (MetamerRequest, _metamer_answer),
     "export": (ExportRequest, _export_file),
+    "presets": (PresetsRequest, lambda req: compute.presets(float(req.step_nm))),
 }
 _JSON = "application/json"
 
@@ -477,9 +478,10 @@ def _warm_interactive() -> None:
         _interactive.warm(_pooled_answer, "model", b"{}")
 
 
-async def _pooled(request: Request, route: str) -> Response:
+async def _pooled(request: Request, route: str, body: bytes | None = None) -> Response:
     """Answer ``route`` in the interactive lane; the loop only hands the body's bytes over."""
-    body = await request.body()  # already read and counted by BodyLimit
+    if body is None:
+        body = await request.body()  # already read and counted by BodyLimit
     try:
         (status, content, media, headers), used_numpy_path = await run_in_threadpool(
             _interactive.run, call_noting_numpy_path, _pooled_answer, route, body,
