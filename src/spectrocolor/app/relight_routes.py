@@ -38,7 +38,7 @@ from .relight_photo import (
     prepare,
     relight_photo,
 )
-from .request_models import Level, StrictRequest, validation_message
+from .request_models import Level, StrictRequest, registries_as_imported, validation_message
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 #: Photos relit at the same time (each worker keeps its own tables).
@@ -91,14 +91,24 @@ def relight_options():
             "max_photo_bytes": MAX_PHOTO_BYTES, "max_side_px": MAX_SHOWN_SIDE_PX}
 
 
-def _relight_body(body: bytes):
-    """Worker side: the relit photo of the request ``body``, or ``(422, message)`` refusing it."""
+def _decoded(body: bytes) -> RelightRequest | tuple[int, str]:
+    """The :class:`RelightRequest` of ``body``, or ``(422, message)`` refusing it."""
     try:
-        req = RelightRequest.model_validate(json.loads(body))
+        return RelightRequest.model_validate(json.loads(body))
     except ValidationError as exc:
         return 422, validation_message(exc.errors())
     except (ValueError, RecursionError) as exc:  # not JSON (UnicodeDecodeError included)
         return 422, f"the body is not JSON ({str(exc)[:120]})"
+
+
+def _relight_body(body: bytes | RelightRequest):
+    """Worker side: the relit photo of the request ``body``, or ``(422, message)`` refusing it.
+
+    Given a :class:`RelightRequest` (validated by the server, see
+    :func:`~spectrocolor.app.request_models.registries_as_imported`), relights it."""
+    req = body if isinstance(body, RelightRequest) else _decoded(bytes(body))
+    if isinstance(req, tuple):
+        return req
     return relight_photo(req.image, req.illuminant, float(req.step_nm), req.observer, req.source,
                          req.adaptation, req.gamut, req.exposure)
 
@@ -106,10 +116,16 @@ def _relight_body(body: bytes):
 @router.post("/api/relight")
 async def relight(request: Request):
     """:func:`relight_photo` of a :class:`RelightRequest`, decoded and computed in the worker."""
+    body = await request.body()
+    job: bytes | RelightRequest = body
+    if not registries_as_imported():  # validated here: an entry registered at run time counts
+        checked = await run_in_threadpool(_decoded, body)
+        if isinstance(checked, tuple):
+            return JSONResponse({"error": checked[1]}, status_code=checked[0])
+        job = checked
     try:  # the worker says whether it used the NumPy path (kernels still compiling)
         answer, used_numpy_path = await run_in_threadpool(
-            _workers.run, call_noting_numpy_path, _relight_body, await request.body(),
-            client=client_key(request))
+            _workers.run, call_noting_numpy_path, _relight_body, job, client=client_key(request))
     except Busy:
         return JSONResponse({"error": "the server is busy relighting other photos; try again"},
                             status_code=429)

@@ -14,9 +14,8 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
   (:mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay
   busy).
 
-Fairness (issue 31): ``/api/model``, ``/api/evaluate``, ``/api/metamer`` and ``/api/export``
-are *decoded, validated, computed and written* in a lane of worker processes of their own
-(:func:`_pooled_answer`), apart from the uploads' and photos' pools; the loop only passes bytes.
+Fairness (issue 31): the presets, model, evaluate, metamer and export are *decoded, validated,
+computed and written* in a worker lane of their own (:func:`_pooled_answer`); the loop passes bytes.
 Pools limit each client by address and tab token (:func:`spectrocolor.app.guards.client_key`);
 small routes take small bodies (:data:`SMALL_BODY_BYTES`), bounding FastAPI's decoding in the loop.
 """
@@ -70,7 +69,7 @@ from .guards import BodyLimit, LocalOnly, allowed_hosts, client_key, json_depth
 from .kernels import KernelStatusHeader
 from .lab_routes import router as lab_router
 from .relight_routes import router as relight_router
-from .request_models import Level, StrictRequest, validation_message
+from .request_models import Level, StrictRequest, registries_as_imported, validation_message
 from .responses import FiniteJSONResponse
 from .uploads import Busy, UploadParser
 from .workers import WorkerDied, WorkerPool, WorkerTimeout
@@ -99,8 +98,7 @@ SMALL_BODY_BYTES = 64_000
 #: long as the labs allow: where the kernels compile on first use, the first one takes ~20 s).
 INTERACTIVE_WORKERS = 2
 INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S = 10.0, 60.0
-#: Requests of one client (or of one remote address) waiting for the lane; beyond, 429 at once.
-INTERACTIVE_WAITING_PER_CLIENT = 4
+INTERACTIVE_WAITING_PER_CLIENT = 4  # of one client (or remote address); beyond, 429 at once
 
 _interactive = WorkerPool(INTERACTIVE_WORKERS, INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S,
                           per_client=1, max_waiting=8 * INTERACTIVE_WORKERS,
@@ -449,11 +447,8 @@ def _error(status: int, message: str) -> tuple[int, bytes, str, dict]:
 
 
 def _pooled_answer(route: str, body: bytes) -> tuple[int, bytes, str, dict]:
-    """Worker side: decode, validate and answer one request of the interactive lane.
-
-    Returns ``(status, body, media type, headers)``: the answer, or the server's one error shape
-    for a body that is not JSON, a request the models refuse or the library's refusal (422).
-    """
+    """Worker side: decode, validate and answer one request of the interactive lane:
+    ``(status, body, media type, headers)``, a 422 in the one error shape for a refusal."""
     request_model, answer = _POOLED[route]
     try:
         data = json.loads(body)
@@ -482,6 +477,9 @@ async def _pooled(request: Request, route: str, body: bytes | None = None) -> Re
     """Answer ``route`` in the interactive lane; the loop only hands the body's bytes over."""
     if body is None:
         body = await request.body()  # already read and counted by BodyLimit
+    if not registries_as_imported():  # an entry registered at run time: the workers lack it
+        status, content, media, headers = await run_in_threadpool(_pooled_answer, route, body)
+        return Response(content, status_code=status, media_type=media, headers=headers)
     try:
         (status, content, media, headers), used_numpy_path = await run_in_threadpool(
             _interactive.run, call_noting_numpy_path, _pooled_answer, route, body,
