@@ -99,9 +99,10 @@ SMALL_BODY_BYTES = 64_000
 INTERACTIVE_WORKERS = 2
 INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S = 10.0, 60.0
 INTERACTIVE_WAITING_PER_CLIENT = 4  # of one client (or remote address); beyond, 429 at once
+# (a waiting job holds one of the server's 40 threads: the pools' lines together hold under 40)
 
 _interactive = WorkerPool(INTERACTIVE_WORKERS, INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S,
-                          per_client=1, max_waiting=8 * INTERACTIVE_WORKERS,
+                          per_client=1, max_waiting=4 * INTERACTIVE_WORKERS,
                           max_waiting_per_client=INTERACTIVE_WAITING_PER_CLIENT)
 
 # Observer, Display, Gamut, Normalise and Adaptation (spectrocolor.app.choices) are checked
