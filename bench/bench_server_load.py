@@ -17,11 +17,15 @@ Phases (each bounded by a request count, so the script stops by itself):
 7. IDLE_CONNECTIONS idle connections (fewer if this process may not open that many), then the
    time a new client waits for an answer and the server's open descriptors;
 8. ``kill -9`` of the server: how many of its worker processes are still alive 2 s later;
+9. fairness (issue 31): a client's POST /api/model latency at 1 nm with its illuminant changing
+   at every request (a dragged slider), alone and then while another client replays 2 MB JSON
+   bodies of a million numbers to /api/import and /api/evaluate (``--only fairness`` runs this
+   phase alone, on a fresh server);
 
 and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
 memory (VmRSS) before and after, with its peak (VmHWM).
 
-Run: .venv/bin/python bench/bench_server_load.py
+Run: .venv/bin/python bench/bench_server_load.py [--only fairness]
 """
 
 from __future__ import annotations
@@ -293,8 +297,70 @@ def kill_nine(proc: subprocess.Popen) -> None:
         os.kill(p, signal.SIGKILL)
 
 
+FAIRNESS_ROUNDS = 300
+#: A 2 MB JSON body of a million small numbers: decoding it takes tens of milliseconds.
+HOSTILE_JSON = (b'{"filename": "a.csv", "content": "x", "pad": ['
+                + b"0," * 999_960 + b'0]}')
+
+
+def drag_model(port: int, rounds: int, token: str) -> tuple[list, collections.Counter]:
+    """POST /api/model at 1 nm, the illuminant changing each time, as a dragged slider sends."""
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+    lat, st = [], collections.Counter()
+    for i in range(rounds):
+        levels = [10.0 + 10.0 * ((i + k) % 7) / 7 for k in range(301)]
+        body = json.dumps({"step_nm": 1, "illuminant": levels}).encode()
+        start = time.perf_counter()
+        conn.request("POST", "/api/model", body=body, headers={
+            "Content-Type": "application/json", "X-Spectrocolor-Client": token})
+        response = conn.getresponse()
+        response.read()
+        lat.append(time.perf_counter() - start)
+        st[response.status] += 1
+    conn.close()
+    return lat, st
+
+
+def fairness(port: int) -> None:
+    """Phase 9: /api/model latency alone and under 2 MB hostile bodies (see the docstring)."""
+    drag_model(port, 20, "warming-up-0001")  # the workers' caches, the connection
+    t0 = time.perf_counter()
+    lat, st = drag_model(port, FAIRNESS_ROUNDS, "the-slider-0001")
+    report("model at 1 nm, dragged, alone", lat, st, time.perf_counter() - t0)
+    stop, hostile_statuses = threading.Event(), collections.Counter()
+
+    def hostile():
+        paths = ("/api/import", "/api/evaluate")
+        i = 0
+        while not stop.is_set():
+            try:
+                status, _ = raw_request(port, "POST", paths[i % 2], HOSTILE_JSON)
+            except OSError:  # a 413 closes the connection while the body is still being sent
+                status = "refused, connection closed"
+            hostile_statuses[f"{paths[i % 2]} {status}"] += 1
+            i += 1
+
+    attacker = threading.Thread(target=hostile)
+    attacker.start()
+    time.sleep(0.5)
+    t0 = time.perf_counter()
+    lat, st = drag_model(port, FAIRNESS_ROUNDS, "the-slider-0001")
+    wall = time.perf_counter() - t0
+    stop.set()
+    attacker.join()
+    report("model, dragged, under 2 MB bodies", lat, st, wall)
+    print(f"  hostile client: {dict(hostile_statuses)}")
+
+
 def main() -> None:
     proc, port = start_server()
+    if sys.argv[1:] == ["--only", "fairness"]:
+        try:
+            fairness(port)
+        finally:
+            proc.terminate()
+            proc.wait(10)
+        return
     try:
         before = memory_mib(proc.pid)
         print(f"server pid {proc.pid} on 127.0.0.1:{port}; RSS before {before['VmRSS']:.0f} MiB; "
@@ -388,6 +454,7 @@ def main() -> None:
               f"(peak {after.get('workers_HWM', 0)} MiB); load average {os.getloadavg()[0]:.1f}")
 
         hostile_phases(proc, port)
+        fairness(port)
         idle_flood(proc, port)
         kill_nine(proc)
     finally:

@@ -171,3 +171,132 @@ def test_workers_end_with_their_parent_however_it_ends(tmp_path, how):
     finally:
         parent.kill()
         parent.wait(10)
+
+
+# --- client keys: (address, token), with a cap per address (issue 31) -------------------------
+
+def _running_together(pool: WorkerPool, clients: list) -> int:
+    """How many of ``clients``' 1 s jobs, all started at once, the pool runs at the same time."""
+    threads = [threading.Thread(target=pool.run, args=(time.sleep, 1.0), kwargs={"client": c})
+               for c in clients]
+    for thread in threads:
+        thread.start()
+    most = 0
+    for _ in range(30):  # 0.6 s: the workers started (first use) and the jobs were admitted
+        most = max(most, pool.running)
+        time.sleep(0.02)
+    for thread in threads:
+        thread.join(60)
+    return most
+
+
+@pytest.mark.slow
+def test_two_tabs_of_one_machine_are_two_clients():
+    """Two tokens from the loopback address run at once; one token's two jobs do not."""
+    pool = WorkerPool(2, wait_s=30.0, timeout_s=30.0, per_client=1)
+    try:
+        pool.run(max, 1, 2, client=("127.0.0.1", "warm-a"))  # start the workers first
+        _running_together(pool, [("127.0.0.1", "w1"), ("127.0.0.1", "w2")])
+        assert _running_together(pool, [("127.0.0.1", "tab-a"), ("127.0.0.1", "tab-b")]) == 2
+        assert _running_together(pool, [("127.0.0.1", "tab-a"), ("127.0.0.1", "tab-a")]) == 1
+    finally:
+        pool.close()
+
+
+@pytest.mark.slow
+def test_rotating_tokens_from_one_remote_address_cannot_fill_the_pool():
+    """A remote address is capped whatever tokens it sends; another address still gets a worker."""
+    pool = WorkerPool(2, wait_s=30.0, timeout_s=30.0, per_client=1)
+    try:
+        _running_together(pool, [("127.0.0.1", "w1"), ("127.0.0.1", "w2")])  # start both workers
+        assert _running_together(pool, [("203.0.113.7", f"token-{i}") for i in range(4)]) == 1
+        finished: list[str] = []
+
+        def rotating(i):
+            pool.run(time.sleep, 1.5, client=("203.0.113.7", f"rotating-{i}"))
+            finished.append("rotating")
+
+        threads = [threading.Thread(target=rotating, args=(i,)) for i in range(3)]
+        for thread in threads:
+            thread.start()
+        time.sleep(0.3)
+        assert pool.run(max, 1, 2, client=("198.51.100.2", "other")) == 2
+        finished.append("other")
+        for thread in threads:
+            thread.join(60)
+        assert finished[0] == "other", finished  # not behind the rotating tokens' jobs
+    finally:
+        pool.close()
+
+
+def test_one_client_cannot_fill_the_waiting_line():
+    """Past its share of the line a client is refused at once; another client still waits."""
+    pool = WorkerPool(1, wait_s=30.0, timeout_s=10.0, max_waiting=8, max_waiting_per_client=2)
+    try:
+        threads = [threading.Thread(target=pool.run, args=(time.sleep, 0.8),
+                                    kwargs={"client": ("127.0.0.1", "greedy")})
+                   for _ in range(3)]  # one runs, two wait
+        for thread in threads:
+            thread.start()
+            time.sleep(0.1)
+        started = time.monotonic()
+        with pytest.raises(Busy):
+            pool.run(max, 1, 2, client=("127.0.0.1", "greedy"))
+        assert time.monotonic() - started < 1.0  # refused at once
+        assert pool.run(max, 1, 2, client=("127.0.0.1", "polite")) == 2  # waited its turn
+        for thread in threads:
+            thread.join(60)
+    finally:
+        pool.close()
+
+
+# --- the reaper: workers end with the server without the kernel's parent-death signal ----------
+
+REAPED_PARENT = textwrap.dedent("""
+    import os, re, sys, time, threading
+    from spectrocolor.app.workers import WorkerPool
+    if __name__ == "__main__":
+        pool = WorkerPool(2, wait_s=10.0, timeout_s=600.0, reaper=%s)
+        pattern = re.compile(r"(a+)+b")
+        for _ in range(2):  # both workers stuck in C, holding their interpreter lock, for hours
+            threading.Thread(target=pool.run, args=(pattern.match, "a" * 40), daemon=True).start()
+        for _ in range(600):
+            if len(pool.worker_pids()) == 2:
+                break
+            time.sleep(0.05)
+        time.sleep(1.0)  # the jobs have reached the workers
+        print(" ".join(map(str, pool.worker_pids())), pool._reaper.pid, flush=True)
+        time.sleep(600)
+""")
+
+
+def _cpu_ticks(pid: int) -> int:
+    with open(f"/proc/{pid}/stat") as handle:
+        fields = handle.read().rsplit(")", 1)[1].split()
+    return int(fields[11]) + int(fields[12])  # utime + stime (fields 14 and 15 of stat)
+
+
+@pytest.mark.parametrize("how", ["argument", "environment"])
+def test_the_reaper_ends_workers_stuck_in_c_when_the_server_is_killed(tmp_path, how):
+    """Forced fallback (no PR_SET_PDEATHSIG): kill -9 of the parent, the workers still go."""
+    script = tmp_path / "parent.py"
+    script.write_text(REAPED_PARENT % ("True" if how == "argument" else "None"))
+    env = {**os.environ}
+    if how == "environment":
+        env["SPECTROCOLOR_WORKER_REAPER"] = "1"
+    parent = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True,
+                              env=env)
+    try:
+        *workers, reaper = (int(pid) for pid in parent.stdout.readline().split())
+        assert len(workers) == 2, workers
+        ticks = [_cpu_ticks(pid) for pid in workers]
+        time.sleep(0.5)
+        assert all(_cpu_ticks(pid) > t for pid, t in zip(workers, ticks, strict=True)), "not busy in C"
+        os.kill(parent.pid, signal.SIGKILL)
+        parent.wait(10)
+        for pid in workers:
+            assert gone(pid, within_s=5.0), f"worker {pid} outlived its killed parent"
+        assert gone(reaper, within_s=5.0), "the reaper outlived its work"
+    finally:
+        parent.kill()
+        parent.wait(10)

@@ -29,6 +29,7 @@ from ..illuminants import MAX_TEMPERATURE_K, MIN_TEMPERATURE_K
 from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
 from .choices import LabObserver, LightKindName, choice
+from .guards import client_key
 from .responses import FiniteJSONResponse
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
@@ -50,7 +51,7 @@ def _ready() -> bool:
 
 def _computed(request: Request, function, *args):
     """``function(*args)`` in a lab worker, with the server's answers for a busy or stuck one."""
-    client = request.client.host if request.client else None
+    client = client_key(request)  # (address, the tab's token)
     try:  # the worker says whether it used the NumPy path (kernels still compiling)
         answer, used_numpy_path = _workers.run(call_noting_numpy_path, function, *args, client=client)
     except Busy:

@@ -8,21 +8,26 @@ requests: a hostile file cannot stop the server, and other clients are answered 
 most :data:`RELIGHT_WORKERS` photos are relit at a time; a request waits up to
 :data:`RELIGHT_WAIT_S` for a turn, then gets 429. The body is limited like every other by the
 server's guard (``MAX_BODY_BYTES``, 413 beyond), so a photo file may have up to
-:data:`MAX_PHOTO_BYTES` bytes. Every error has the server's one shape, ``{"error": "..."}``.
+:data:`MAX_PHOTO_BYTES` bytes; it is decoded and validated in the worker too
+(:func:`_relight_body`), as decoding 2 MB of JSON in the server's event loop would stall every
+other client. Every error has the server's one shape, ``{"error": "..."}``.
 """
 
 from __future__ import annotations
 
+import json
 from typing import Annotated
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 from fastapi.responses import JSONResponse
-from pydantic import Field, model_validator
+from pydantic import Field, ValidationError, model_validator
+from starlette.concurrency import run_in_threadpool
 
 from ..errors import SpectrumError
 from ..numba_support import call_noting_numpy_path, note_numpy_path
 from . import compute
 from .choices import Gamut, Observer, Step, choice
+from .guards import client_key
 from .relight_photo import (
     ADAPTATIONS,
     DEFAULT_ADAPTATION,
@@ -33,7 +38,7 @@ from .relight_photo import (
     prepare,
     relight_photo,
 )
-from .request_models import Level, StrictRequest
+from .request_models import Level, StrictRequest, registries_as_imported, validation_message
 from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 #: Photos relit at the same time (each worker keeps its own tables).
@@ -86,12 +91,41 @@ def relight_options():
             "max_photo_bytes": MAX_PHOTO_BYTES, "max_side_px": MAX_SHOWN_SIDE_PX}
 
 
+def _decoded(body: bytes) -> RelightRequest | tuple[int, str]:
+    """The :class:`RelightRequest` of ``body``, or ``(422, message)`` refusing it."""
+    try:
+        return RelightRequest.model_validate(json.loads(body))
+    except ValidationError as exc:
+        return 422, validation_message(exc.errors())
+    except (ValueError, RecursionError) as exc:  # not JSON (UnicodeDecodeError included)
+        return 422, f"the body is not JSON ({str(exc)[:120]})"
+
+
+def _relight_body(body: bytes | RelightRequest):
+    """Worker side: the relit photo of the request ``body``, or ``(422, message)`` refusing it.
+
+    Given a :class:`RelightRequest` (validated by the server, see
+    :func:`~spectrocolor.app.request_models.registries_as_imported`), relights it."""
+    req = body if isinstance(body, RelightRequest) else _decoded(bytes(body))
+    if isinstance(req, tuple):
+        return req
+    return relight_photo(req.image, req.illuminant, float(req.step_nm), req.observer, req.source,
+                         req.adaptation, req.gamut, req.exposure)
+
+
 @router.post("/api/relight")
-def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread pool
+async def relight(request: Request):
+    """:func:`relight_photo` of a :class:`RelightRequest`, decoded and computed in the worker."""
+    body = await request.body()
+    job: bytes | RelightRequest = body
+    if not registries_as_imported():  # validated here: an entry registered at run time counts
+        checked = await run_in_threadpool(_decoded, body)
+        if isinstance(checked, tuple):
+            return JSONResponse({"error": checked[1]}, status_code=checked[0])
+        job = checked
     try:  # the worker says whether it used the NumPy path (kernels still compiling)
-        answer, used_numpy_path = _workers.run(
-            call_noting_numpy_path, relight_photo, req.image, req.illuminant, float(req.step_nm),
-            req.observer, req.source, req.adaptation, req.gamut, req.exposure)
+        answer, used_numpy_path = await run_in_threadpool(
+            _workers.run, call_noting_numpy_path, _relight_body, job, client=client_key(request))
     except Busy:
         return JSONResponse({"error": "the server is busy relighting other photos; try again"},
                             status_code=429)
@@ -101,6 +135,8 @@ def relight(req: RelightRequest):  # a plain def: FastAPI runs it in its thread 
     except WorkerDied:
         raise SpectrumError("image: the worker stopped on this photo (out of memory?); "
                             "send a smaller photo") from None
+    if isinstance(answer, tuple):
+        return JSONResponse({"error": answer[1]}, status_code=answer[0])
     if used_numpy_path:
         note_numpy_path()
     return answer

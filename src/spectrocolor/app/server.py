@@ -13,22 +13,31 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
   from a temporary file that a worker process creates, at most :data:`MAX_PARSERS` at a time
   (:mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay
   busy).
+
+Fairness (issue 31): the presets, model, evaluate, metamer and export are *decoded, validated,
+computed and written* in a worker lane of their own (:func:`_pooled_answer`); the loop passes bytes.
+Pools limit each client by address and tab token (:func:`spectrocolor.app.guards.client_key`);
+small routes take small bodies (:data:`SMALL_BODY_BYTES`), bounding FastAPI's decoding in the loop.
 """
 
 from __future__ import annotations
 
 import base64
 import binascii
+import json
 import tempfile
+from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
+from fastapi.routing import APIRoute
 from fastapi.staticfiles import StaticFiles
-from pydantic import Field, model_validator
+from pydantic import Field, ValidationError, model_validator
+from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException
 
 from ..display.chain import CHAIN_NORMALISATIONS, WHITE_ADAPTATIONS
@@ -38,6 +47,7 @@ from ..display.spaces import RGB_SPACES
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import LIGHT_KINDS
 from ..interpolation import METHODS as INTERPOLATION_METHODS
+from ..numba_support import call_noting_numpy_path, note_numpy_path
 from ..spreadsheet import neutralise_cell
 from . import compute
 from .choices import (
@@ -57,13 +67,14 @@ from .choices import (
     observer_labels,
     select_options,
 )
-from .guards import BodyLimit, LocalOnly, allowed_hosts, json_depth
+from .guards import BodyLimit, LocalOnly, allowed_hosts, client_key, json_depth
 from .kernels import KernelStatusHeader
 from .lab_routes import router as lab_router
 from .relight_routes import router as relight_router
-from .request_models import Level, StrictRequest
+from .request_models import Level, StrictRequest, registries_as_imported, validation_message
 from .responses import FiniteJSONResponse
 from .uploads import Busy, UploadParser
+from .workers import WorkerDied, WorkerPool, WorkerTimeout
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
 MAX_BODY_BYTES = 2_000_000
@@ -82,6 +93,22 @@ MAX_BINS = 301  # 400-700 nm at 1 nm
 #: Largest imported file, bytes (as text: characters), and its base64 length.
 MAX_IMPORT_BYTES = 1_000_000
 MAX_IMPORT_BASE64 = 4 * ((MAX_IMPORT_BYTES + 2) // 3)
+#: Body limit of the routes whose bodies are small (the page's interactive requests, the labs'),
+#: bytes: five spectra of 301 levels written with 17 digits take about 30 kB.
+SMALL_BODY_BYTES = 64_000
+#: The interactive lane: worker processes for the page's model, evaluate, metamer and export
+#: requests, kept apart from the uploads' and the labs' pools so that a long job there never
+#: delays a dragged slider. One client (address and tab) uses one worker at a time, so another
+#: client always finds one; a computation past INTERACTIVE_TIMEOUT_S has its worker killed (as
+#: long as the labs allow: where the kernels compile on first use, the first one takes ~20 s).
+INTERACTIVE_WORKERS = 2
+INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S = 10.0, 60.0
+INTERACTIVE_WAITING_PER_CLIENT = 4  # of one client (or remote address); beyond, 429 at once
+# (a waiting job holds one of the server's 40 threads: the pools' lines together hold under 40)
+
+_interactive = WorkerPool(INTERACTIVE_WORKERS, INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S,
+                          per_client=1, max_waiting=4 * INTERACTIVE_WORKERS,
+                          max_waiting_per_client=INTERACTIVE_WAITING_PER_CLIENT)
 
 # Observer, Display, Gamut, Normalise and Adaptation (spectrocolor.app.choices) are checked
 # against the library's registries when a request arrives: a name registered there is accepted.
@@ -143,6 +170,10 @@ class MetamerRequest(ModelRequest):
         if max(self.target) <= 0:
             raise ValueError("target is black (all levels 0): every distribution is its metamer")
         return self
+
+
+class PresetsRequest(StrictRequest):
+    step_nm: Step = 10
 
 
 class ImportRequest(StrictRequest):
@@ -212,13 +243,8 @@ def _check_illuminant(levels, step_nm) -> None:
         raise ValueError("illuminant is dark everywhere (all levels 0): nothing is lit")
 
 
-def _message(exc: RequestValidationError) -> str:
-    parts = []
-    for err in exc.errors():
-        where = ".".join(str(p) for p in err.get("loc", ()) if p != "body")
-        msg = str(err.get("msg", "invalid")).removeprefix("Value error, ")
-        parts.append(f"{where}: {msg}" if where else msg)
-    return "; ".join(parts[:5]) + (f" (and {len(parts) - 5} more)" if len(parts) > 5 else "")
+def _message(exc: RequestValidationError | ValidationError) -> str:
+    return validation_message(exc.errors())
 
 
 def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
@@ -239,7 +265,10 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     static = Path(str(resources.files("spectrocolor.app") / "static"))
     parsers = UploadParser(MAX_PARSERS, PARSER_WAIT_S, PARSER_TIMEOUT_S)
     app.state.parsers = parsers  # for POST /api/import
+    app.state.interactive = _interactive  # for the page's interactive requests
+    app.router.on_startup.append(_warm_interactive)
     app.router.on_shutdown.append(parsers.close)
+    app.router.on_shutdown.append(_interactive.close)
     _add_guards(app, port, check_host)
     _add_error_handlers(app)
 
@@ -259,7 +288,11 @@ def _add_guards(app: FastAPI, port: int | None, check_host: bool) -> None:
     # added last = outermost: Host/Origin first, then the body count, then whether a result
     # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
     app.add_middleware(KernelStatusHeader)
-    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH)
+    small = {route.path: SMALL_BODY_BYTES for route in (*router.routes, *lab_router.routes)
+             if isinstance(route, APIRoute) and "POST" in (route.methods or ())
+             and route.path != "/api/import"}
+    app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH,
+                       path_limits=small)
     app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
 
 
@@ -329,64 +362,173 @@ def options():
 
 
 @router.get("/api/presets")
-def presets(step_nm: str = "10"):
-    """The preset distributions on one grid (``step_nm`` as the page sends it)."""
+async def presets(request: Request, step_nm: str = "10"):
+    """The presets on one grid (``step_nm`` as the page sends it), in the lane (0.13 s at 1 nm)."""
     steps = [f"{s:g}" for s in compute.STEPS_NM]
     if step_nm not in steps:
         return JSONResponse(
             {"error": f"step_nm: {step_nm[:20]!r} is not one of {', '.join(steps)} (nm)"},
             status_code=422)
-    return compute.presets(float(step_nm))
+    return await _pooled(request, "presets", json.dumps({"step_nm": int(step_nm)}).encode())
 
 
 @router.post("/api/model")
-def model(req: DisplayRequest):
-    """:func:`spectrocolor.app.compute.model` for one set of display choices."""
-    return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
-                         req.normalise, req.adaptation)
+async def model(request: Request):
+    """:func:`spectrocolor.app.compute.model` of a :class:`DisplayRequest`, in the lane."""
+    return await _pooled(request, "model")
 
 
 @router.post("/api/evaluate")
-def evaluate(req: EvaluateRequest):
-    """:func:`spectrocolor.app.compute.evaluate` of the spectra sent."""
-    return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
-                            req.gamut, req.spectra, req.illuminant, req.pairs,
-                            req.adaptation)
+async def evaluate(request: Request):
+    """:func:`spectrocolor.app.compute.evaluate` of an :class:`EvaluateRequest`, in the lane."""
+    return await _pooled(request, "evaluate")
 
 
 @router.post("/api/metamer")
-def metamer(req: MetamerRequest):
-    """:func:`spectrocolor.app.compute.metamer` of the target."""
-    return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
-
-
-@router.post("/api/import")
-def import_(req: ImportRequest, request: Request):  # a plain def: run in FastAPI's threads
-    """The spectra of an uploaded file, parsed in a worker process (429 when all stay busy)."""
-    parsers: UploadParser = request.app.state.parsers
-    content = req.file_bytes()  # bytes are decoded in the worker, as read_spectra decodes a file
-    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
-    raw = content if isinstance(content, bytes) else content.encode("utf-8")
-    if suffix == ".json" and json_depth(raw) > MAX_JSON_DEPTH:
-        raise SpectrumError(f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
-    try:  # in a worker process: other clients keep being answered meanwhile
-        return parsers.parse(req.filename, content, suffix, float(req.step_nm),
-                             req.method, req.scale, MAX_IMPORT_SPECTRA,
-                             client=request.client.host if request.client else None,
-                             observer=req.observer)
-    except Busy:
-        return JSONResponse({"error": "the server is busy reading other files; try again"},
-                            status_code=429)
+async def metamer(request: Request):
+    """:func:`spectrocolor.app.compute.metamer` of a :class:`MetamerRequest`, in the lane."""
+    return await _pooled(request, "metamer")
 
 
 @router.post("/api/export")
-def export(req: ExportRequest):
-    """The spectra as a CSV or JSON file to download."""
+async def export(request: Request):
+    """The spectra of an :class:`ExportRequest` as a CSV or JSON file, written in the lane."""
+    return await _pooled(request, "export")
+
+
+@router.post("/api/import")
+async def import_(request: Request):
+    """The spectra of an uploaded file (an :class:`ImportRequest`), parsed in a worker process
+    (429 when all stay busy). Its body, up to 2 MB, is decoded and validated in the upload
+    pool's workers too (:func:`_decoded_import`): decoding it here would hold the event loop."""
+    parsers: UploadParser = request.app.state.parsers
+    client = client_key(request)
+    try:
+        decoded = await run_in_threadpool(parsers.pool.run, _decoded_import,
+                                          await request.body(), client=client)
+        if isinstance(decoded, str):
+            return JSONResponse({"error": decoded}, status_code=422)
+        return await run_in_threadpool(_import, decoded, parsers, client)
+    except Busy:
+        return JSONResponse({"error": "the server is busy reading other files; try again"},
+                            status_code=429)
+    except (WorkerTimeout, WorkerDied):
+        raise SpectrumError("the upload could not be read (too large or too slow to decode); "
+                            "import a smaller file") from None
+
+
+def _decoded_import(body: bytes) -> tuple[ImportRequest, bytes | str] | str:
+    """Worker side: the :class:`ImportRequest` of ``body`` and its file (the bytes of
+    ``content_base64``, else the text ``content``), or the one line refusing it."""
+    try:
+        req = ImportRequest.model_validate(json.loads(body))
+        content = req.file_bytes()
+    except (ValueError, RecursionError) as exc:  # not JSON, not base64, or refused by the model
+        return _message(exc) if isinstance(exc, ValidationError) else \
+            str(exc)[:300] if isinstance(exc, SpectrumError) else f"the body is not JSON ({str(exc)[:120]})"
+    raw = content if isinstance(content, bytes) else content.encode("utf-8")
+    if req.filename.lower().endswith(".json") and json_depth(raw) > MAX_JSON_DEPTH:
+        return f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels"
+    return req, content
+
+
+def _import(decoded: tuple[ImportRequest, bytes | str], parsers: UploadParser, client) -> Response:
+    """The import answer, parsed in a worker and written here, in a thread (not the loop)."""
+    req, content = decoded  # bytes are decoded in the worker, as read_spectra decodes a file
+    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
+    # in a worker process: other clients keep being answered meanwhile
+    return FiniteJSONResponse(parsers.parse(req.filename, content, suffix, float(req.step_nm),
+                                            req.method, req.scale, MAX_IMPORT_SPECTRA,
+                                            client=client, observer=req.observer))
+
+
+def _export_file(req: ExportRequest) -> tuple[bytes, str, dict]:
+    """Worker side: the file of :func:`export`, its media type and its headers."""
     with tempfile.TemporaryDirectory(prefix="spectrocolor-") as folder:
         path = Path(folder) / f"spectra.{req.format}"
         names = [neutralise_cell(n) for n in req.names] if req.format == "csv" else req.names
         compute.export_spectra(float(req.step_nm), names, req.spectra, path)
         body = path.read_bytes()
     media = "text/csv" if req.format == "csv" else "application/json"
-    return Response(body, media_type=media, headers={
-        "Content-Disposition": f'attachment; filename="spectra.{req.format}"'})
+    return body, media, {"Content-Disposition": f'attachment; filename="spectra.{req.format}"'}
+
+
+def _model_answer(req: DisplayRequest) -> dict:
+    return compute.model(float(req.step_nm), req.observer, req.display, req.illuminant,
+                         req.normalise, req.adaptation)
+
+
+def _evaluate_answer(req: EvaluateRequest) -> dict:
+    return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
+                            req.gamut, req.spectra, req.illuminant, req.pairs, req.adaptation)
+
+
+def _metamer_answer(req: MetamerRequest) -> dict:
+    return compute.metamer(float(req.step_nm), req.observer, req.target, req.illuminant)
+
+
+#: The interactive lane's routes: the request model and what answers it (in the worker).
+_POOLED: dict[str, tuple[type[StrictRequest], Callable[[Any], Any]]] = {
+    "model": (DisplayRequest, _model_answer),
+    "evaluate": (EvaluateRequest, _evaluate_answer),
+    "metamer": (MetamerRequest, _metamer_answer),
+    "export": (ExportRequest, _export_file),
+    "presets": (PresetsRequest, lambda req: compute.presets(float(req.step_nm))),
+}
+_JSON = "application/json"
+
+
+def _error(status: int, message: str) -> tuple[int, bytes, str, dict]:
+    return status, json.dumps({"error": message}).encode("utf-8"), _JSON, {}
+
+
+def _pooled_answer(route: str, body: bytes) -> tuple[int, bytes, str, dict]:
+    """Worker side: decode, validate and answer one request of the interactive lane:
+    ``(status, body, media type, headers)``, a 422 in the one error shape for a refusal."""
+    request_model, answer = _POOLED[route]
+    try:
+        data = json.loads(body)
+    except (ValueError, RecursionError) as exc:  # UnicodeDecodeError is a ValueError
+        return _error(422, f"the body is not JSON ({str(exc)[:120]})")
+    try:
+        req = request_model.model_validate(data)
+    except ValidationError as exc:
+        return _error(422, _message(exc))
+    try:
+        result = answer(req)
+        if route == "export":
+            return 200, *result
+        return 200, bytes(FiniteJSONResponse(result).body), _JSON, {}
+    except (SpectrumError, ColorimetryError) as exc:
+        return _error(422, str(exc))
+
+
+def _warm_interactive() -> None:
+    """Start the interactive lane's workers with the server, each answering the default model."""
+    for _ in range(INTERACTIVE_WORKERS):
+        _interactive.warm(_pooled_answer, "model", b"{}")
+
+
+async def _pooled(request: Request, route: str, body: bytes | None = None) -> Response:
+    """Answer ``route`` in the interactive lane; the loop only hands the body's bytes over."""
+    if body is None:
+        body = await request.body()  # already read and counted by BodyLimit
+    if not registries_as_imported():  # an entry registered at run time: the workers lack it
+        status, content, media, headers = await run_in_threadpool(_pooled_answer, route, body)
+        return Response(content, status_code=status, media_type=media, headers=headers)
+    try:
+        (status, content, media, headers), used_numpy_path = await run_in_threadpool(
+            _interactive.run, call_noting_numpy_path, _pooled_answer, route, body,
+            client=client_key(request))
+    except Busy:
+        return JSONResponse({"error": "the server is busy answering this page's or other "
+                             "pages' requests; try again"}, status_code=429)
+    except WorkerTimeout:
+        raise ColorimetryError(f"this computation took more than {INTERACTIVE_TIMEOUT_S:g} s "
+                               "and was stopped; choose other settings") from None
+    except WorkerDied:
+        raise ColorimetryError("the worker computing this stopped (out of memory?); choose "
+                               "other settings") from None
+    if used_numpy_path:
+        note_numpy_path()
+    return Response(content, status_code=status, media_type=media, headers=headers)

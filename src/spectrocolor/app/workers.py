@@ -13,15 +13,33 @@ job can fail to get an answer into exceptions the caller words for its route:
 * :class:`WorkerDied`: the worker process stopped (out of memory, a crash in compiled code).
 
 Fairness: jobs wait in one line, first come first served, except that a client (the caller's
-``client`` key, the server gives the client's address) never runs more than ``per_client`` jobs
-at once: its further jobs let other clients' jobs go first. At most ``max_waiting`` jobs wait;
-beyond, :class:`Busy` at once, so a flood of requests cannot tie up the server's threads.
+``client`` key) never runs more than ``per_client`` jobs at once: its further jobs let other
+clients' jobs go first. The server's key is ``(address, token)``: the address the request came
+from and the random token its page made (:func:`spectrocolor.app.guards.client_key`), so two
+tabs, or a tab and a script on the same machine, are two clients. A token costs nothing to
+make, so the jobs of one *address* are capped too (``per_address``), except for the addresses
+in ``unlimited_addresses`` (the server gives the loopback ones: a program on the server's own
+machine can use that machine's processors in any case, with or without the explorer). At most
+``max_waiting`` jobs wait, and at most ``max_waiting_per_client`` of one client or of one
+capped address; beyond, :class:`Busy` at once, so a flood of requests from one client cannot
+tie up the server's threads nor crowd the others out of the line.
 
 Workers end with the server, however it ends: on Linux each asks the kernel for ``SIGKILL``
-when its parent dies (``prctl(PR_SET_PDEATHSIG)``), and on every system a watchdog thread in
-the worker checks twice a second that its parent is still the process that started it. (The
-kernel ties the parent-death signal to the *thread* that started the process; request threads
-come and go, so every worker is started from one thread that lives as long as the server.)
+when its parent dies (``prctl(PR_SET_PDEATHSIG)``; the kernel ties the signal to the *thread*
+that started the process, and request threads come and go, so every worker is started from one
+thread that lives as long as the server). Where that is not available (other systems, or
+``reaper=True``, or the environment variable :data:`REAPER_VARIABLE` set to ``1``), a *reaper*
+does it: a tiny separate process (:data:`_REAPER_SOURCE`, standard library only) that reads the
+pids of the workers from a pipe whose other end only the server holds; when the server ends,
+however it ends, the system closes that end, the reaper's read returns end-of-file and it kills
+every worker still listed. It needs nothing from the workers, so it also ends a worker stuck in
+compiled code holding its interpreter lock. On every system a watchdog thread in each worker
+also checks twice a second that its parent is still the process that started it (it cannot run
+while the worker holds its interpreter lock, hence the two others).
+
+Why this file is long: the pool's admission rules (per client, per address, the waiting line),
+its workers' life and the two ways they end with the server are one mechanism; the reaper is
+a few lines of it, and each part reads the others' state under one lock.
 """
 
 from __future__ import annotations
@@ -33,17 +51,24 @@ import os
 import pickle
 import queue
 import signal
+import subprocess
 import sys
 import threading
 import time
 
-__all__ = ["Busy", "WorkerDied", "WorkerPool", "WorkerTimeout", "die_with_parent"]
+__all__ = ["Busy", "WorkerDied", "WorkerPool", "WorkerTimeout", "die_with_parent", "Reaper",
+           "REAPER_VARIABLE", "LOOPBACK_ADDRESSES"]
 
 #: How often a worker's watchdog checks that its parent is alive, s.
 WATCHDOG_INTERVAL_S = 0.5
 #: How long a worker asked to stop may take before it is killed, s.
 STOP_GRACE_S = 2.0
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+#: The addresses of the server's own machine (no per-address cap by default).
+LOOPBACK_ADDRESSES = ("127.0.0.1", "::1")
+#: Set to ``1`` in the server's environment: workers end through a :class:`Reaper` even where the
+#: kernel's parent-death signal is available (for tests of the reaper, and for diagnosis).
+REAPER_VARIABLE = "SPECTROCOLOR_WORKER_REAPER"
 
 
 class Busy(Exception):
@@ -58,7 +83,7 @@ class WorkerDied(Exception):
     """A worker process stopped during the job (out of memory, a crash in compiled code)."""
 
 
-def die_with_parent(parent_pid: int) -> None:
+def die_with_parent(parent_pid: int, kernel_signal: bool = True) -> None:
     """End this process as soon as the process ``parent_pid`` (its parent) ends, however it ends.
 
     On Linux the kernel sends ``SIGKILL`` when the parent dies (``PR_SET_PDEATHSIG``); on every
@@ -71,8 +96,10 @@ def die_with_parent(parent_pid: int) -> None:
     ----------
     parent_pid : int
         The parent's process id, as the parent saw it (``os.getpid()`` there).
+    kernel_signal : bool
+        False where the parent relies on its :class:`Reaper` instead of the kernel's signal.
     """
-    if sys.platform.startswith("linux"):
+    if kernel_signal and sys.platform.startswith("linux"):
         try:
             libc = ctypes.CDLL(None, use_errno=True)
             libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
@@ -91,10 +118,10 @@ def _watch_parent(parent_pid: int) -> None:
             os._exit(1)
 
 
-def _serve(connection, parent_pid: int) -> None:
+def _serve(connection, parent_pid: int, kernel_signal: bool = True) -> None:
     """A worker's life: run the jobs that arrive on ``connection`` until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C is the server's: it closes the pool
-    die_with_parent(parent_pid)
+    die_with_parent(parent_pid, kernel_signal)
     while True:
         try:
             message = connection.recv_bytes()
@@ -149,17 +176,123 @@ def _start_process(process) -> None:
         raise failure[0]
 
 
+# --- the reaper: workers end with the server without the kernel's parent-death signal --------
+
+#: The reaper's program (standard library only; run with ``python -c``). It keeps the set of
+#: worker pids sent as lines ``+pid`` (started) and ``-pid`` (ended) until its standard input
+#: reaches end-of-file -- the server's end of the pipe closed, however the server ended -- then
+#: kills every pid still in the set.
+_REAPER_SOURCE = """
+import os, signal, sys
+signal.signal(signal.SIGINT, signal.SIG_IGN)
+pids = set()
+for line in sys.stdin.buffer:
+    try:
+        pid = int(line[1:])
+    except ValueError:
+        continue
+    (pids.add if line[:1] == b"+" else pids.discard)(pid)
+for pid in pids:
+    try:
+        os.kill(pid, getattr(signal, "SIGKILL", signal.SIGTERM))
+    except OSError:
+        pass
+"""
+
+
+class Reaper:
+    """A separate process that kills the listed workers when the server ends, however it ends.
+
+    The server holds the only write end of the reaper's standard input; the system closes it when
+    the server ends (``SIGKILL`` included), and the reaper then kills the workers still listed.
+    The reaper is started on first use and again if it has ended.
+
+    Examples
+    --------
+    >>> reaper = Reaper()
+    >>> reaper.add(os.getpid()); reaper.discard(os.getpid())  # listed, then struck off
+    >>> reaper.close()  # end-of-file: it kills what is still listed (nothing) and ends
+    """
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._pids: set[int] = set()
+        self._process: subprocess.Popen | None = None
+
+    def _send(self, line: bytes) -> None:
+        if self._process is None or self._process.poll() is not None:
+            self._process = subprocess.Popen(
+                [sys.executable, "-c", _REAPER_SOURCE], stdin=subprocess.PIPE,
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+            line = b"".join(b"+%d\n" % pid for pid in self._pids) + line
+        assert self._process.stdin is not None
+        try:
+            self._process.stdin.write(line)
+            self._process.stdin.flush()
+        except OSError:  # the reaper ended meanwhile: the next line starts a new one
+            self._process = None
+
+    def add(self, pid: int) -> None:
+        """List ``pid``: it is killed when the server ends."""
+        with self._lock:
+            self._pids.add(pid)
+            self._send(b"+%d\n" % pid)
+
+    def discard(self, pid: int) -> None:
+        """Strike ``pid`` off (the worker ended), so that a later process with its id is spared."""
+        with self._lock:
+            if pid in self._pids:
+                self._pids.discard(pid)
+                self._send(b"-%d\n" % pid)
+
+    @property
+    def pid(self) -> int | None:
+        """The reaper's process id (None before its first use)."""
+        return None if self._process is None else self._process.pid
+
+    def close(self) -> None:
+        """End the reaper now (it kills the workers still listed)."""
+        with self._lock:
+            if self._process is not None:
+                if self._process.stdin is not None:
+                    self._process.stdin.close()
+                self._process.wait(STOP_GRACE_S)
+                self._process = None
+
+
+_reaper_lock = threading.Lock()
+_reaper: Reaper | None = None
+
+
+def _shared_reaper() -> Reaper:
+    """The server's one reaper, started on first use."""
+    global _reaper
+    with _reaper_lock:
+        if _reaper is None:
+            _reaper = Reaper()
+        return _reaper
+
+
+def _reaper_wanted(reaper: bool | None) -> bool:
+    if reaper is not None:
+        return reaper
+    return os.environ.get(REAPER_VARIABLE) == "1" or not sys.platform.startswith("linux")
+
+
 class _Worker:
     """One worker process and the server's end of its pipe."""
 
-    def __init__(self, context) -> None:
+    def __init__(self, context, reaper: Reaper | None = None) -> None:
         self.connection, child = context.Pipe(duplex=True)
-        self.process = context.Process(target=_serve, args=(child, os.getpid()), daemon=True,
-                                       name="spectrocolor-worker")
+        self.process = context.Process(target=_serve, args=(child, os.getpid(), reaper is None),
+                                       daemon=True, name="spectrocolor-worker")
+        self.reaper = reaper
         try:
             _start_process(self.process)
         finally:
             child.close()
+        if reaper is not None and self.process.pid is not None:
+            reaper.add(self.process.pid)
 
     def call(self, function, args: tuple, timeout_s: float):
         """``(True, result)`` or ``(False, exception)``; WorkerTimeout, EOFError or OSError."""
@@ -174,6 +307,8 @@ class _Worker:
             self.process.kill()
         self.process.join(STOP_GRACE_S)
         self.connection.close()
+        if self.reaper is not None and self.process.pid is not None and not self.process.is_alive():
+            self.reaper.discard(self.process.pid)
 
     def stop(self) -> None:
         """Ask the process to end; kill it if it does not within :data:`STOP_GRACE_S`."""
@@ -201,6 +336,20 @@ class WorkerPool:
         ``workers``.
     max_waiting : int, optional
         Most jobs waiting for a worker; beyond, :class:`Busy` at once. Default ``4 * workers``.
+    per_address : int, optional
+        Most jobs running at once of all the clients of one address (a client key
+        ``(address, token)``; another key is its own address); default ``workers - 1`` (at
+        least 1), so that another address always finds a worker.
+    max_waiting_per_client : int, optional
+        Most jobs waiting of one client, and of one address with a cap; default ``max_waiting``.
+    unlimited_addresses : collection, optional
+        Addresses without the ``per_address`` cap and the address's share of the waiting line;
+        their clients keep their own limits. Default :data:`LOOPBACK_ADDRESSES`: a program on
+        the server's own machine can use its processors without the explorer anyway.
+    reaper : bool, optional
+        Whether a :class:`Reaper` ends the workers with the server (instead of the kernel's
+        parent-death signal); default: where that signal is not available, or where the
+        environment variable :data:`REAPER_VARIABLE` is ``1``.
 
     Examples
     --------
@@ -211,10 +360,19 @@ class WorkerPool:
     """
 
     def __init__(self, workers: int, wait_s: float, timeout_s: float, *,
-                 per_client: int | None = None, max_waiting: int | None = None):
+                 per_client: int | None = None, max_waiting: int | None = None,
+                 per_address: int | None = None, max_waiting_per_client: int | None = None,
+                 unlimited_addresses=None, reaper: bool | None = None):
         self.workers, self.wait_s, self.timeout_s = workers, wait_s, timeout_s
         self.per_client = workers if per_client is None else per_client
         self.max_waiting = 4 * workers if max_waiting is None else max_waiting
+        self.per_address = max(1, workers - 1) if per_address is None else per_address
+        self.max_waiting_per_client = (self.max_waiting if max_waiting_per_client is None
+                                       else max_waiting_per_client)
+        self.unlimited_addresses = frozenset(LOOPBACK_ADDRESSES if unlimited_addresses is None
+                                             else unlimited_addresses)
+        self._reaper = _shared_reaper() if _reaper_wanted(reaper) else None
+        self._running_by_address: collections.Counter = collections.Counter()
         self._context = multiprocessing.get_context("spawn")
         self._condition = threading.Condition()
         self._idle: list[_Worker] = []
@@ -226,15 +384,34 @@ class WorkerPool:
 
     # --- admission -----------------------------------------------------------------------
 
+    def _address(self, client):
+        """The address whose cap ``client`` counts against, or None (no cap)."""
+        address = client[0] if isinstance(client, tuple) and len(client) == 2 else client
+        return None if client is _WARMING or address in self.unlimited_addresses else address
+
+    def _startable(self, client) -> bool:
+        address = self._address(client)
+        return (self._running_by_client[client] < self.per_client
+                and (address is None or self._running_by_address[address] < self.per_address))
+
     def _first_startable(self):
         if self._running >= self.workers:
             return None
-        return next((ticket for ticket in self._waiting
-                     if self._running_by_client[ticket[0]] < self.per_client), None)
+        return next((ticket for ticket in self._waiting if self._startable(ticket[0])), None)
+
+    def _line_full(self, client) -> bool:
+        """Whether ``client``'s job must be refused at once: the line, or its share, is full."""
+        if len(self._waiting) >= self.max_waiting:
+            return True
+        address = self._address(client)
+        mine = sum(1 for ticket in self._waiting if ticket[0] == client)
+        ours = 0 if address is None else sum(1 for ticket in self._waiting
+                                             if self._address(ticket[0]) == address)
+        return max(mine, ours) >= self.max_waiting_per_client
 
     def _admit(self, client, wait_s: float) -> tuple[_Worker | None, int]:
         with self._condition:
-            if len(self._waiting) >= self.max_waiting:
+            if self._line_full(client):
                 raise Busy
             ticket = [client]
             self._waiting.append(ticket)
@@ -250,6 +427,7 @@ class WorkerPool:
                 self._condition.notify_all()
             self._running += 1
             self._running_by_client[client] += 1
+            self._running_by_address[self._address(client)] += 1
             worker = self._idle.pop() if self._idle else None
             if worker is not None:
                 self._busy.add(worker)
@@ -261,6 +439,10 @@ class WorkerPool:
             self._running_by_client[client] -= 1
             if self._running_by_client[client] <= 0:
                 del self._running_by_client[client]
+            address = self._address(client)
+            self._running_by_address[address] -= 1
+            if self._running_by_address[address] <= 0:
+                del self._running_by_address[address]
             if worker is not None:
                 self._busy.discard(worker)
                 if generation == self._generation:
@@ -282,7 +464,8 @@ class WorkerPool:
         *args
             Its arguments (pickled).
         client : hashable, optional, keyword-only
-            Who asks (the server gives the client's address), for the per-client limit.
+            Who asks, for the per-client limits: the server gives ``(address, token)``
+            (:func:`spectrocolor.app.guards.client_key`).
 
         Raises
         ------
@@ -301,7 +484,7 @@ class WorkerPool:
                 worker = None
             if worker is None:
                 try:
-                    worker = _Worker(self._context)
+                    worker = _Worker(self._context, self._reaper)
                 except Exception as exc:  # noqa: BLE001 - no descriptors, no memory, ...
                     raise WorkerDied(f"no worker process could be started ({exc.__class__.__name__})") from None
                 with self._condition:

@@ -1,12 +1,13 @@
 // The server's JSON API: every colour number the page shows comes from the library through it.
 
+import {clientHeaders} from "./client.js";
 import {showKernelStatus} from "./kernels.js";
 
 export class ApiError extends Error {}
 
 export async function api(path, body) {
-  const opts = body === undefined ? {} : {method: "POST", headers: {"Content-Type": "application/json"},
-    body: JSON.stringify(body)};
+  const opts = body === undefined ? {headers: clientHeaders()} : {method: "POST",
+    headers: {"Content-Type": "application/json", ...clientHeaders()}, body: JSON.stringify(body)};
   let res;
   try {
     res = await fetch(path, opts);

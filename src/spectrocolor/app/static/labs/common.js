@@ -1,6 +1,7 @@
 // What every lab page shares: element lookup, the one error banner, the JSON API call (errors in
 // the server's {"error": …} shape), canvases sized to their CSS box, and number formatting.
 
+import { clientHeaders } from "../js/client.js";
 import { showKernelStatus } from "../js/kernels.js";
 
 export const $ = (id) => document.getElementById(id);
@@ -13,8 +14,8 @@ export function showError(message) {
 
 /** GET (no body) or POST JSON; a non-2xx answer throws the server's error text. */
 export async function api(path, body) {
-  const init = body === undefined ? {} : {
-    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
+  const init = body === undefined ? { headers: clientHeaders() } : {
+    method: "POST", headers: { "Content-Type": "application/json", ...clientHeaders() }, body: JSON.stringify(body),
   };
   const response = await fetch(path, init);
   const data = await response.json();
