@@ -15,7 +15,8 @@ from fastapi.testclient import TestClient
 
 import spectrocolor as sc
 from spectrocolor.app import compute
-from spectrocolor.app.server import MAX_IMPORT_BYTES, create_app
+from spectrocolor.app.import_routes import MAX_IMPORT_BYTES
+from spectrocolor.app.server import create_app
 
 CORPUS = Path(__file__).parents[1] / "data" / "io"
 

@@ -80,8 +80,8 @@ def test_cary_percent_columns_are_a_declaration_that_percent_false_contradicts()
     with pytest.raises(SpectrumError, match=r"declares its values on percent \(value columns titled %R\); "
                                             r"percent=False contradicts it"):
         sc.read_spectra(CORPUS / "cary_paired.csv", percent=False)
-    # exact: the same text read twice, divided by the same 100
     asked = sc.read_spectra(CORPUS / "cary_paired.csv", percent=True)
+    # exact: the same text read twice, divided by the same 100
     assert np.array_equal(asked.values, _read("cary_paired.csv").values)
 
 

@@ -203,6 +203,10 @@ _OPEN_ARRAY, _CLOSE_ARRAY, _OPEN_OBJECT, _CLOSE_OBJECT = (ord(c) for c in "[]{}"
 SCAN_PIECE_BYTES = 1 << 14
 
 
+#: Deepest JSON nesting accepted in a body or an imported file (the API needs 3).
+MAX_JSON_DEPTH = 32
+
+
 def json_depth(data: bytes) -> int:
     """Deepest nesting of arrays/objects in a JSON text (strings skipped), without parsing it.
 

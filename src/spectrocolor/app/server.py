@@ -9,10 +9,9 @@ Security (see also :mod:`spectrocolor.app.guards` and ``docs/robustness.md``):
 * requests are validated by pydantic models (bin counts, finite numbers in range, known names);
   anything malformed gets a 4xx, and every error of every route -- 403, 404, 405, 413, 422,
   429 -- has one shape, ``{"error": "one line"}``, which the page shows;
-* it never reads or writes a path that the page sends: uploads arrive as text and are parsed
-  from a temporary file that a worker process creates, at most :data:`MAX_PARSERS` at a time
-  (:mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay
-  busy).
+* it never reads or writes a path that the page sends: uploads arrive as bytes or text and are
+  parsed from a temporary file that a worker process creates (:mod:`spectrocolor.app.import_routes`,
+  :mod:`spectrocolor.app.uploads`: other clients are answered meanwhile; 429 when all stay busy).
 
 Fairness (issue 31): the presets, model, evaluate, metamer and export are *decoded, validated,
 computed and written* in a worker lane of their own (:func:`_pooled_answer`); the loop passes bytes.
@@ -22,8 +21,6 @@ small routes take small bodies (:data:`SMALL_BODY_BYTES`), bounding FastAPI's de
 
 from __future__ import annotations
 
-import base64
-import binascii
 import json
 import tempfile
 from collections.abc import Callable
@@ -46,7 +43,6 @@ from ..display.gamut import GAMUT_STRATEGIES
 from ..display.spaces import RGB_SPACES
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import LIGHT_KINDS
-from ..interpolation import METHODS as INTERPOLATION_METHODS
 from ..numba_support import call_noting_numpy_path, note_numpy_path
 from ..spreadsheet import neutralise_cell
 from . import compute
@@ -62,12 +58,13 @@ from .choices import (
     Normalise,
     Observer,
     Step,
-    choice,
     light_kind_options,
     observer_labels,
     select_options,
 )
-from .guards import BodyLimit, LocalOnly, allowed_hosts, client_key, json_depth
+from .guards import MAX_JSON_DEPTH, BodyLimit, LocalOnly, allowed_hosts, client_key
+from .import_routes import MAX_PARSERS, PARSER_TIMEOUT_S, PARSER_WAIT_S
+from .import_routes import router as import_router
 from .kernels import KernelStatusHeader
 from .lab_routes import router as lab_router
 from .relight_routes import router as relight_router
@@ -78,21 +75,8 @@ from .workers import WorkerDied, WorkerPool, WorkerTimeout
 
 #: Largest request body, bytes, for every transfer encoding (Content-Length or chunked).
 MAX_BODY_BYTES = 2_000_000
-#: Deepest JSON nesting accepted in a body or an imported file (the API needs 3).
-MAX_JSON_DEPTH = 32
-#: Imports parsed at the same time, each in a worker process; more wait up to PARSER_WAIT_S,
-#: then get 429.
-MAX_PARSERS = 2
-PARSER_WAIT_S = 10.0
-#: Longest parse of one upload, seconds.
-PARSER_TIMEOUT_S = 60.0
 MAX_SPECTRA = 4
-#: Spectra one imported file may hold; the page lets the user choose which to edit.
-MAX_IMPORT_SPECTRA = 64
 MAX_BINS = 301  # 400-700 nm at 1 nm
-#: Largest imported file, bytes (as text: characters), and its base64 length.
-MAX_IMPORT_BYTES = 1_000_000
-MAX_IMPORT_BASE64 = 4 * ((MAX_IMPORT_BYTES + 2) // 3)
 #: Body limit of the routes whose bodies are small (the page's interactive requests, the labs'),
 #: bytes: five spectra of 301 levels written with 17 digits take about 30 kB.
 SMALL_BODY_BYTES = 64_000
@@ -176,41 +160,6 @@ class PresetsRequest(StrictRequest):
     step_nm: Step = 10
 
 
-class ImportRequest(StrictRequest):
-    """An uploaded file: its text (``content``, already decoded) or, as the page sends it, its
-    bytes (``content_base64``), decoded on the server as the library decodes a file
-    (:func:`spectrocolor.io.decode_text`), so Latin-1/cp1252 exports read as they do on the
-    command line. ``observer``: the page's observer, for the note on the file's declared conditions."""
-
-    filename: Annotated[str, Field(min_length=1, max_length=200)]
-    content: Annotated[str | None, Field(min_length=1, max_length=1_000_000)] = None
-    content_base64: Annotated[str | None, Field(min_length=1, max_length=MAX_IMPORT_BASE64)] = None
-    step_nm: Step = 10
-    method: Annotated[str, choice(INTERPOLATION_METHODS)] = "linear"
-    scale: Annotated[str, choice(compute.IMPORT_SCALES.names_view())] = "peak"
-    observer: Observer | None = None
-
-    @model_validator(mode="after")
-    def _one_content(self):
-        if (self.content is None) == (self.content_base64 is None):
-            raise ValueError("give the file as content (text) or content_base64 (its bytes), one of them")
-        return self
-
-    def file_bytes(self) -> bytes | str:
-        """The file: bytes decoded from ``content_base64``, else the text ``content``."""
-        if self.content_base64 is None:
-            assert self.content is not None  # _one_content
-            return self.content
-        try:
-            data = base64.b64decode(self.content_base64, validate=True)
-        except (binascii.Error, ValueError):
-            raise SpectrumError(f"{self.filename}: content_base64 is not base64 (RFC 4648: A-Z a-z 0-9 + / =)") \
-                from None
-        if not data or len(data) > MAX_IMPORT_BYTES:
-            raise SpectrumError(f"{self.filename}: the file must be 1 to {MAX_IMPORT_BYTES} bytes, got {len(data)}")
-        return data
-
-
 class ExportRequest(StrictRequest):
     format: Literal["csv", "json"] = "csv"
     step_nm: Step = 10
@@ -279,6 +228,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     app.mount("/static", StaticFiles(directory=static), name="static")
     app.include_router(lab_router)
     app.include_router(relight_router)
+    app.include_router(import_router)
     app.include_router(router)
     return app
 
@@ -289,8 +239,7 @@ def _add_guards(app: FastAPI, port: int | None, check_host: bool) -> None:
     # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
     app.add_middleware(KernelStatusHeader)
     small = {route.path: SMALL_BODY_BYTES for route in (*router.routes, *lab_router.routes)
-             if isinstance(route, APIRoute) and "POST" in (route.methods or ())
-             and route.path != "/api/import"}
+             if isinstance(route, APIRoute) and "POST" in (route.methods or ())}
     app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH,
                        path_limits=small)
     app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
@@ -394,52 +343,6 @@ async def metamer(request: Request):
 async def export(request: Request):
     """The spectra of an :class:`ExportRequest` as a CSV or JSON file, written in the lane."""
     return await _pooled(request, "export")
-
-
-@router.post("/api/import")
-async def import_(request: Request):
-    """The spectra of an uploaded file (an :class:`ImportRequest`), parsed in a worker process
-    (429 when all stay busy). Its body, up to 2 MB, is decoded and validated in the upload
-    pool's workers too (:func:`_decoded_import`): decoding it here would hold the event loop."""
-    parsers: UploadParser = request.app.state.parsers
-    client = client_key(request)
-    try:
-        decoded = await run_in_threadpool(parsers.pool.run, _decoded_import,
-                                          await request.body(), client=client)
-        if isinstance(decoded, str):
-            return JSONResponse({"error": decoded}, status_code=422)
-        return await run_in_threadpool(_import, decoded, parsers, client)
-    except Busy:
-        return JSONResponse({"error": "the server is busy reading other files; try again"},
-                            status_code=429)
-    except (WorkerTimeout, WorkerDied):
-        raise SpectrumError("the upload could not be read (too large or too slow to decode); "
-                            "import a smaller file") from None
-
-
-def _decoded_import(body: bytes) -> tuple[ImportRequest, bytes | str] | str:
-    """Worker side: the :class:`ImportRequest` of ``body`` and its file (the bytes of
-    ``content_base64``, else the text ``content``), or the one line refusing it."""
-    try:
-        req = ImportRequest.model_validate(json.loads(body))
-        content = req.file_bytes()
-    except (ValueError, RecursionError) as exc:  # not JSON, not base64, or refused by the model
-        return _message(exc) if isinstance(exc, ValidationError) else \
-            str(exc)[:300] if isinstance(exc, SpectrumError) else f"the body is not JSON ({str(exc)[:120]})"
-    raw = content if isinstance(content, bytes) else content.encode("utf-8")
-    if req.filename.lower().endswith(".json") and json_depth(raw) > MAX_JSON_DEPTH:
-        return f"{req.filename}: JSON nested deeper than {MAX_JSON_DEPTH} levels"
-    return req, content
-
-
-def _import(decoded: tuple[ImportRequest, bytes | str], parsers: UploadParser, client) -> Response:
-    """The import answer, parsed in a worker and written here, in a thread (not the loop)."""
-    req, content = decoded  # bytes are decoded in the worker, as read_spectra decodes a file
-    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"
-    # in a worker process: other clients keep being answered meanwhile
-    return FiniteJSONResponse(parsers.parse(req.filename, content, suffix, float(req.step_nm),
-                                            req.method, req.scale, MAX_IMPORT_SPECTRA,
-                                            client=client, observer=req.observer))
 
 
 def _export_file(req: ExportRequest) -> tuple[bytes, str, dict]:
