@@ -244,8 +244,7 @@ def choose_conditions(spectrum, illuminant=DECLARED, observer=DECLARED):
     spectrum : Spectrum
         Spectra read from a file (see :func:`declared_conditions`).
     illuminant : str, Spectrum, Illuminant or ``"declared"``, default ``"declared"``
-        ``"declared"``: what the file declares, else D65. Anything else is used as given (any
-        form of :func:`spectrocolor.resolve_illuminant`).
+        ``"declared"``: what the file declares, else D65; anything else as given; see :term:`illuminant`.
     observer : str, Spectrum, Observer or ``"declared"``, default ``"declared"``
         ``"declared"``: what the file declares, else CIE 1931 2°.
 

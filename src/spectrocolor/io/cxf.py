@@ -207,8 +207,7 @@ def parse_cxf(text: str, source: str, percent: bool | None = None) -> Spectrum:
     source : str
         File name, for messages.
     percent : bool or None, default None
-        CxF3 spectra are fractions (0–1): ``None`` or ``False``; ``True`` contradicts the format
-        and is an error.
+        CxF3 spectra are fractions (0–1), so ``True`` contradicts the format; see :term:`percent`.
 
     Returns
     -------

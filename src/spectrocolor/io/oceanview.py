@@ -126,8 +126,7 @@ def parse_oceanview(text: str, source: str, percent: bool | None = None) -> Spec
     source : str
         File name, for messages.
     percent : bool or None, default None
-        For Transmission/Reflection exports the file's percent is divided by 100 (``True``
-        agrees, ``False`` contradicts it); other exports keep their values as written.
+        Transmission/Reflection exports declare percent, other exports nothing; see :term:`percent`.
 
     Returns
     -------

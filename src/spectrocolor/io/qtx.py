@@ -143,8 +143,7 @@ def parse_qtx(text: str, source: str, percent: bool | None = None) -> Spectrum:
     source : str
         File name, for messages.
     percent : bool or None, default None
-        ``None`` or ``True`` (QTX values are percent and are divided by 100); ``False``
-        contradicts the file and is an error.
+        QTX values are percent, so ``False`` contradicts the file; see :term:`percent`.
 
     Returns
     -------

@@ -368,8 +368,7 @@ def parse_xlsx(data: bytes, source: str = "<workbook>", percent: bool | None = N
     source : str, default "<workbook>"
         The file name, for messages.
     percent : bool or None, default None
-        As for :func:`spectrocolor.io.parse_spectra`: ``True`` divides by 100; ``None`` and
-        ``False`` keep the values (a workbook does not declare its scale).
+        A workbook does not declare its scale: ``True`` divides by 100; see :term:`percent`.
     sheet : str or int or None, keyword-only, default None
         The sheet's name or its 0-based index in tab order; ``None`` for the first sheet.
     budget : int or str, optional
