@@ -188,3 +188,24 @@ def test_hostile_spectra():
     with pytest.raises(ColorimetryError, match="^illuminant: the illuminant's white excites"):
         sc.cone_responses(Spectrum.constant(1.0, grid), illuminant=Spectrum(grid, (grid >= 650).astype(float)))
     assert np.isnan(sc.cone_responses(Spectrum(grid, np.full(grid.size, np.nan)), illuminant="D65")).all()
+
+
+def test_the_explorer_cards_carry_l_m_s_scaled_to_their_white():
+    from spectrocolor.app import compute
+
+    wl = compute.grid(10)
+    full, half = [30.0] * wl.size, [15.0] * wl.size
+    r = compute.evaluate(10, "2015-10", "sRGB", compute.DEFAULT_NORMALISE, "clip", [full, half])
+    # the full spectrum is the white of settings 1–3 and 5: 100 each; half of it, 50 each
+    np.testing.assert_allclose([c["LMS"] for c in r["colours"]], [[100] * 3, [50] * 3], rtol=1e-13)
+    assert r["lms_note"] is None
+    # the page's own numbers are the library's, with the observer's field (10° here)
+    sample = (np.arange(wl.size) % 7 + 1) * 4.0
+    r = compute.evaluate(10, "2015-10", "sRGB", compute.DEFAULT_NORMALISE, "clip", [sample.tolist()])
+    expected = sc.cone_responses(Spectrum(wl, sample / 30), illuminant="E", field="10°")
+    np.testing.assert_allclose(r["colours"][0]["LMS"], expected, rtol=1e-13)
+    # a red line illuminant (650 nm) leaves the S cones of its white unexcited: no L M S, and why
+    red = [0.0] * wl.size
+    red[25] = 30.0
+    r = compute.evaluate(10, "1931", "sRGB", compute.DEFAULT_NORMALISE, "clip", [full, half], red)
+    assert r["colours"][1]["LMS"] == [None, None, None] and r["lms_note"].startswith("L M S undefined")
