@@ -130,6 +130,8 @@ def test_peak_normalisation_is_the_raw_sum_with_the_table():
     np.testing.assert_allclose(sc.cone_responses(line, normalisation="peak"), CVRL_2DEG[570], rtol=1e-12)
     W = cone_weights(grid)
     np.testing.assert_allclose(W[10], CVRL_2DEG[570], rtol=1e-12)
+    W[10] = 0.0  # the caller's copy: the cached weights behind cone_responses are not touched
+    np.testing.assert_allclose(sc.cone_responses(line, normalisation="peak"), CVRL_2DEG[570], rtol=1e-12)
 
 
 def test_the_cones_order_as_the_light_would_suggest():

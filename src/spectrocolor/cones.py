@@ -27,7 +27,7 @@ Colour & Vision Research Laboratory (CVRL), UCL, files ``linss2_10e_1`` and ``li
 
 from __future__ import annotations
 
-from functools import cache
+from functools import cache, lru_cache
 
 import numpy as np
 
@@ -152,13 +152,22 @@ def cone_weights(wavelengths_nm, *, field="2°") -> np.ndarray:
         raise ColorimetryError(
             f"wavelengths_nm: summation needs at least two samples (Δλ is undefined for one), got {grid.tolist()}"
         )
-    lms = _fundamentals(_field(field))
+    return np.array(_cone_weights(grid.tobytes(), _field(field)))
+
+
+@lru_cache(maxsize=64)
+def _cone_weights(grid_key: bytes, field_deg: float) -> np.ndarray:
+    """:func:`cone_weights` on a validated grid, read-only and cached per (grid, field)."""
+    grid = np.frombuffer(grid_key, dtype=float)
+    lms = _fundamentals(field_deg)
     table_nm = lms.wavelengths_nm
     inside = (grid >= table_nm[0]) & (grid <= table_nm[-1])
     result = np.zeros((grid.size, 3))
     if inside.any():
         result[inside] = resample_linear(table_nm, lms.values, grid[inside]).T
-    return result * interval_weights_nm(grid)[:, None]
+    result *= interval_weights_nm(grid)[:, None]
+    result.setflags(write=False)
+    return result
 
 
 def cone_responses(spectrum: Spectrum, *, illuminant=None, field="2°", normalisation: str | None = None) -> np.ndarray:
@@ -241,8 +250,12 @@ def cone_responses(spectrum: Spectrum, *, illuminant=None, field="2°", normalis
     if (normalisation == "white") != (light is not None):
         needs = "an illuminant (reflectances)" if normalisation == "white" else "illuminant=None (lights)"
         raise ColorimetryError(f"normalisation: {normalisation!r} needs {needs}; {CONE_NORMALISATIONS[normalisation]}")
-    W = cone_weights(spectrum.wavelengths_nm, field=field)
     grid = spectrum.wavelengths_nm
+    if grid.size < 2:
+        raise ColorimetryError(
+            f"wavelengths_nm: summation needs at least two samples (Δλ is undefined for one), got {grid.tolist()}"
+        )
+    W = _cone_weights(np.ascontiguousarray(grid, dtype=float).tobytes(), _field(field))
     if light is not None:
         try:
             W = W * illuminant_on(grid, light)[:, None]
