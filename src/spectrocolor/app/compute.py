@@ -6,6 +6,11 @@ by the tests). The page's distributions are bin levels 0..``FULL_LEVEL`` (SPECTR
 distribution is the relative factor ``levels / FULL_LEVEL`` of a reference light: the equal-energy
 spectrum E (settings 1, 2, 3 and 5, where the full spectrum is the white, Y = 100), or the
 illuminant of setting 4 (the samples are reflectances; the perfect white has Y = 100).
+
+Why this file is long: it is the one place every number of the explorer's main page comes from
+(the model, each card's XYZ, L M S, xy, CIELAB, λd and rendering, presets, metamers, imports and
+exports), each a thin call into the library; keeping them together keeps the page's numbers on one
+source and the routes free of colorimetry.
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ import numpy as np
 
 from ..chromaticity import dominant_wavelength, spectral_locus
 from ..colorimetry import tristimulus, weights
+from ..cones import cone_responses
 from ..coordinates import lab, xy
 from ..differences import delta_e_2000
 from ..display.chain import DEFAULT_CHAIN_NORMALISATION, DEFAULT_WHITE_ADAPTATION, DisplayChain, display_chain
@@ -188,7 +194,9 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
              pairs=(), adaptation: str = DEFAULT_ADAPTATION) -> dict:
     """Colorimetry and display rendering of up to a few distributions (bin levels).
 
-    Returns per distribution: XYZ (CIE, Y = 100 for the full spectrum / perfect white), the
+    Returns per distribution: XYZ (CIE, Y = 100 for the full spectrum / perfect white), the cone
+    responses ``LMS`` (CIE 2006 fundamentals of the observer's field, 100 each for the same white;
+    None, with ``lms_note``, where the white leaves a cone unexcited), the
     ``XYZ_row`` the page shows (SPECTRA's one k per channel in "spectra-exact", else XYZ), xy,
     dominant or complementary wavelength and excitation purity relative to the reference
     white (None, with ``dominant_note``, where undefined), CIELAB, the XYZ the display is asked
@@ -208,7 +216,9 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     r = chain.render(XYZ, gamut)
     shown = _rendered(r, chain.space, wl, shown_XYZ, row_XYZ, gamut, normalise, lit)
     lab_, lab_note = _cielab(XYZ, white_XYZ)
-    colours = [{**_cie_row(i, XYZ, xy_, dominant, lit, lab_), **shown[i]} for i in range(len(levels))]
+    LMS, lms_note = _cone_values(wl, levels, reference, observer)
+    colours = [{**_cie_row(i, XYZ, xy_, dominant, lit, lab_), "LMS": [_none_nan(v) for v in LMS[i]], **shown[i]}
+               for i in range(len(levels))]
     delta = [_none_nan(float(delta_e_2000(lab_[a], lab_[b]))) if lab_note is None else None
              for a, b in pairs]
     # The lights as the display is asked to show them (after normalisation A or B, before any
@@ -223,6 +233,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "white_xy": white_xy.tolist(),
         "XYZ_row_note": XYZ_ROW_NOTES["spectra-exact" if normalise == "spectra-exact" else "cie"],
         "lab_note": lab_note,
+        "lms_note": lms_note,
         "normalise": normalise,
         "adaptation": adaptation,
         "gamut": r.gamut,
@@ -239,6 +250,15 @@ def _cie_values(wl, levels, reference, observer):
     xy_, white_xy = xy(XYZ), xy(white_XYZ)
     lit = XYZ[:, 1] > 0
     return XYZ, white_XYZ, xy_, white_xy, lit, _dominant(xy_, white_xy, observer, lit)
+
+
+def _cone_values(wl, levels, reference, observer):
+    """L, M, S of each distribution (CIE 2006 cones of the observer's field, the reference's perfect
+    white = 100 each), and None; or NaN and why, where the white leaves a cone unexcited."""
+    try:
+        return cone_responses(Spectrum(wl, levels / FULL_LEVEL), illuminant=reference, field=observer), None
+    except ColorimetryError as exc:  # e.g. an illuminant with no short-wave light: S of the white is 0
+        return np.full((len(levels), 3), np.nan), f"L M S undefined: {exc}"
 
 
 def _cielab(XYZ, white_XYZ):
