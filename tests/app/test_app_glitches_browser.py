@@ -85,7 +85,8 @@ def test_quick_option_changes_leave_a_state_the_server_accepts(browser, base_url
         pg.wait_for_timeout(100)
         settle(pg)
         got = pg.evaluate("""() => { const S = window.__spectra; return {step: S.step, display: S.display,
-            wl: S.wl.length, model: S.model.wavelengths_nm.length, bins: [...new Set(Object.values(S.dists).flat().map((d) => d.length))],
+            wl: S.wl.length, model: S.model.wavelengths_nm.length,
+            bins: [...new Set(Object.values(S.dists).flat().map((d) => d.length))],
             controls: [document.getElementById('step').value, document.getElementById('display').value]}; }""")
         assert got == {"step": 10, "display": "Display P3", "wl": 31, "model": 31, "bins": [31],
                        "controls": ["10", "Display P3"]}
@@ -141,12 +142,12 @@ def test_the_emitted_light_is_not_called_a_metamer_of_the_distribution(browser, 
         assert pg.locator("#emitted-box").is_visible()
         assert state(pg)["adaptation"] == "bradford"
         text = caption.inner_text()
-        assert "adapted to the display's white" in text and "not the distribution itself" in text
-        assert "no metamer" in text
+        assert "matches the colour as adapted to the display's white, not the distribution" in text
+        assert "no metamer" in text and "a metamer" not in text
         pg.screenshot(path="/tmp/h28a_glitch7_caption.png", clip={"x": 0, "y": 100, "width": 1280, "height": 200})
         pg.select_option("#adaptation", "none")
         settle(pg)
-        assert "has the distribution's chromaticity" in caption.inner_text()
+        assert "it has the distribution's (dashed) chromaticity" in caption.inner_text()
 
 
 def test_export_names_its_units_and_load_gives_the_same_names(browser, base_url, tmp_path, artifacts_dir):

@@ -121,11 +121,10 @@ function drawEmittedLight(levels) {
  * adapted to the display's white when an adaptation is chosen, so the screen's light is then no
  * metamer of the distribution (it matches the adapted colour). */
 function emittedCaption() {
-  const head = "Light the display emits (solid) and the distribution (dashed)";
   if (S.adaptation && S.adaptation !== "none") {
-    return `${head}: the screen's light matches the colour as adapted to the display's white, not the distribution itself (no metamer).`;
+    return "The display's light (solid) matches the colour as adapted to the display's white, not the distribution (dashed) itself: no metamer.";
   }
-  return `${head}: unadapted, so inside the gamut the screen's light has the distribution's chromaticity (a metamer up to brightness).`;
+  return "The display's light (solid), unadapted: inside the gamut it has the distribution's (dashed) chromaticity, a metamer up to brightness.";
 }
 
 // ---------------------------------------------------------------- history and the URL
