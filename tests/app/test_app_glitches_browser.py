@@ -188,3 +188,27 @@ def test_export_names_its_units_and_load_gives_the_same_names(browser, base_url,
             assert got["names"] == ["T65 three-band", "metameric grey 1", "metameric grey 2"]
             np.testing.assert_allclose(got["dists"], st["dists"], rtol=0, atol=1e-9)
         pg.screenshot(path="/tmp/h28a_glitch8_loaded.png")
+
+
+def test_setting3_demos_say_whether_they_reach_the_seeds_one_hue(browser, base_url):
+    """(6) Seed 002, setting 3, example 1: after moving the light at 570 and 580 nm "they both have
+    the same hue". Computed they do not (the walk measured λd 570.4 vs 575.0 nm): the page says so
+    and why, with the numbers; Fig. 12 (example 2) does reach one hue, and the page says that."""
+    with open_page(browser, base_url, SIZE) as pg:
+        choose(pg, 3)
+        pg.click("#actions [data-moves='1']")
+        settle(pg)
+        pg.wait_for_function("document.getElementById('note').textContent.includes('λd')")
+        note = pg.locator("#note").inner_text()
+        st = state(pg)
+        left, right = library(st)["colours"][:2]
+        assert abs(left["dominant_nm"] - 570.4) < 0.05 and abs(right["dominant_nm"] - 575.0) < 0.05
+        assert "the seed says both sides now have the same hue, but computed they differ" in note
+        assert f"λd {left['dominant_nm']:.1f} nm (left)" in note and f"{right['dominant_nm']:.1f} nm (right)" in note
+        assert "Fig. 12 (default 2)" in note
+        pg.screenshot(path="/tmp/h28a_glitch6_demo1.png")
+        pg.click("#actions [data-moves='2']")
+        settle(pg)
+        pg.wait_for_function("document.getElementById('note').textContent.includes('one hue, as the seed says')")
+        left, right = library(state(pg))["colours"][:2]
+        assert abs(left["dominant_nm"] - right["dominant_nm"]) <= 1

@@ -75,6 +75,7 @@ async function pump() {
       refreshPhoto();
       markStale(null);
       succeeded("evaluate");
+      if (S.afterEvaluate) { const after = S.afterEvaluate; S.afterEvaluate = null; after(r); }
       S.settled = optionsWaiting === 0;
     }
   } catch (err) {
