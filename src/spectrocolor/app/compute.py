@@ -6,6 +6,11 @@ by the tests). The page's distributions are bin levels 0..``FULL_LEVEL`` (SPECTR
 distribution is the relative factor ``levels / FULL_LEVEL`` of a reference light: the equal-energy
 spectrum E (settings 1, 2, 3 and 5, where the full spectrum is the white, Y = 100), or the
 illuminant of setting 4 (the samples are reflectances; the perfect white has Y = 100).
+
+Why this file is long: it holds one function per API answer of the explorer (model, evaluate,
+metamer, presets, import, export, light metrics), and they share the page's conventions (levels
+0-30, the 400-700 nm grid, the display chain, the exported units); split apart, each file would
+have to restate them.
 """
 
 from __future__ import annotations
