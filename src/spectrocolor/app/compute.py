@@ -7,14 +7,16 @@ distribution is the relative factor ``levels / FULL_LEVEL`` of a reference light
 spectrum E (settings 1, 2, 3 and 5, where the full spectrum is the white, Y = 100), or the
 illuminant of setting 4 (the samples are reflectances; the perfect white has Y = 100).
 
-Why this file is long: it is the one place every number of the explorer's main page comes from
-(the model, each card's XYZ, L M S, xy, CIELAB, λd and rendering, presets, metamers, imports and
-exports), each a thin call into the library; keeping them together keeps the page's numbers on one
-source and the routes free of colorimetry.
+Why this file is long: it holds one function per API answer of the explorer's main page (model,
+evaluate with each card's XYZ, L M S, xy, CIELAB, λd and rendering, metamer, presets, import,
+export, light metrics), each a thin call into the library, and they share the page's conventions
+(levels 0-30, the 400-700 nm grid, the display chain, the exported units); split apart, each file
+would have to restate them.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import get_args
 
 import numpy as np
@@ -44,7 +46,7 @@ from .choices import ADAPTATIONS, DISPLAYS, GAMUTS, NORMALISATIONS, Step, observ
 
 __all__ = ["ADAPTATIONS", "DISPLAYS", "GAMUTS", "NORMALISATIONS", "DEFAULT_GAMUT", "DEFAULT_NORMALISE",
            "DEFAULT_ADAPTATION", "FULL_LEVEL", "STEPS_NM", "grid", "pipeline", "model", "evaluate",
-           "metamer", "presets", "import_spectra", "export_spectra", "light_metrics"]
+           "metamer", "presets", "import_spectra", "export_spectra", "EXPORT_UNIT", "light_metrics"]
 
 FULL_LEVEL = P.FULL_LEVEL
 START_NM, STOP_NM = P.START_NM, P.STOP_NM
@@ -511,8 +513,56 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
     }
 
 
+#: The unit of the page's values, as exported files declare it (the page's Load recognises it and
+#: reads such a file as levels, whatever its "values as" choice).
+EXPORT_UNIT = (f"SPECTRA levels 0-{FULL_LEVEL:g} ({FULL_LEVEL:g} = the full equal-energy spectrum, "
+               "or reflectance/transmittance 1)")
+
+
 def export_spectra(step_nm: float, names, spectra, path) -> None:
-    """Write the page's distributions (levels 0..30) to ``path``: CSV or JSON by its suffix."""
+    """Write the page's distributions to ``path`` (CSV or JSON by its suffix), with their units.
+
+    The CSV starts with a ``#`` comment line naming the units (the library's CSV reader skips
+    comment lines; the wavelength column is ``wavelength_nm``); the JSON object carries a
+    ``"units"`` entry beside ``wavelengths_nm`` and ``spectra`` (which
+    :meth:`spectrocolor.Spectrum.from_dict` ignores). Names are written as given, so a file
+    loaded back gives the same names.
+
+    Parameters
+    ----------
+    step_nm : float
+        The page's bin width, nm (the grid is 400-700 nm).
+    names : sequence of str
+        One name per distribution.
+    spectra : sequence of sequence of float
+        The distributions, levels 0..``FULL_LEVEL`` (unit :data:`EXPORT_UNIT`).
+    path : pathlib.Path
+        Output file, ``.csv`` or ``.json``; written atomically.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from spectrocolor import read_spectra
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "s.csv"
+    ...     export_spectra(10.0, ["left straw"], [[15.0] * 31], path)
+    ...     first = path.read_text().splitlines()[0]
+    ...     back = read_spectra(path)
+    >>> first.startswith("# values: SPECTRA levels 0-30"), back.names, float(back.values[0])
+    (True, ('left straw',), 15.0)
+    """
+    import json
+
+    from ..io.writers import spectra_to_csv
+    from ..safe_write import write_text
+
     wl = grid(step_nm)
     s = Spectrum(wl, np.asarray(spectra, dtype=float), names=list(names))
-    write_spectra(s, path)
+    if Path(path).suffix.lower() == ".csv":
+        text = f"# values: {EXPORT_UNIT}; wavelength_nm: nanometres\n" + spectra_to_csv(s)
+    elif Path(path).suffix.lower() == ".json":
+        text = json.dumps({**s.to_dict(), "units": {"wavelengths_nm": "nm", "values": EXPORT_UNIT}}, indent=1)
+    else:
+        write_spectra(s, path)
+        return
+    write_text(Path(path), text)
