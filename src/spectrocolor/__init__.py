@@ -63,6 +63,8 @@ _PUBLIC: dict[str, str] = {
     "weights": "colorimetry",
     "tristimulus": "colorimetry",
     "white_point": "colorimetry",
+    "cone_fundamentals": "cones",
+    "cone_responses": "cones",
     "xy": "coordinates",
     "xyY": "coordinates",
     "XYZ_from_xyY": "coordinates",

@@ -23,6 +23,8 @@ from .colorimetry import SUMMATION_METHODS as SUMMATION_METHODS
 from .colorimetry import tristimulus as tristimulus
 from .colorimetry import weights as weights
 from .colorimetry import white_point as white_point
+from .cones import cone_fundamentals as cone_fundamentals
+from .cones import cone_responses as cone_responses
 from .coordinates import XYZ_from_lab as XYZ_from_lab
 from .coordinates import XYZ_from_xyY as XYZ_from_xyY
 from .coordinates import lab as lab
@@ -223,6 +225,8 @@ __all__ = [
     "colour_shift",
     "colour_table",
     "complement",
+    "cone_fundamentals",
+    "cone_responses",
     "cube_to_lab",
     "cube_to_rgb",
     "cube_to_xyz",

@@ -260,7 +260,7 @@ def test_self_explaining_numbers_diagram_and_step4(page):
     lib = library(st)["colours"][0]
     card = page.locator("#numbers .card[data-i='0']")
     heads = card.locator("th")
-    assert heads.count() == 6
+    assert heads.count() == 7  # X Y Z, L M S, x y, L*a*b*, linear RGB, codes, λd
     for i in range(heads.count()):
         assert len(heads.nth(i).get_attribute("title")) > 20  # an explanation, not just a label
     assert "Y = 100 for the full spectrum" in card.locator("th").first.get_attribute("title")

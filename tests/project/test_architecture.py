@@ -25,7 +25,7 @@ DATA = {"data_tables"}
 SPECTRA = {"spectrum", "interpolation", "sampling", "observers", "illuminants", "radiators", "spectrum_io", "io",
            "samples"}
 COLOUR = {"coordinates", "differences", "display"}
-COLORIMETRY = {"colorimetry", "astm_e308", "bandpass", "chromaticity", "temperature"}
+COLORIMETRY = {"colorimetry", "astm_e308", "bandpass", "chromaticity", "cones", "temperature"}
 APPLICATIONS = {"recovery", "thinfilm", "images", "lighting", "mixing", "upsampling",
                 "display_emission"}
 PRESENTATION = {"plot", "pictures", "report", "labels", "notebook"}

@@ -6,16 +6,24 @@ by the tests). The page's distributions are bin levels 0..``FULL_LEVEL`` (SPECTR
 distribution is the relative factor ``levels / FULL_LEVEL`` of a reference light: the equal-energy
 spectrum E (settings 1, 2, 3 and 5, where the full spectrum is the white, Y = 100), or the
 illuminant of setting 4 (the samples are reflectances; the perfect white has Y = 100).
+
+Why this file is long: it holds one function per API answer of the explorer's main page (model,
+evaluate with each card's XYZ, L M S, xy, CIELAB, λd and rendering, metamer, presets, import,
+export, light metrics), each a thin call into the library, and they share the page's conventions
+(levels 0-30, the 400-700 nm grid, the display chain, the exported units); split apart, each file
+would have to restate them.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import get_args
 
 import numpy as np
 
 from ..chromaticity import dominant_wavelength, spectral_locus
 from ..colorimetry import tristimulus, weights
+from ..cones import cone_responses
 from ..coordinates import lab, xy
 from ..differences import delta_e_2000
 from ..display.chain import DEFAULT_CHAIN_NORMALISATION, DEFAULT_WHITE_ADAPTATION, DisplayChain, display_chain
@@ -38,7 +46,7 @@ from .choices import ADAPTATIONS, DISPLAYS, GAMUTS, NORMALISATIONS, Step, observ
 
 __all__ = ["ADAPTATIONS", "DISPLAYS", "GAMUTS", "NORMALISATIONS", "DEFAULT_GAMUT", "DEFAULT_NORMALISE",
            "DEFAULT_ADAPTATION", "FULL_LEVEL", "STEPS_NM", "grid", "pipeline", "model", "evaluate",
-           "metamer", "presets", "import_spectra", "export_spectra", "light_metrics"]
+           "metamer", "presets", "import_spectra", "export_spectra", "EXPORT_UNIT", "light_metrics"]
 
 FULL_LEVEL = P.FULL_LEVEL
 START_NM, STOP_NM = P.START_NM, P.STOP_NM
@@ -188,7 +196,9 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
              pairs=(), adaptation: str = DEFAULT_ADAPTATION) -> dict:
     """Colorimetry and display rendering of up to a few distributions (bin levels).
 
-    Returns per distribution: XYZ (CIE, Y = 100 for the full spectrum / perfect white), the
+    Returns per distribution: XYZ (CIE, Y = 100 for the full spectrum / perfect white), the cone
+    responses ``LMS`` (CIE 2006 fundamentals of the observer's field, 100 each for the same white;
+    None, with ``lms_note``, where the white leaves a cone unexcited), the
     ``XYZ_row`` the page shows (SPECTRA's one k per channel in "spectra-exact", else XYZ), xy,
     dominant or complementary wavelength and excitation purity relative to the reference
     white (None, with ``dominant_note``, where undefined), CIELAB, the XYZ the display is asked
@@ -208,7 +218,9 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     r = chain.render(XYZ, gamut)
     shown = _rendered(r, chain.space, wl, shown_XYZ, row_XYZ, gamut, normalise, lit)
     lab_, lab_note = _cielab(XYZ, white_XYZ)
-    colours = [{**_cie_row(i, XYZ, xy_, dominant, lit, lab_), **shown[i]} for i in range(len(levels))]
+    LMS, lms_note = _cone_values(wl, levels, reference, observer)
+    colours = [{**_cie_row(i, XYZ, xy_, dominant, lit, lab_), "LMS": [_none_nan(v) for v in LMS[i]], **shown[i]}
+               for i in range(len(levels))]
     delta = [_none_nan(float(delta_e_2000(lab_[a], lab_[b]))) if lab_note is None else None
              for a, b in pairs]
     # The lights as the display is asked to show them (after normalisation A or B, before any
@@ -223,6 +235,7 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
         "white_xy": white_xy.tolist(),
         "XYZ_row_note": XYZ_ROW_NOTES["spectra-exact" if normalise == "spectra-exact" else "cie"],
         "lab_note": lab_note,
+        "lms_note": lms_note,
         "normalise": normalise,
         "adaptation": adaptation,
         "gamut": r.gamut,
@@ -239,6 +252,15 @@ def _cie_values(wl, levels, reference, observer):
     xy_, white_xy = xy(XYZ), xy(white_XYZ)
     lit = XYZ[:, 1] > 0
     return XYZ, white_XYZ, xy_, white_xy, lit, _dominant(xy_, white_xy, observer, lit)
+
+
+def _cone_values(wl, levels, reference, observer):
+    """L, M, S of each distribution (CIE 2006 cones of the observer's field, the reference's perfect
+    white = 100 each), and None; or NaN and why, where the white leaves a cone unexcited."""
+    try:
+        return cone_responses(Spectrum(wl, levels / FULL_LEVEL), illuminant=reference, field=observer), None
+    except ColorimetryError as exc:  # e.g. an illuminant with no short-wave light: S of the white is 0
+        return np.full((len(levels), 3), np.nan), f"L M S undefined: {exc}"
 
 
 def _cielab(XYZ, white_XYZ):
@@ -491,8 +513,56 @@ def import_spectra(path, step_nm: float, method: str, scale: str, max_spectra: i
     }
 
 
+#: The unit of the page's values, as exported files declare it (the page's Load recognises it and
+#: reads such a file as levels, whatever its "values as" choice).
+EXPORT_UNIT = (f"SPECTRA levels 0-{FULL_LEVEL:g} ({FULL_LEVEL:g} = the full equal-energy spectrum, "
+               "or reflectance/transmittance 1)")
+
+
 def export_spectra(step_nm: float, names, spectra, path) -> None:
-    """Write the page's distributions (levels 0..30) to ``path``: CSV or JSON by its suffix."""
+    """Write the page's distributions to ``path`` (CSV or JSON by its suffix), with their units.
+
+    The CSV starts with a ``#`` comment line naming the units (the library's CSV reader skips
+    comment lines; the wavelength column is ``wavelength_nm``); the JSON object carries a
+    ``"units"`` entry beside ``wavelengths_nm`` and ``spectra`` (which
+    :meth:`spectrocolor.Spectrum.from_dict` ignores). Names are written as given, so a file
+    loaded back gives the same names.
+
+    Parameters
+    ----------
+    step_nm : float
+        The page's bin width, nm (the grid is 400-700 nm).
+    names : sequence of str
+        One name per distribution.
+    spectra : sequence of sequence of float
+        The distributions, levels 0..``FULL_LEVEL`` (unit :data:`EXPORT_UNIT`).
+    path : pathlib.Path
+        Output file, ``.csv`` or ``.json``; written atomically.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from spectrocolor import read_spectra
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "s.csv"
+    ...     export_spectra(10.0, ["left straw"], [[15.0] * 31], path)
+    ...     first = path.read_text().splitlines()[0]
+    ...     back = read_spectra(path)
+    >>> first.startswith("# values: SPECTRA levels 0-30"), back.names, float(back.values[0])
+    (True, ('left straw',), 15.0)
+    """
+    import json
+
+    from ..io.writers import spectra_to_csv
+    from ..safe_write import write_text
+
     wl = grid(step_nm)
     s = Spectrum(wl, np.asarray(spectra, dtype=float), names=list(names))
-    write_spectra(s, path)
+    if Path(path).suffix.lower() == ".csv":
+        text = f"# values: {EXPORT_UNIT}; wavelength_nm: nanometres\n" + spectra_to_csv(s)
+    elif Path(path).suffix.lower() == ".json":
+        text = json.dumps({**s.to_dict(), "units": {"wavelengths_nm": "nm", "values": EXPORT_UNIT}}, indent=1)
+    else:
+        write_spectra(s, path)
+        return
+    write_text(Path(path), text)

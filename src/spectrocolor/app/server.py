@@ -163,8 +163,10 @@ class PresetsRequest(StrictRequest):
 class ExportRequest(StrictRequest):
     format: Literal["csv", "json"] = "csv"
     step_nm: Step = 10
+    # any one-line text but path separators, quotes and angle brackets, so the page's names
+    # ("sunset d = 0.15", "metameric grey: 1") round-trip unchanged through a file
     names: Annotated[list[Annotated[str, Field(min_length=1, max_length=60,
-                                                 pattern=r"^[\w .,()+\-]+$")]],
+                                                 pattern=r"^[^\x00-\x1f\x7f-\x9f\u2028\u2029/\\\"<>]+$")]],
                      Field(min_length=1, max_length=MAX_SPECTRA)]
     spectra: Annotated[list[Levels], Field(min_length=1, max_length=MAX_SPECTRA)]
 

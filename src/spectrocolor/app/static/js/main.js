@@ -7,7 +7,7 @@ import {apiJSON, api} from "./api.js";
 import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stateURL, readURLOptions,
   readURLDistributions, persist, readPersisted} from "./state.js";
 import {hasFastPath, localColour, localWeights, whiteOf, emitted} from "./colour.js";
-import {buildPatches, buildCards, paint, evalSpec, markStale} from "./view.js";
+import {buildPatches, buildCards, paint, evalSpec, markStale, displayName} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
 import {applyPreset, presetButtons, moveButtons} from "./presets.js";
@@ -19,12 +19,17 @@ window.__spectra = S;  // for the browser tests and the latency bench
 /** A note next to the actions (saved, file read, …): replaced by the next one. */
 function say(text) { $("note").textContent = text || ""; }
 
-/** An error under the header, in view, until dismissed. `where` names the action that failed. */
-function fail(where, err) {
+/** An error, laid over the page (it never moves what is under the pointer), until dismissed or
+ * until a later request of the same `kind` succeeds. `where` names the action that failed. */
+let errorKind = null;
+function fail(where, err, kind = where) {
   $("error-text").textContent = `${where}: ${err.message || err}`;
   $("error").hidden = false;
+  errorKind = kind;
 }
-function dismissError() { $("error").hidden = true; $("error-text").textContent = ""; }
+function dismissError() { $("error").hidden = true; $("error-text").textContent = ""; errorKind = null; }
+/** A request of `kind` succeeded: an earlier failure of that kind no longer describes the page. */
+function succeeded(kind) { if (errorKind === kind) dismissError(); }
 
 // ---------------------------------------------------------------- evaluation
 function requestBody() {
@@ -69,13 +74,15 @@ async function pump() {
       showLightMetrics(r.light_metrics);
       refreshPhoto();
       markStale(null);
-      S.settled = true;
+      succeeded("evaluate");
+      if (S.afterEvaluate) { const after = S.afterEvaluate; S.afterEvaluate = null; after(r); }
+      S.settled = optionsWaiting === 0;
     }
   } catch (err) {
     if (!S.dirty && seq === S.seq) {
       markStale("the library refused the last change");
-      fail("Could not compute the colours", err);
-      S.settled = true;
+      fail("Could not compute the colours", err, "evaluate");
+      S.settled = optionsWaiting === 0;
     }
   }
   S.inflight = false;
@@ -107,7 +114,18 @@ function showLightMetrics(m) {
 function drawEmittedLight(levels) {
   const box = $("emitted-box");
   box.hidden = S.setting !== 1 || !levels;
-  if (!box.hidden) drawEmitted($("emitted"), levels, S.dists[1][0]);
+  if (box.hidden) return;
+  drawEmitted($("emitted"), levels, S.dists[1][0]);
+  $("emitted-caption").textContent = emittedCaption();
+}
+/** What the emitted light matches, truthfully: the codes are those of the colour as shown, i.e.
+ * adapted to the display's white when an adaptation is chosen, so the screen's light is then no
+ * metamer of the distribution (it matches the adapted colour). */
+function emittedCaption() {
+  if (S.adaptation && S.adaptation !== "none") {
+    return "The display's light (solid) matches the colour as adapted to the display's white, not the distribution (dashed) itself: no metamer.";
+  }
+  return "The display's light (solid), unadapted: inside the gamut it has the distribution's (dashed) chromaticity, a metamer up to brightness.";
 }
 
 // ---------------------------------------------------------------- history and the URL
@@ -151,39 +169,69 @@ function actionButtons() {
   moveButtons(update, say));
 }
 
-async function loadModel() {
-  const body = {step_nm: S.step, observer: S.observer, display: S.display, normalise: S.normalise};
-  if (S.adaptation) body.adaptation = S.adaptation;
-  S.model = await apiJSON("/api/model", body);
-  S.wl = S.model.wavelengths_nm;
+/** The display model for the page's options with `over` changed ({step, observer, display,
+ * normalise, adaptation}); S is left as it is. */
+function fetchModel(over = {}) {
+  const o = {step: S.step, observer: S.observer, display: S.display, normalise: S.normalise,
+    adaptation: S.adaptation, ...over};
+  const body = {step_nm: o.step, observer: o.observer, display: o.display, normalise: o.normalise};
+  if (o.adaptation) body.adaptation = o.adaptation;
+  return apiJSON("/api/model", body);
+}
+function setModel(model) {
+  S.model = model;
+  S.wl = model.wavelengths_nm;
   drawDiagram();
   drawDisplayLight();
 }
 
-/** A chosen option: reload what depends on it, then give the keyboard back to the bars. */
-async function option(name, value) {
-  S[name] = value;
+// Option changes (bins, display, observer, white, normalisation, gamut, Back) run one at a time in
+// the order chosen. Each asks the server first and changes the page's state only once every answer
+// is in, all at once, so the page never holds options, a grid and distributions that disagree
+// (three quick choices used to interleave: 61 bins on a 10 nm page, every edit refused).
+let optionQueue = Promise.resolve();
+let optionsWaiting = 0;
+function queueOption(where, task) {
+  optionsWaiting++;
   S.settled = false;
-  try {
-    if (name !== "gamut") await loadModel();
+  const run = async () => {
+    let failed = false;
+    try { await task(); succeeded("options"); } catch (err) { failed = true; fail(where, err, "options"); }
+    optionsWaiting--;
+    if (optionsWaiting === 0) syncControls();  // the controls show the state the page holds
+    if (failed) update();  // the page as it was (settles again)
+    else if (optionsWaiting === 0 && !S.dirty && !S.inflight) S.settled = true;
+  };
+  optionQueue = optionQueue.then(run);
+  return optionQueue;
+}
+
+/** A chosen option: reload what depends on it, then give the keyboard back to the bars. */
+function option(name, value) {
+  return queueOption(`Could not switch ${name}`, async () => {
+    if (name !== "gamut") setModel(await fetchModel({[name]: value}));
+    S[name] = value;
     if (name === "normalise" && value !== "per-colour") S.normaliseA = value;
     update();
-  } catch (err) { fail(`Could not switch ${name}`, err); }
-  focusBars();
+  }).then(focusBars);
 }
 function focusBars() {
   const cv = document.querySelector(`#editors .editor[data-e='${S.active[S.setting]}'] canvas`);
   if (cv) cv.focus({preventScroll: true});
 }
 
-async function changeStep(step) {
+function changeStep(step) {
+  return queueOption("Could not change the bins", async () => {
+    if (step === S.step) return;
+    const [presets, model] = await Promise.all([apiJSON(`/api/presets?step_nm=${step}`), fetchModel({step})]);
+    commitStep(step, presets, model);
+  }).then(focusBars);
+}
+/** Move the page onto the grid of `step` (synchronously: nothing runs in between). */
+function commitStep(step, presets, model) {
   const fromWl = S.wl;
-  S.settled = false;
-  try {
-    S.step = step;
-    S.presets = await apiJSON(`/api/presets?step_nm=${step}`);
-    await loadModel();
-  } catch (err) { fail("Could not change the bins", err); return; }
+  S.step = step; S.presets = presets;
+  setModel(model);
   resampleAll(fromWl, S.wl, step);
   for (const key of Object.keys(S.cursor)) {  // keep each cursor on the same wavelength
     const nm = fromWl[S.cursor[key]];
@@ -191,17 +239,17 @@ async function changeStep(step) {
   }
   selectSetting(S.setting, false);
   say(`resampled every distribution to ${S.wl.length} bins (linear interpolation${step === 10 ? ", whole levels" : ", levels in tenths"})`);
-  focusBars();
 }
 
 /** Key X: SPECTRA's switch between alternative A (in the variant last chosen) and B. */
-async function toggleNorm() {
-  const value = S.normalise === "per-colour" ? S.normaliseA : "per-colour";
-  $("normalise").value = value;
-  S.normalise = value;
-  S.settled = false;
-  try { await loadModel(); } catch (err) { fail("Could not switch the normalisation", err); }
-  update();
+function toggleNorm() {
+  return queueOption("Could not switch the normalisation", async () => {
+    const value = S.normalise === "per-colour" ? S.normaliseA : "per-colour";
+    setModel(await fetchModel({normalise: value}));
+    S.normalise = value;
+    $("normalise").value = value;
+    update();
+  });
 }
 
 // ---------------------------------------------------------------- save, recall, pair
@@ -296,15 +344,36 @@ async function makeMetamer() {
     update();
   } catch (err) { fail("Make a metamer", err); }
 }
+/** The names a file gets: as the page shows them ("(edited)" included), so Load gives them back
+ * unchanged; the editor's role only where a name is empty or taken twice (a file's names differ). */
+function exportNames(shown, roles) {
+  const clean = (t) => t.replace(/[\x00-\x1f\x7f-\x9f\u2028\u2029/\\"<>]/g, "_").trim().slice(0, 60);
+  const out = [];
+  shown.forEach((t, i) => {
+    let name = clean(t || "");
+    if (!name || out.includes(name)) name = clean(`${roles[i]} ${name}`);
+    out.push(name);
+  });
+  return out;
+}
 async function saveFile(format) {
-  const names = EDITORS[S.setting].map((n, i) => `${n} ${S.names[S.setting][i] || ""}`.trim().replace(/[^\w .,()+-]/g, "_").slice(0, 60));
+  const names = exportNames(S.names[S.setting].map((_, i) => displayName(S.setting, i)), EDITORS[S.setting]);
   try {
     const res = await api("/api/export", {format, step_nm: S.step, names, spectra: S.dists[S.setting]});
     const blob = await res.blob(), a = el("a", {href: URL.createObjectURL(blob), download: `spectra-setting${S.setting}.${format}`});
     a.click();
     setTimeout(() => URL.revokeObjectURL(a.href), 1000);
-  } catch (err) { fail(`Save ${format.toUpperCase()}`, err); }
+    succeeded("save");
+  } catch (err) { fail(`Save ${format.toUpperCase()}`, err, "save"); }
 }
+/** A name read from a file: a spreadsheet guard's apostrophe (CSV) and "(edited)" undone. */
+function importedName(name) {
+  const plain = /^'[=+\-@]/.test(name) ? name.slice(1) : name;
+  const m = /^(.*) \(edited\)$/.exec(plain);
+  return m ? {name: m[1], edited: true} : {name: plain, edited: false};
+}
+/** The unit an exported file declares (compute.EXPORT_UNIT): such a file is read as levels. */
+const DECLARES_LEVELS = "SPECTRA levels 0-30";
 /** A file's bytes as base64: the server decodes the text as the library does (BOM, UTF-8, else cp1252). */
 async function fileBase64(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
@@ -314,8 +383,12 @@ async function fileBase64(file) {
 }
 async function loadFile(file) {
   try {
+    const head = new TextDecoder().decode(new Uint8Array(await file.slice(0, 4096).arrayBuffer()));
+    const levels = head.includes(DECLARES_LEVELS);
     const r = await apiJSON("/api/import", {filename: file.name, content_base64: await fileBase64(file),
-      step_nm: S.step, method: "linear", scale: $("upload-scale").value, observer: S.observer});
+      step_nm: S.step, method: "linear", scale: levels ? "levels" : $("upload-scale").value, observer: S.observer});
+    if (levels) r.note += ` (the file declares ${DECLARES_LEVELS}: read as levels)`;
+    const named = r.names.map(importedName);
     const slots = editorCount() - (S.setting === 3 ? 1 : 0);
     const place = (picks) => {
       remember();
@@ -324,16 +397,16 @@ async function loadFile(file) {
         const i = S.setting === 3 ? a : (a + n) % editorCount();
         if (S.setting === 3) {  // a complementary pair: the other side is what the full spectrum leaves
           S.dists[3][i] = r.levels[j].slice(); S.dists[3][1 - i] = r.levels[j].map((v) => FULL - v);
-          S.names[3][i] = r.names[j]; S.names[3][1 - i] = `complement of ${r.names[j]}`; S.edited[3] = [false, false];
+          S.names[3][i] = named[j].name; S.names[3][1 - i] = `complement of ${named[j].name}`; S.edited[3] = [named[j].edited, named[j].edited];
         } else {
-          S.dists[S.setting][i] = r.levels[j].slice(); S.names[S.setting][i] = r.names[j]; S.edited[S.setting][i] = false;
+          S.dists[S.setting][i] = r.levels[j].slice(); S.names[S.setting][i] = named[j].name; S.edited[S.setting][i] = named[j].edited;
         }
       });
-      say(r.note); update();
+      say(r.note); succeeded("load"); update();
     };
     if (r.levels.length <= slots) place(r.levels.map((_, j) => j));
     else chooseSpectra(r.names, Math.min(slots, r.levels.length), place);
-  } catch (err) { fail(`Load ${file.name}`, err); }
+  } catch (err) { fail(`Load ${file.name}`, err, "load"); }
 }
 
 /** The file holds more spectra than this setting has editors: let the user pick which. */
@@ -369,16 +442,16 @@ function fillSelect(id, items, value) {
   $(id).value = value;
 }
 
-/** The state a URL asks for (options it names that the server does not offer are ignored). */
-function fromURL(search) {
+/** The options a URL asks for, written into `T` (options the server does not offer are ignored). */
+function fromURL(search, T = S) {
   const o = readURLOptions(search), opts = S.options;
-  if (o.step && opts.steps_nm.includes(o.step)) S.step = o.step;
-  if (o.observer && o.observer in opts.observers) S.observer = o.observer;
-  if (o.display && opts.displays.includes(o.display)) S.display = o.display;
-  if (o.gamut && opts.gamuts.includes(o.gamut)) S.gamut = o.gamut;
-  if (o.adaptation && (opts.adaptations || []).some(([v]) => v === o.adaptation)) S.adaptation = o.adaptation;
-  if (o.normalise && opts.normalisations.includes(o.normalise)) S.normalise = o.normalise;
-  if (S.normalise !== "per-colour") S.normaliseA = S.normalise;
+  if (o.step && opts.steps_nm.includes(o.step)) T.step = o.step;
+  if (o.observer && o.observer in opts.observers) T.observer = o.observer;
+  if (o.display && opts.displays.includes(o.display)) T.display = o.display;
+  if (o.gamut && opts.gamuts.includes(o.gamut)) T.gamut = o.gamut;
+  if (o.adaptation && (opts.adaptations || []).some(([v]) => v === o.adaptation)) T.adaptation = o.adaptation;
+  if (o.normalise && opts.normalisations.includes(o.normalise)) T.normalise = o.normalise;
+  if (T.normalise !== "per-colour") T.normaliseA = T.normalise;
   return o.setting;
 }
 function syncControls() {
@@ -387,16 +460,23 @@ function syncControls() {
   if (S.adaptation) $("adaptation").value = S.adaptation;
 }
 
-async function onPopState() {
-  S.settled = false;
-  const step = S.step, display = S.display, observer = S.observer, adaptation = S.adaptation, normalise = S.normalise;
-  const setting = fromURL(location.search) || 1;
-  try {
-    if (step !== S.step) S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
-    if (step !== S.step || display !== S.display || observer !== S.observer || adaptation !== S.adaptation
-      || normalise !== S.normalise) await loadModel();
-  } catch (err) { fail("Could not go back", err); return; }
-  if (step !== S.step) defaults();
+/** Back/Forward: the options and distributions of the address, queued like any option change. */
+function onPopState() {
+  return queueOption("Could not go back", async () => {
+    const keys = ["step", "display", "observer", "adaptation", "normalise"];
+    const T = Object.fromEntries([...keys, "gamut", "normaliseA"].map((k) => [k, S[k]]));
+    const setting = fromURL(location.search, T) || 1;
+    const newStep = T.step !== S.step;
+    const presets = newStep ? await apiJSON(`/api/presets?step_nm=${T.step}`) : S.presets;
+    const model = keys.some((k) => T[k] !== S[k]) ? await fetchModel(T) : null;
+    Object.assign(S, T);  // every answer is in: change the page at once
+    S.presets = presets;
+    if (model) setModel(model);
+    if (newStep) defaults();
+    showURLState(setting);
+  });
+}
+function showURLState(setting) {
   const d = readURLDistributions(location.search, setting, S.wl.length);
   if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
   syncControls();
@@ -457,14 +537,16 @@ async function init() {
   window.addEventListener("popstate", onPopState);
 
   setupPhoto(fail).then(refreshPhoto).catch((err) => fail("The photo panel could not start", err));
-  S.presets = await apiJSON(`/api/presets?step_nm=${S.step}`);
-  await loadModel();
-  defaults();
-  readPersisted(S.step);  // the other settings as they were left
-  const d = readURLDistributions(location.search, setting, S.wl.length);
-  if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
-  syncControls();
-  selectSetting(setting, false);
-  history.replaceState({setting}, "", stateURL());
+  const start = (async () => {  // option changes chosen meanwhile wait for it (queueOption)
+    const [presets, model] = await Promise.all([apiJSON(`/api/presets?step_nm=${S.step}`), fetchModel()]);
+    S.presets = presets;
+    setModel(model);
+    defaults();
+    readPersisted(S.step);  // the other settings as they were left
+    showURLState(setting);
+    history.replaceState({setting}, "", stateURL());
+  })();
+  optionQueue = start.catch(() => {});
+  await start;
 }
 init().catch((err) => fail("The explorer could not start", err));

@@ -66,7 +66,33 @@ export function applyMoves(q, update, say) {
   for (const [k, level] of q.moves) setLevel(0, k, level);
   const nm = q.moves.map(([k]) => S.wl[k]).join(", ");
   say(`default ${q.key} with the seed's transfers at ${nm} nm (from the left to the right)`);
+  // The seed promises one hue on both sides; the library's answer says whether this reaches it.
+  const moved = JSON.stringify(S.dists[3]);
+  S.afterEvaluate = (r) => {
+    if (S.setting === 3 && JSON.stringify(S.dists[3]) === moved) say(movesOutcome(q, nm, r));
+  };
   update();
+}
+
+/** Hue angle h_ab (degrees) of a CIELAB triple. */
+const hueAngle = ([, a, b]) => (Math.atan2(b, a) * 180 / Math.PI + 360) % 360;
+
+/** What the seed's transfers reached: the same hue on both sides (λd within 1 nm), or why not. */
+export function movesOutcome(q, nm, r) {
+  const [left, right] = r.colours;
+  const lead = `default ${q.key} with the seed's transfers at ${nm} nm`;
+  if (left.dominant_nm === null || right.dominant_nm === null) return `${lead}: no dominant wavelength to compare`;
+  const d = (c) => `${c.dominant_nm.toFixed(1)} nm`;
+  if (Math.abs(left.dominant_nm - right.dominant_nm) <= 1) {
+    return `${lead}: both sides have one hue, as the seed says (λd ${d(left)} and ${d(right)}); X shows them at full luminance`;
+  }
+  let dh = Math.abs(hueAngle(left.lab) - hueAngle(right.lab));
+  dh = Math.min(dh, 360 - dh);
+  const more = q.key === "2" ? "" : "; Fig. 12 (default 2) moves light at 560 and 590 nm as well and reaches one hue";
+  return `${lead}: the seed says both sides now have the same hue, but computed they differ: λd ${d(left)} (left) `
+    + `and ${d(right)} (right), hue angles ${dh.toFixed(0)}° apart. The right keeps only the moved band on a dark `
+    + `neutral, a purer and ${right.dominant_nm > left.dominant_nm ? "more orange" : "greener"} light; the left, `
+    + `without that band, shifts the other way${more}`;
 }
 
 /** Buttons for the defaults that come with the seed's transfers (setting 3). */

@@ -18,6 +18,7 @@ export const S = {
   sunset: -1, level: {left: -1, right: -1},
   editing: null,  // the editor a drag is changing (only it, and what follows it, is redrawn)
   server: null, local: null, inflight: false, dirty: false, settled: false, stale: false, seq: 0,
+  afterEvaluate: null,  // once, with the library's answer for the state a demonstration made
 };
 
 // ---------------------------------------------------------------- undo / redo

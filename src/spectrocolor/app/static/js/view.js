@@ -55,12 +55,32 @@ export function buildPatches() {
 
 const ROWS = [
   ["XYZ", "X Y Z", "CIE tristimulus values; Y = 100 for the full spectrum (settings 1–3, 5) or the perfect white under the illuminant (4)."],
+  ["lms", "L M S", "Cone responses: the distribution weighted by the CIE 2006 (Stockman–Sharpe) cone fundamentals of the observer's field (2° or 10°), in per cent of what the full spectrum (settings 1–3, 5) or the perfect white under the illuminant (4) gives each cone: that white is L = M = S = 100. The bars show the three on one scale (full width = 100)."],
   ["xy", "x y", "Chromaticity coordinates x = X/(X+Y+Z), y = Y/(X+Y+Z)."],
   ["lab", "L* a* b*", "CIELAB relative to the reference white (L* = 100 for it)."],
   ["rgb", "linear R G B", "Linear display RGB after normalisation, before gamut handling: 0–1 is what the display can show."],
   ["codes", "codes r g b", "The numbers sent to the display (8-bit 0–255; SPECTRA's monitor: 6-bit 0–63), and as hex."],
   ["dom", "λd, purity", "Dominant wavelength (λc: complementary, for purples) and excitation purity relative to the reference white: 0 = white, 1 = spectral colour."],
 ];
+
+// The L M S bars: three thin horizontal bars (long-, medium-, short-wave cone), full width = 100.
+const LMS_BARS = [["L", "#c0392b"], ["M", "#27ae60"], ["S", "#2e6fd8"]];
+const lmsBar = ([name, colour]) => el("span", {class: "lms-bar", "data-cone": name, title: name,
+  style: `display:block;height:4px;margin:1px 0;width:0;max-width:60px;background:${colour}`});
+
+function paintLMS(cell, bars, dom, note) {
+  const v = dom ? dom.LMS : null;
+  cell.textContent = !v ? "…" : v.map((x) => fmt(x, 2)).join("  ");
+  cell.title = note || "";
+  // while the server's answer is pending (a drag's local repaint) the bars keep their last
+  // lengths, dimmed, rather than dropping to zero and jumping back
+  if (bars) bars.querySelectorAll(".lms-bar").forEach((b, j) => {
+    b.style.opacity = v ? "1" : "0.35";
+    if (!v) return;
+    const x = v[j] !== null && Number.isFinite(v[j]) ? Math.max(0, Math.min(v[j], 100)) : 0;
+    b.style.width = `${(0.6 * x).toFixed(1)}px`;
+  });
+}
 
 export function buildCards(count) {
   const cards = [];
@@ -74,7 +94,8 @@ export function buildCards(count) {
     cards.push(el("div", {class: "card", "data-i": i},
       el("h3", {}, el("span", {class: "sw"}), el("span", {class: "cname"})),
       el("table", {}, el("tbody", {}, ROWS.map(([cls, head, help]) => el("tr", {},
-        el("th", {scope: "row", title: help}, head), el("td", {class: cls}), cls === "codes" ? el("td", {class: "hex"}) : null)))),
+        el("th", {scope: "row", title: help}, head), el("td", {class: cls}), cls === "codes" ? el("td", {class: "hex"})
+          : cls === "lms" ? el("td", {class: "lms-bars", "aria-hidden": "true"}, ...LMS_BARS.map(lmsBar)) : null)))),
       el("div", {class: "status"}),
       el("div", {class: "badge", hidden: true}, el("span", {class: "badge-text"}),
         el("button", {class: "badge-switch", type: "button"}))));
@@ -136,6 +157,7 @@ export function paint(colours, server) {
     cell("dom").textContent = !dom ? "…" : dom.dominant_nm === null ? (dom.dominant_note ? "— (undefined: see the tooltip)" : "— (the white itself)")
       : `${dom.complementary ? "λc" : "λd"} ${fmt(dom.dominant_nm, 1)} nm${dom.complementary ? " (compl.)" : ""}, p ${fmt(dom.purity, 3)}`;
     cell("dom").title = dom && dom.dominant_note ? dom.dominant_note : "";
+    paintLMS(cell("lms"), cell("lms-bars"), dom, server ? server.lms_note : "");
     const st = card.querySelector(".status");
     st.textContent = status; st.className = `status ${cls}`;
     const badge = card.querySelector(".badge");
