@@ -12,6 +12,8 @@ import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf}
 import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
 import {applyPreset, presetButtons, moveButtons} from "./presets.js";
 import {setupPhoto, refreshPhoto} from "./relight.js";
+import {setupProjector} from "./projector.js";  // issue 28 item 4
+import {setupSnapshot} from "./snapshot.js";  // issue 28 item 5
 
 window.__spectra = S;  // for the browser tests and the latency bench
 
@@ -535,6 +537,8 @@ async function init() {
   });
   window.addEventListener("resize", () => drawEditors());
   window.addEventListener("popstate", onPopState);
+  setupProjector();  // key P, the Projector button (issue 28 item 4)
+  setupSnapshot({say, fail});  // Picture SVG / PNG (issue 28 item 5)
 
   setupPhoto(fail).then(refreshPhoto).catch((err) => fail("The photo panel could not start", err));
   const start = (async () => {  // option changes chosen meanwhile wait for it (queueOption)
