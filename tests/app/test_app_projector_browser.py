@@ -12,16 +12,12 @@ inside the viewport and the names are large. Screenshots go to the artifacts fol
 
 from __future__ import annotations
 
-import json
-import time
-import urllib.error
-import urllib.request
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from appbrowser import AXE, DESKTOP, PHONE, TABLET, choose, key, library, open_page, patch_rgb, settle, state
+from appbrowser import AXE, DESKTOP, PHONE, TABLET, choose, key, library, open_page, settle, state, warm_server
 
 pytestmark = pytest.mark.browser
 
@@ -30,23 +26,6 @@ SHOTS = Path("/tmp/h28p")
 #: The patches the mode shows per setting (data-i of the explorer's patches): the colour(s) compared.
 SHOWN = {1: [0], 2: [0, 1], 3: [0, 1], 4: [1, 2], 5: [1, 2, 3]}
 SURROUND_RGB = {"black": "rgb(0, 0, 0)", "grey": "rgb(128, 128, 128)", "white": "rgb(255, 255, 255)"}
-
-
-def warm_server(base_url, limit_s=180.0):
-    """Wait until the interactive lane answers (its workers start slowly on a loaded machine,
-    and a page started before that is refused with 429)."""
-    end = time.monotonic() + limit_s
-    while True:
-        req = urllib.request.Request(f"{base_url}api/model", data=json.dumps({}).encode(),
-                                     headers={"Content-Type": "application/json"})
-        try:
-            with urllib.request.urlopen(req, timeout=60) as r:
-                if r.status == 200:
-                    return
-        except (urllib.error.URLError, TimeoutError):
-            if time.monotonic() > end:
-                raise
-        time.sleep(1)
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -59,7 +38,8 @@ def is_open(pg):
 
 
 def projected(pg, i):
-    return pg.locator(f"#projector .pj-item[data-i='{i}'] .pj-patch").evaluate("e => getComputedStyle(e).backgroundColor")
+    return pg.locator(f"#projector .pj-item[data-i='{i}'] .pj-patch").evaluate(
+        "e => getComputedStyle(e).backgroundColor")
 
 
 def explorer(pg, i):
@@ -199,7 +179,8 @@ def test_readable_and_nothing_clipped_at_four_sizes(browser, base_url, size, art
             pg.click("#projector-open")
             wait_projected(pg)
             inside = pg.evaluate("""() => [...document.querySelectorAll(
-                '#projector .pj-patch, #projector .pj-name, #projector .pj-num, #projector .pj-bar button, #pj-de, #pj-caption')]
+                '#projector .pj-patch, #projector .pj-name, #projector .pj-num, #projector .pj-bar button,'
+                + ' #pj-de, #pj-caption')]
                 .filter((e) => e.getClientRects().length).map((e) => { const r = e.getBoundingClientRect();
                   return [e.className || e.id, r.left >= 0 && r.top >= 0 && r.right <= innerWidth + 0.5
                     && r.bottom <= innerHeight + 0.5 && r.width > 0]; })""")

@@ -4,9 +4,12 @@ state read back and checked against the library (``spectrocolor.app.compute``)."
 from __future__ import annotations
 
 import contextlib
+import json
 import socket
 import threading
 import time
+import urllib.error
+import urllib.request
 from pathlib import Path
 
 import numpy as np
@@ -172,3 +175,20 @@ def open_lab(browser, url, size=DESKTOP, timeout_ms=30000):
     page.goto(url)
     page.wait_for_selector("body[data-ready=true]", timeout=timeout_ms)
     return page, errors
+
+
+def warm_server(base_url, limit_s=180.0):
+    """Wait until the interactive lane answers (its workers start slowly on a loaded machine,
+    and a page started before that is refused with 429)."""
+    end = time.monotonic() + limit_s
+    while True:
+        req = urllib.request.Request(f"{base_url}api/model", data=json.dumps({}).encode(),
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=60) as r:
+                if r.status == 200:
+                    return
+        except (urllib.error.URLError, TimeoutError):
+            if time.monotonic() > end:
+                raise
+        time.sleep(1)
