@@ -143,7 +143,9 @@ def test_buttons_visible_at_four_sizes(browser, base_url, size, artifacts_dir):
     SHOTS.mkdir(exist_ok=True)
     with open_page(browser, base_url, size) as pg:
         open_tools(pg)
-        for sel in ("#save-svg", "#save-png", "#png-scale", "#projector-open"):
+        opener = "#projector-touch" if size == PHONE else "#projector-open"
+        assert pg.locator(opener).is_visible()
+        for sel in ("#save-svg", "#save-png", "#png-scale", opener):
             box = pg.locator(sel).bounding_box()
             assert box and box["x"] >= 0 and box["x"] + box["width"] <= size[0] + 0.5, sel
         settle(pg)

@@ -60,7 +60,7 @@ function build() {
   d.addEventListener("keydown", onKey);
   d.addEventListener("close", () => {
     document.body.classList.remove("projecting");
-    const back = P.opener && P.opener.isConnected ? P.opener : $("projector-open");
+    const back = P.opener && P.opener.isConnected && P.opener !== document.body ? P.opener : null;
     if (back) back.focus();
   });
   return d;
@@ -156,8 +156,10 @@ export const toggle = () => (projectorOpen() ? leave() : enter());
 /** Wire key P and the Projector button; follow the explorer's repaints while the mode is open. */
 export function setupProjector() {
   load();
-  const button = $("projector-open");
-  if (button) button.addEventListener("click", () => enter());
+  for (const id of ["projector-open", "projector-touch"]) {
+    const button = $(id);
+    if (button) button.addEventListener("click", () => enter());
+  }
   document.addEventListener("keydown", (ev) => {
     if (ev.key !== "p" && ev.key !== "P") return;
     if (ev.ctrlKey || ev.metaKey || ev.altKey || ev.defaultPrevented) return;
