@@ -99,6 +99,8 @@ def test_png_at_2x_decodes_with_the_patch_colours_names_and_units(browser, base_
         path = download(pg, "#save-png", tmp_path)
         assert path.name == "spectra-setting4@2x.png"
         data = path.read_bytes()
+        SHOTS.mkdir(exist_ok=True)
+        (SHOTS / path.name).write_bytes(data)  # for a person to look at
         img = decode_png(data, path.name)
         assert img.shape[:2] == (2 * int(svg.get("height")), 2 * int(svg.get("width")))
         lib = library(state(pg))["colours"]
