@@ -25,6 +25,9 @@ it is kept or sent), events waiting per stream (:data:`STREAM_QUEUE`), and reque
 address (:class:`RateLimit`). Nothing is written to disk: the class lives in this process's
 memory and ends with it.
 
+Why this file is long: the class's state, its guard and its routes share the same secrets, limits
+and role rules; kept together, the whole of what class mode exposes can be reviewed in one place.
+
 References
 ----------
 WHATWG HTML Living Standard, section 9.2, *Server-sent events* (the ``text/event-stream``
@@ -373,10 +376,10 @@ class ClassroomGuard:
             given = (query.get("code" if path == "/join" else "key") or [""])[0]
             secret = c.code if path == "/join" else c.teacher_key
             if secrets.compare_digest(given.encode("latin-1"), secret.encode("latin-1")):
-                role = "student" if path == "/join" else "teacher"
+                joining = "student" if path == "/join" else "teacher"
                 cookie = JOIN_COOKIE if path == "/join" else TEACHER_COOKIE
                 return await _redirect(send, [_set_cookie(cookie, secret),
-                                              _set_cookie(ROLE_COOKIE, role, http_only=False)])
+                                              _set_cookie(ROLE_COOKIE, joining, http_only=False)])
         headers = {k.lower(): v for k, v in scope.get("headers", ())}
         role = c.role_of(_cookies(headers.get(b"cookie", b"").decode("latin-1")))
         client = scope.get("client")
