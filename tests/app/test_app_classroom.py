@@ -12,42 +12,23 @@ from __future__ import annotations
 
 import contextlib
 import json
-import os
 import queue
 import re
-import subprocess
-import sys
 import threading
 import time
 
 import httpx
 import pytest
 
-HOST = "127.0.0.2"
+from classserver import HOST, class_server
 
 
 @pytest.fixture(scope="module")
 def classroom():
     """The class's origin, join URL and teacher URL, from the lines the server printed."""
-    env = {**os.environ, "PYTHONUNBUFFERED": "1", "SPECTROCOLOR_NUMBA": "0"}
-    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--classroom", "--host",
-                             HOST, "--port", "0", "--no-browser"], stdout=subprocess.PIPE,
-                            stderr=subprocess.DEVNULL, text=True, env=env)
-    try:
-        lines = []
-        while not any("teacher's page" in line for line in lines):
-            line = proc.stdout.readline()
-            assert line, f"the server stopped: {lines}"
-            lines.append(line)
-        text = "".join(lines)
-        origin = re.search(r"class open at (http://127\.0\.0\.2:\d+)/", text).group(1)
-        join = re.search(r"students join at (\S+)", text).group(1)
-        teacher = re.search(r"teacher's page \(keep this address to yourself\): (\S+)", text).group(1)
-        assert "\u2580" in text or "\u2584" in text or "\u2588" in text, "no QR code printed"
-        yield {"origin": origin, "join": join, "teacher": teacher, "output": text}
-    finally:
-        proc.terminate()
-        proc.wait(10)
+    with class_server(HOST) as c:
+        assert any(block in c["output"] for block in "\u2580\u2584\u2588"), "no QR code printed"
+        yield c
 
 
 def client(c, address: str) -> httpx.Client:
