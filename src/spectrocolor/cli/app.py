@@ -233,11 +233,16 @@ def _run_classroom(args) -> int:
     signal.signal(signal.SIGTERM, _exit_on_signal)
     try:
         app = create_app(classroom=classroom)
-        # the students' event streams never end by themselves: give them 2 s when the class ends
         config = uvicorn.Config(app, log_level="warning", http=JSONErrorH11Protocol,
-                                backlog=ACCEPT_BACKLOG, timeout_graceful_shutdown=2)
+                                backlog=ACCEPT_BACKLOG, timeout_graceful_shutdown=5)
+
+        class ClassServer(uvicorn.Server):
+            async def shutdown(self, sockets=None):
+                classroom.close()  # the event streams end first, so the server can stop
+                await super().shutdown(sockets)
+
         try:
-            uvicorn.Server(config).run(sockets=[sock])
+            ClassServer(config).run(sockets=[sock])
         except KeyboardInterrupt:
             pass
     finally:
