@@ -381,7 +381,7 @@ class ClassroomGuard:
             query = parse_qs(scope.get("query_string", b"")[:512].decode("latin-1"))
             given = (query.get("code" if path == "/join" else "key") or [""])[0]
             secret = c.code if path == "/join" else c.teacher_key
-            if secrets.compare_digest(given.encode("latin-1"), secret.encode("latin-1")):
+            if secrets.compare_digest(given.encode("utf-8", "replace"), secret.encode()):
                 joining = "student" if path == "/join" else "teacher"
                 cookie = JOIN_COOKIE if path == "/join" else TEACHER_COOKIE
                 return await _redirect(send, [_set_cookie(cookie, secret),
