@@ -1,6 +1,7 @@
 # spectrocolor: two commands from a fresh clone.
 #   make run          starts the SPECTRA explorer (the main job); PORT=8766 (0: any free port),
-#                     HOST=... (another machine's reach needs ALLOW_REMOTE=1 too)
+#                     HOST=... (another machine's reach needs ALLOW_REMOTE=1 too);
+#                     CLASSROOM=1 opens a class on the local network (docs/classroom.md)
 #   make test         builds its own virtual environment from the committed lock and runs every test
 # More:
 #   make docs         builds the API reference and guides offline (warnings are errors)
@@ -19,8 +20,9 @@ APP_STAMP  := $(VENV)/.installed-app
 STAMP      := $(VENV)/.installed-all
 PIP        := $(BIN)/pip --disable-pip-version-check
 PORT  ?= 8765
-HOST  ?= 127.0.0.1
+HOST  ?= $(if $(filter 1 yes true,$(CLASSROOM)),,127.0.0.1)
 ALLOW_REMOTE ?=
+CLASSROOM ?=
 
 .PHONY: run test test-portable lint docs lock test-latest bench clean
 
@@ -46,7 +48,7 @@ $(VENV)/.installed: $(STAMP)
 # The explorer prints the rest: serving at its URL, compiling the kernels in the background
 # (results use the NumPy path until they are ready, and say so), and when they are ready.
 run: $(APP_STAMP)
-	@SPECTROCOLOR_MAKE_RUN=1 $(BIN)/spectrocolor app --port $(PORT) --host $(HOST) $(if $(filter 1 yes true,$(ALLOW_REMOTE)),--allow-remote)
+	@SPECTROCOLOR_MAKE_RUN=1 $(BIN)/spectrocolor app --port $(PORT) $(if $(HOST),--host $(HOST)) $(if $(filter 1 yes true,$(ALLOW_REMOTE)),--allow-remote) $(if $(filter 1 yes true,$(CLASSROOM)),--classroom)
 
 test: $(STAMP)
 	$(BIN)/ruff check src tests bench docs tools

@@ -21,11 +21,18 @@ Phases (each bounded by a request count, so the script stops by itself):
    at every request (a dragged slider), alone and then while another client replays 2 MB JSON
    bodies of a million numbers to /api/import and /api/evaluate (``--only fairness`` runs this
    phase alone, on a fresh server);
+10. classroom (issue 30, ``--only classroom``: on its own server, ``spectrocolor app
+    --classroom --host 127.0.0.2``): CLASS_STUDENTS students, each from its own loopback
+    address and holding the class's event stream, edit at human speed for CLASS_SECONDS; four in
+    five drag in the explorer (POST /api/evaluate every CLASS_EDIT_S, /api/model every
+    CLASS_MODEL_S), one in five works in a lab (/api/lab/light or /api/lab/thinfilm every
+    CLASS_LAB_S); the teacher pushes every CLASS_PUSH_S. Prints p95 of evaluate/model and of
+    the labs, pushes received, and memory before and after;
 
 and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
 memory (VmRSS) before and after, with its peak (VmHWM).
 
-Run: .venv/bin/python bench/bench_server_load.py [--only fairness]
+Run: .venv/bin/python bench/bench_server_load.py [--only fairness | --only classroom]
 """
 
 from __future__ import annotations
@@ -352,7 +359,133 @@ def fairness(port: int) -> None:
     print(f"  hostile client: {dict(hostile_statuses)}")
 
 
+CLASS_STUDENTS, CLASS_SECONDS = 40, 45.0
+CLASS_EDIT_S, CLASS_MODEL_S, CLASS_LAB_S, CLASS_PUSH_S = 0.5, 5.0, 1.0, 10.0
+
+
+def classroom() -> None:
+    """Phase 10: a class of CLASS_STUDENTS on a class-mode server (see the module docstring)."""
+    proc = subprocess.Popen([sys.executable, "-m", "spectrocolor", "app", "--classroom", "--host",
+                             "127.0.0.2", "--port", "0", "--no-browser"],
+                            stdout=subprocess.PIPE, text=True)
+    text = ""
+    while "teacher's page" not in text:
+        text += proc.stdout.readline()
+    port = int(re.search(r"127\.0\.0\.2:(\d+)/", text).group(1))
+    code = re.search(r"code=(\w+)", text).group(1)
+    key = re.search(r"key=([\w-]+)", text).group(1)
+    teacher = {"Cookie": f"spectrocolor-teacher={key}", "Content-Type": "application/json"}
+
+    def request(conn, method, path, body, headers):
+        start = time.perf_counter()
+        conn.request(method, path, body=body, headers=headers)
+        response = conn.getresponse()
+        response.read()
+        return time.perf_counter() - start, response.status
+
+    warm = http.client.HTTPConnection("127.0.0.2", port, timeout=120)
+    while request(warm, "POST", "/api/model", b"{}", teacher)[1] != 200:
+        time.sleep(0.5)
+    for body in (b'{"source": {"kind": "named", "name": "A"}}', b'{"film": "oil"}'):
+        request(warm, "POST", "/api/lab/light" if b"source" in body else "/api/lab/thinfilm",
+                body, teacher)
+    before = memory_mib(proc.pid)
+    latencies: dict[str, list] = collections.defaultdict(list)
+    statuses: collections.Counter = collections.Counter()
+    pushes = collections.Counter()
+    stop = threading.Event()
+    rng = np.random.default_rng(30)
+
+    def listen(i: int, address: str) -> None:
+        conn = http.client.HTTPConnection("127.0.0.2", port, timeout=60,
+                                          source_address=(address, 0))
+        conn.request("GET", "/api/class/events",
+                     headers={"Cookie": f"spectrocolor-class={code}"})
+        response = conn.getresponse()
+        while not stop.is_set():
+            line = response.fp.readline()
+            if not line:
+                break
+            if line.startswith(b"event: push"):
+                pushes[i] += 1
+        conn.close()
+
+    def student(i: int) -> None:
+        address = f"127.0.0.{10 + i}"
+        headers = {"Cookie": f"spectrocolor-class={code}", "Content-Type": "application/json",
+                   "X-Spectrocolor-Client": f"student-tab-{i:04d}"}
+        conn = http.client.HTTPConnection("127.0.0.2", port, timeout=60,
+                                          source_address=(address, 0))
+        in_lab = i % 5 == 4
+        levels = list(rng.integers(0, 31, 31).astype(float))
+        next_model = time.perf_counter()
+        while not stop.is_set():
+            start = time.perf_counter()
+            if in_lab:
+                if i % 2:
+                    name = ["A", "D65", "FL2", "F11"][int(start) % 4]
+                    route, body = "light", {"source": {"kind": "named", "name": name}}
+                else:
+                    route, body = "thinfilm", {"film": "oil", "angle_deg": int(start) % 60}
+                path, pause = f"/api/lab/{route}", CLASS_LAB_S
+            elif start >= next_model:
+                route, path, body = "model", "/api/model", {"step_nm": 10}
+                next_model, pause = start + CLASS_MODEL_S, CLASS_EDIT_S
+            else:
+                levels[int(start * 7) % 31] = float(int(start * 13) % 31)  # a dragged bar
+                route, path = "evaluate", "/api/evaluate"
+                body, pause = {"spectra": [levels, [15.0] * 31], "pairs": [[0, 1]]}, CLASS_EDIT_S
+            try:
+                seconds, status = request(conn, "POST", path, json.dumps(body).encode(), headers)
+            except (OSError, http.client.HTTPException):
+                seconds, status = time.perf_counter() - start, "error"
+                conn = http.client.HTTPConnection("127.0.0.2", port, timeout=60,
+                                                  source_address=(address, 0))
+            latencies["labs" if in_lab else "evaluate/model"].append(seconds)
+            latencies[route].append(seconds)
+            statuses[status] += 1
+            stop.wait(max(0.0, pause - (time.perf_counter() - start)))
+        conn.close()
+
+    threads = [threading.Thread(target=listen, args=(i, f"127.0.0.{10 + i}"), daemon=True)
+               for i in range(CLASS_STUDENTS)]
+    threads += [threading.Thread(target=student, args=(i,)) for i in range(CLASS_STUDENTS)]
+    t0 = time.perf_counter()
+    for t in threads:
+        t.start()
+    pushed, peak = 0, before["VmRSS"]
+    try:
+        while time.perf_counter() - t0 < CLASS_SECONDS:
+            time.sleep(CLASS_PUSH_S)
+            state = json.dumps({"state": f"/?s={1 + pushed % 5}&b=10"}).encode()
+            push = http.client.HTTPConnection("127.0.0.2", port, timeout=60)  # (idle ones close)
+            pushed += request(push, "POST", "/api/class/push", state, teacher)[1] == 200
+            push.close()
+            peak = max(peak, memory_mib(proc.pid)["VmRSS"])
+        stop.set()
+        for t in threads[CLASS_STUDENTS:]:
+            t.join()
+        wall = time.perf_counter() - t0
+        print(f"classroom: {CLASS_STUDENTS} students ({CLASS_STUDENTS // 5} in a lab) for "
+              f"{wall:.0f} s; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+        for name in ("evaluate/model", "labs", "evaluate", "model", "light", "thinfilm"):
+            if latencies[name]:
+                report(f"  {name}", latencies[name], {}, wall)
+        print(f"  statuses {dict(statuses)}; pushes sent {pushed}, received per student "
+              f"min {min(pushes.values(), default=0)} max {max(pushes.values(), default=0)}")
+        after = memory_mib(proc.pid)
+        print(f"  server RSS before {before['VmRSS']:.0f} MiB, during (max) {peak:.0f} MiB, "
+              f"after {after['VmRSS']:.0f} MiB; workers {after.get('workers_RSS', 0)} MiB")
+    finally:
+        stop.set()
+        proc.terminate()
+        proc.wait(10)
+
+
 def main() -> None:
+    if sys.argv[1:] == ["--only", "classroom"]:
+        classroom()
+        return
     proc, port = start_server()
     if sys.argv[1:] == ["--only", "fairness"]:
         try:

@@ -250,6 +250,8 @@ def test_hostile_cubes(tmp_path, capsys, name):
     (["app", "--host", "0.0.0.0"], ["--allow-remote"]),
     (["app", "--host", "192.0.2.1", "--port", "1"], ["--allow-remote"]),
     (["app", "--port", "70000"], ["--port"]),
+    (["app", "--classroom", "--host", "127.0.0.2", "--port", "70000"], ["--port"]),
+    (["app", "--classroom", "--host", "192.0.2.1", "--port", "1"], ["192.0.2.1"]),
 ])
 def test_options_out_of_bounds(tmp_path, capsys, good, argv, words):
     cube = tmp_path / "cube.npy"

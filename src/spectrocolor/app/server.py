@@ -62,11 +62,15 @@ from .choices import (
     observer_labels,
     select_options,
 )
+from .classroom import CLASS_BODY_BYTES, Classroom, ClassroomGuard, exempt_teacher_only
+from .classroom import router as classroom_router
 from .guards import MAX_JSON_DEPTH, BodyLimit, LocalOnly, allowed_hosts, client_key
 from .import_routes import MAX_PARSERS, PARSER_TIMEOUT_S, PARSER_WAIT_S
 from .import_routes import router as import_router
 from .kernels import KernelStatusHeader
+from .lab_routes import _workers as lab_workers
 from .lab_routes import router as lab_router
+from .relight_routes import _workers as relight_workers
 from .relight_routes import router as relight_router
 from .request_models import Level, StrictRequest, registries_as_imported, validation_message
 from .responses import FiniteJSONResponse
@@ -198,7 +202,8 @@ def _message(exc: RequestValidationError | ValidationError) -> str:
     return validation_message(exc.errors())
 
 
-def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
+def create_app(port: int | None = None, *, check_host: bool = True,
+               classroom: Classroom | None = None) -> FastAPI:
     """The explorer's FastAPI application (static page at ``/``, JSON API under ``/api``).
 
     Parameters
@@ -210,6 +215,10 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     check_host : bool
         False only for a server that the user chose to open to other machines
         (``spectrocolor app --allow-remote``); foreign Origins are refused in any case.
+    classroom : Classroom, optional
+        Class mode (``spectrocolor app --classroom``, :mod:`spectrocolor.app.classroom`): only
+        the class's announced Host and Origin are answered, and only with its join code or
+        teacher key; ``port`` and ``check_host`` are then ignored.
     """
     app = FastAPI(title="spectrocolor explorer", docs_url=None, redoc_url=None, openapi_url=None,
                   default_response_class=FiniteJSONResponse)  # never NaN/inf, never a 500 for one
@@ -220,8 +229,13 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     app.router.on_startup.append(_warm_interactive)
     app.router.on_shutdown.append(parsers.close)
     app.router.on_shutdown.append(_interactive.close)
-    _add_guards(app, port, check_host)
+    _add_guards(app, port, check_host, classroom)
     _add_error_handlers(app)
+    # --- classroom mode (issue 30): its routes, and the pools' exemption for the teacher only
+    if classroom is not None:
+        exempt_teacher_only([_interactive, lab_workers, relight_workers, parsers.pool])
+        app.include_router(classroom_router)
+    # --- end of classroom mode
 
     @app.get("/", include_in_schema=False)
     def index():
@@ -235,15 +249,24 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
     return app
 
 
-def _add_guards(app: FastAPI, port: int | None, check_host: bool) -> None:
+def _add_guards(app: FastAPI, port: int | None, check_host: bool,
+                classroom: Classroom | None = None) -> None:
     """The middleware of :func:`create_app`, outermost last."""
     # added last = outermost: Host/Origin first, then the body count, then whether a result
     # used the NumPy path while the kernels compile (spectrocolor.app.kernels), then FastAPI
     app.add_middleware(KernelStatusHeader)
     small = {route.path: SMALL_BODY_BYTES for route in (*router.routes, *lab_router.routes)
              if isinstance(route, APIRoute) and "POST" in (route.methods or ())}
+    if classroom is not None:  # classroom mode (issue 30): its small POST routes
+        small.update({route.path: CLASS_BODY_BYTES for route in classroom_router.routes
+                      if isinstance(route, APIRoute) and "POST" in (route.methods or ())})
     app.add_middleware(BodyLimit, max_bytes=MAX_BODY_BYTES, max_depth=MAX_JSON_DEPTH,
                        path_limits=small)
+    if classroom is not None:  # classroom mode: the class's code or key, then its own Host
+        app.add_middleware(ClassroomGuard, classroom=classroom)
+        announced = classroom.origin.removeprefix("http://").lower()
+        app.add_middleware(LocalOnly, hosts=frozenset({announced}), check_host=True)
+        return
     app.add_middleware(LocalOnly, hosts=allowed_hosts(port), check_host=check_host)
 
 

@@ -37,12 +37,16 @@ def register(subparsers) -> None:
     )
     p.add_argument("--port", type=int, default=8765,
                    help="TCP port (default 8765; 0 picks a free one)")
-    p.add_argument("--host", default="127.0.0.1",
-                   help="address to bind (default 127.0.0.1: only this machine can connect); "
-                   "a non-loopback address needs --allow-remote")
+    p.add_argument("--host", default=None,
+                   help="address to bind (default 127.0.0.1: only this machine can connect; "
+                   "with --classroom, this machine's local-network address); "
+                   "a non-loopback address needs --allow-remote (or --classroom)")
     p.add_argument("--allow-remote", action="store_true",
                    help="allow a --host that other machines can reach (no accounts, no TLS: "
                    "anyone who can reach the port can use the explorer)")
+    p.add_argument("--classroom", action="store_true",
+                   help="open a class: serve the local network, students join with a random "
+                   "code (address and QR code printed); see docs/classroom.md")
     p.add_argument("--no-browser", action="store_true", help="print the URL, open nothing")
     p.set_defaults(handler=run)
 
@@ -152,6 +156,9 @@ def run(args) -> int:
             raise  # a module of this package: a bug, not a missing extra
         raise UserError(f"the explorer needs the extra 'app' ({exc.name} is missing); install it "
                         f"with: {install_command('app', exc.name)}") from None
+    if getattr(args, "classroom", False):  # classroom mode (issue 30)
+        return _run_classroom(args)
+    args.host = args.host or "127.0.0.1"
     remote = not is_loopback(args.host)
     if remote and not args.allow_remote:
         allow = "ALLOW_REMOTE=1 to `make run`" if started_by_make() else "--allow-remote"
@@ -187,6 +194,55 @@ def run(args) -> int:
         server = uvicorn.Server(config)
         try:
             server.run(sockets=[sock])
+        except KeyboardInterrupt:
+            pass
+    finally:
+        if compilation is not None:
+            compilation.stop()
+    return 0
+
+
+def _run_classroom(args) -> int:
+    """``spectrocolor app --classroom``: the class's join address, QR code and teacher address."""
+    import uvicorn
+
+    from ..app.classroom import Classroom, lan_address, qr_terminal
+    from ..app.http_protocol import ACCEPT_BACKLOG, JSONErrorH11Protocol
+    from ..app.server import create_app
+
+    host = args.host or lan_address()
+    if host is None:
+        raise UserError("could not find this machine's local-network address (is it on a "
+                        "network?); give it with " + ("HOST=ADDR" if started_by_make()
+                                                      else "--host ADDR"))
+    sock = _bind(host.strip("[]"), args.port)
+    sock.listen(ACCEPT_BACKLOG)
+    bound, port = sock.getsockname()[:2]
+    classroom = Classroom(bound, port)
+    say(f"class open at {classroom.origin}/  (Ctrl+C ends the class)")
+    say(f"students join at {classroom.join_url()}")
+    print(qr_terminal(classroom.join_url()), end="", flush=True)
+    say(f"teacher's page (keep this address to yourself): {classroom.teacher_url()}")
+    if not args.no_browser and _has_display():
+        import webbrowser
+
+        webbrowser.open(classroom.teacher_url())
+    from ..app.kernels import BackgroundCompilation
+
+    compilation = BackgroundCompilation.start(report=say)
+    signal.signal(signal.SIGTERM, _exit_on_signal)
+    try:
+        app = create_app(classroom=classroom)
+        config = uvicorn.Config(app, log_level="warning", http=JSONErrorH11Protocol,
+                                backlog=ACCEPT_BACKLOG, timeout_graceful_shutdown=5)
+
+        class ClassServer(uvicorn.Server):
+            async def shutdown(self, sockets=None):
+                classroom.close()  # the event streams end first, so the server can stop
+                await super().shutdown(sockets)
+
+        try:
+            ClassServer(config).run(sockets=[sock])
         except KeyboardInterrupt:
             pass
     finally:
