@@ -17,6 +17,7 @@ import pytest
 pytest.importorskip("fastapi")
 
 from spectrocolor import Spectrum, SpectrumError  # noqa: E402
+from spectrocolor.app import notebook_frontend as front  # noqa: E402
 from spectrocolor.app import notebook_widget as nw  # noqa: E402
 
 STATEMENT = re.compile(r"^\s*(import|export)\b(?!\.)", re.M)
@@ -30,7 +31,7 @@ def request(method, path, body=None, rid=1):
 
 # ---------------------------------------------------------------------------- assembly
 def test_the_assembled_explorer_has_no_import_left_and_holds_every_module_main_imports():
-    sources = nw.explorer_sources()
+    sources = front.explorer_sources()
     text = nw.assemble_esm(sources)
     assert not STATEMENT.findall(text)
     assert "./" not in "".join(re.findall(r"from\s+\S+", text))
@@ -53,9 +54,9 @@ def test_the_assembled_explorer_has_no_import_left_and_holds_every_module_main_i
 def test_the_widget_module_has_one_default_export_and_the_page_without_scripts():
     esm = nw.widget_esm()
     assert STATEMENT.findall(esm) == ["export"] and "export default {render};" in esm
-    markup = nw.page_markup()
+    markup = front.page_markup()
     assert 'id="editors"' in markup and "<script" not in markup
-    css = nw.page_css()
+    css = front.page_css()
     assert ":root" not in css and ":host" in css and not re.search(r"(?<![\w.#-])body\b", css)
 
 
@@ -66,7 +67,8 @@ def test_the_widget_module_parses_and_the_assembly_runs_modules_in_order(tmp_pat
     text = nw.assemble_esm({
         "a.js": "export const A = 2;\nexport function twice(x) { return 2 * x; }",
         "b.js": 'import {A, twice as double} from "./a.js";\nexport class B { get v() { return double(A); } }',
-        "main.js": 'import {B} from "./b.js";\nimport {A} from "./a.js";\nconsole.log(new B().v + A, typeof document);'},
+        "main.js": 'import {B} from "./b.js";\nimport {A} from "./a.js";\n'
+                   'console.log(new B().v + A, typeof document);'},
         "main.js")
     (tmp_path / "run.mjs").write_text(text + "createExplorer({document: 'doc'});\n", encoding="utf-8")
     out = subprocess.run([NODE, str(tmp_path / "run.mjs")], check=True, capture_output=True, text=True).stdout

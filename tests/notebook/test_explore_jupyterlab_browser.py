@@ -103,8 +103,9 @@ def jupyterlab(folder: Path):
 
 
 STATE = "() => { const h = document.querySelector('.spectrocolor-explorer'); return h && h.__spectrocolor.state(); }"
-SETTLED = "() => { const h = document.querySelector('.spectrocolor-explorer'); const S = h && h.__spectrocolor.state(); " \
-          "return Boolean(S && S.settled && S.server && !S.inflight && !S.dirty); }"
+SETTLED = ("() => { const h = document.querySelector('.spectrocolor-explorer'); "
+           "const S = h && h.__spectrocolor.state(); "
+           "return Boolean(S && S.settled && S.server && !S.inflight && !S.dirty); }")
 
 
 def run_cell(pg, index: int) -> None:
@@ -117,8 +118,7 @@ def output_text(pg, index: int, marker: str, timeout_s: float = 60) -> str:
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
         text = pg.evaluate("""(i) => { const cells = window.jupyterapp.shell.currentWidget.content.widgets;
-            return cells[i].node.querySelector('.jp-OutputArea') ? cells[i].node.querySelector('.jp-OutputArea').innerText : ''; }""",
-                           index)
+            const out = cells[i].node.querySelector('.jp-OutputArea'); return out ? out.innerText : ''; }""", index)
         if marker in text:
             return text
         pg.wait_for_timeout(250)
@@ -136,10 +136,9 @@ def test_a_bar_edited_in_jupyterlab_comes_back_to_python(browser, tmp_path, arti
         pg.on("pageerror", lambda e: errors.append(str(e)))
         try:
             pg.goto(f"{url}lab/tree/explore.ipynb?token={token}")
-            pg.wait_for_function("() => window.jupyterapp && window.jupyterapp.shell.currentWidget "
-                                 "&& window.jupyterapp.shell.currentWidget.sessionContext "
-                                 "&& window.jupyterapp.shell.currentWidget.sessionContext.session "
-                                 "&& window.jupyterapp.shell.currentWidget.sessionContext.session.kernel", timeout=90000)
+            pg.wait_for_function("() => { const w = window.jupyterapp && window.jupyterapp.shell.currentWidget; "
+                                 "return Boolean(w && w.sessionContext && w.sessionContext.session "
+                                 "&& w.sessionContext.session.kernel); }", timeout=90000)
             run_cell(pg, 0)
             pg.wait_for_selector(".spectrocolor-explorer #editors canvas", timeout=90000)
             pg.wait_for_function(SETTLED, timeout=90000)
