@@ -3,7 +3,8 @@
 A JupyterLab server starts on loopback in a temporary folder holding a notebook this test writes;
 Chromium opens it, runs the cell that creates the widget (a flat grey, level 15 everywhere), presses
 a bar of the widget's editor at 550 nm to level 25 with the mouse, then runs the next cell, which
-prints ``widget.levels`` and ``widget.spectrum``'s values: the edited bin must come back to Python.
+prints ``widget.levels`` and ``widget.spectrum``'s values: the edited bin must come back to Python;
+a last cell assigns ``widget.levels`` and the page must redraw with them.
 Screenshots at desktop and tablet sizes go to the artifacts folder (and /tmp/h29/).
 
 Skipped only when JupyterLab or anywidget is not installed (the test extra installs both).
@@ -41,6 +42,8 @@ CELLS = [
     "widget",
     "print('LEVELS', json.dumps(widget.levels))\n"
     "print('SPECTRUM', json.dumps([round(float(v), 6) for v in widget.spectrum.values]))",
+    "widget.levels = [10.0] * 31\n"
+    "print('SET')",
 ]
 
 
@@ -173,6 +176,14 @@ def test_a_bar_edited_in_jupyterlab_comes_back_to_python(browser, tmp_path, arti
             assert levels == expected  # exact: whole levels sent as JSON numbers
             # the spectrum in the units it came in: levels × (1/30), printed rounded to 6 decimals
             assert values == [round(v / FULL, 6) for v in expected]  # exact: the same rounding both sides
+
+            # and back: levels assigned in Python redraw the page (the bars, and the library's colour)
+            run_cell(pg, 2)
+            output_text(pg, 2, "SET")
+            pg.wait_for_function("() => { const h = document.querySelector('.spectrocolor-explorer'); "
+                                 "const S = h.__spectrocolor.state(); return S.dists[1][0].every((v) => v === 10) "
+                                 "&& S.settled && !S.dirty && !S.inflight; }", timeout=60000)
+            assert pg.evaluate(STATE)["server"]["colours"][0]["XYZ"][1] < S["server"]["colours"][0]["XYZ"][1]
 
             pg.set_viewport_size({"width": TABLET[0], "height": TABLET[1]})
             pg.wait_for_timeout(500)
