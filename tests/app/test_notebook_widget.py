@@ -75,6 +75,11 @@ def test_the_widget_module_parses_and_the_assembly_runs_modules_in_order(tmp_pat
     assert out.strip() == "6 string"  # 2·2 + 2, and `document` is the one the widget gives
 
 
+def test_an_import_with_a_comment_after_it_is_rewritten():
+    text = nw.assemble_esm({"a.js": "export const A = 1;", "main.js": 'import {A} from "./a.js";  // issue 28\nA;'})
+    assert 'const {A} = __spectrocolorModules["a.js"];' in text and not STATEMENT.findall(text)
+
+
 @pytest.mark.parametrize("sources, says", [
     ({"main.js": 'import * as m from "./a.js";', "a.js": ""}, "main.js, line 1"),
     ({"main.js": "export default 3;"}, "main.js, line 1"),

@@ -28,7 +28,7 @@ from importlib import resources
 #: The explorer's entry module; it and every module it imports make the widget's front end.
 ENTRY = "main.js"
 
-_IMPORT = re.compile(r'^import\s*\{([^}]*)\}\s*from\s*["\']\./([A-Za-z0-9_-]+\.js)["\']\s*;?[ \t]*$', re.M)
+_IMPORT = re.compile(r'^import\s*\{([^}]*)\}\s*from\s*["\']\./([A-Za-z0-9_-]+\.js)["\']\s*;?[ \t]*(//[^\n]*)?$', re.M)
 _EXPORT = re.compile(r"^export\s+(?=(?:async\s+function\*?|function\*?|const|class)\s+([A-Za-z_$][\w$]*))", re.M)
 _IDENT = re.compile(r"^[A-Za-z_$][\w$]*$")
 
@@ -70,7 +70,7 @@ def _rewrite(name: str, text: str) -> tuple[str, list[str], list[str]]:
         stripped = line.lstrip()
         if re.match(r"(import|export)\b(?!\.)", stripped) or re.search(r"\bimport\s*\(|\bimport\.meta\b", line):
             raise AssemblyError(f"{name}, line {number}: cannot rewrite {stripped[:80]!r} (only "
-                                "`import {{a, b as c}} from \"./m.js\"` and `export function/const/class`)")
+                                "`import {a, b as c} from \"./m.js\"` and `export function/const/class`)")
     return body, exports, needs
 
 
