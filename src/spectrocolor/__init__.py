@@ -179,6 +179,8 @@ _PUBLIC: dict[str, str] = {
     "light_report": "lighting.summary",
     "LightReport": "lighting.summary",
     "write_light_report": "lighting.report",
+    # the SPECTRA explorer as a notebook widget (anywidget and FastAPI imported only when called)
+    "explore": "app.notebook_widget",
 }
 
 

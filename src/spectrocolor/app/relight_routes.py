@@ -83,6 +83,12 @@ router.on_shutdown.append(_workers.close)
 def relight_options():
     """The choices of the photo panel, defaults first, and its limits; starts the default table."""
     _workers.warm(prepare, SOURCES[0], "1931", 10.0)
+    return photo_options()
+
+
+def photo_options() -> dict:
+    """The photo panel's choices and limits (what :func:`relight_options` answers), computed
+    without starting a worker (the notebook widget answers it in the kernel)."""
     return {"sources": list(SOURCES),
             "adaptations": [[k, label, why] for k, (label, why) in ADAPTATIONS.items()],
             "exposures": [[k, label, why] for k, (label, why) in EXPOSURES.items()],
