@@ -46,7 +46,8 @@ def check_exact_wherever_a_reflectance_exists(table, t):
     # the plain blend misses some of these colours: the set does reach cells with moved nodes
     plain = upsample(table, t, settle_moved=False)
     assert np.any(inside & ~plain.exact)
-    np.testing.assert_array_equal(u.reflectance[plain.exact], plain.reflectance[plain.exact])  # exact: the same kernel, the same blend
+    # exact: the same kernel, the same blend, where the grid weights were already exact
+    np.testing.assert_array_equal(u.reflectance[plain.exact], plain.reflectance[plain.exact])
     return u, inside
 
 

@@ -9,20 +9,26 @@ those queries (inside the cube ``[0, 1]^3``), each by the first of these that ap
    colour ``q = matrix @ t`` is a convex combination ``q = Σ β_i X_i`` of the colours
    ``X_i = ρ_i @ W`` that four nodes actually produce, then ``ρ = Σ β_i ρ_i`` reproduces it
    and, as a convex combination of spectra in [0, 1], stays in [0, 1]. The six tetrahedra
-   of the query's cell are tried, its own first, with ``β`` from the inverse of the
-   tetrahedron's edge matrix of actual colours (precomputed per table).
+   of the query's cell are tried, with ``β`` from the inverse of each tetrahedron's edge
+   matrix of actual colours (precomputed per table; nearly flat tetrahedra, condition number
+   above :data:`MAX_CONDITION`, are skipped).
 2. **Outside the solid.** A facet plane of the solid that the colour violates proves it lies
    outside (the solid is convex): no reflectance produces it. The facets tried are those on
    which the solid's gauge peaks at the 27 points ``(i + a/2, j + b/2, k + c/2)`` of the cell
-   (a necessary test only; a colour it cannot place goes on to 3., whose membership test is
+   (a necessary test only; a colour it cannot place goes on, and 4.'s membership test is
    complete). Such a colour keeps the table's blend and is flagged (its documented move).
-3. **A certified exact solve.** The rest (the thin gap between the tetrahedra of actual
+3. **Neighbouring cells.** Moved nodes bend the tetrahedra of actual colours across cell
+   walls, so the tetrahedra of the 26 neighbouring cells with moved nodes are tried as in 1.
+4. **A certified exact solve.** The rest (the thin gap between the tetrahedra of actual
    colours and the curved boundary of the solid) is solved by the smoothest-reflectance
    solver of :mod:`spectrocolor.recovery.smoothest` on the table's own weights: its
    membership test decides inside or outside, and an inside answer is kept only if its
    certificate passes and it reproduces ``q`` to :data:`EXACT_TOLERANCE`.
 
-Every answer of 1. and 3. is checked here on its colour before it is called exact.
+With numba (extra ``fast``) steps 1 and 3 run in a compiled kernel
+(:mod:`spectrocolor.upsampling.compiled`) that blends straight into the output.
+
+Every answer of 1., 3. and 4. is checked here on its colour before it is called exact.
 :data:`PATHS` names the path each query took (:attr:`spectrocolor.upsampling.Upsampled.path`).
 
 References
@@ -35,10 +41,14 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .table import UpsamplingTable, tetrahedron_corners
+
+if TYPE_CHECKING:
+    from ..recovery.inputs import Setup
 
 __all__ = ["PATHS", "EXACT_TOLERANCE"]
 
@@ -81,7 +91,7 @@ class _Cells:
     inverse: np.ndarray    # (M, 6, 3, 3) inverse of [X1 − X0, X2 − X0, X3 − X0]; NaN if unusable
     facets: np.ndarray     # (M, F, 3) facet normals / support (the gauge's scaled normals)
     offsets: np.ndarray    # (M, F) scaled normals · centre
-    setup: object          # spectrocolor.recovery.inputs.Setup on the table's own weights
+    setup: Setup           # the recovery's setup on the table's own weights
 
 
 _CELLS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
