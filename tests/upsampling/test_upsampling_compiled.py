@@ -24,12 +24,12 @@ from upsampling_tables import rec2020_table, srgb_table
 pytest.importorskip("numba", reason="the compiled kernel needs numba (pip install spectrocolor[fast])")
 
 ULPS = 4
-#: Queries settled in cells with moved nodes (paths 1 and 2 of upsampling.moved_cells) are held
-#: to this, relative to the largest value: path 1's weights come from a 3x3 solve summed in
-#: another order by the kernel (rounding of β up to cond · ε, cond ≤ 1.6e5 for the Rec. 2020
-#: tables here: 4e-11), path 2's spectra from the recovery solver's compiled or NumPy route
-#: (two certified solutions of one strictly convex programme; measured 4e-15 apart).
-SETTLED = 1e-10
+#: Queries solved in cells with moved nodes (path 2 of upsampling.moved_cells) are held to this,
+#: relative to the largest value: their spectra come from the recovery solver's compiled or
+#: NumPy route, two certified solutions of one strictly convex programme (measured 4e-15 apart;
+#: the certificate's rounding level allows ~1e-13). Path 1 (the actual-colour blend) does the
+#: kernel's operations in its order and is held to ULPS like the plain blend.
+SETTLED = 1e-12
 STRATEGIES = ("toward-grey", "clip", "nan")
 
 # in the cube, outside it (HDR and negative wide-gamut values) and exactly on its faces
@@ -69,7 +69,7 @@ def test_spectra_equal_the_numpy_path(t, strategy, wide):
     table = rec2020_table() if wide else srgb_table()
     ours = upsample(table, t, strategy)
     reference = numpy_path(upsample, table, t, strategy)
-    assert_close_in_ulps(ours.reflectance, reference.reflectance, np.isin(reference.path, (1, 2)))
+    assert_close_in_ulps(ours.reflectance, reference.reflectance, reference.path == 2)
     # exact: booleans of the same comparisons on the input in both paths
     assert np.array_equal(ours.exact, reference.exact)
     # exact: booleans of the same comparisons on the input in both paths
@@ -85,7 +85,7 @@ def test_relighting_and_coefficients_equal_the_numpy_path(t, strategy, wide):
     XYZ, exact = colours_under(table, t, W_A, strategy)
     XYZ_ref, exact_ref = numpy_path(colours_under, table, t, W_A, strategy)
     settled = numpy_path(upsample, table, t, strategy).path
-    assert_close_in_ulps(XYZ, XYZ_ref, np.isin(settled, (1, 2)))
+    assert_close_in_ulps(XYZ, XYZ_ref, settled == 2)
     assert np.array_equal(exact, exact_ref)  # exact: booleans of the same comparisons on the input in both paths
     found, found_ref = lookup(table, t, strategy), numpy_path(lookup, table, t, strategy)
     # exact: integer indices of the same single roundings (no fastmath) in both paths

@@ -227,7 +227,9 @@ def settle(table: UpsamplingTable, t: np.ndarray, values: np.ndarray | None = No
     row = cells.row[(base[:, 0] * c + base[:, 1]) * c + base[:, 2]]
     if np.any(row < 0):  # a query in a cell without moved nodes (the grid blend is exact)
         raise ValueError("settle: a query lies in a cell whose nodes are all exact")
-    q = t @ table.matrix.T
+    # per row in a fixed order (a BLAS product would round a row differently in another batch)
+    M = table.matrix
+    q = t[:, :1] * M[:, 0] + t[:, 1:2] * M[:, 1] + t[:, 2:] * M[:, 2]
     scale = np.abs(q).max(axis=1)
     blend = _Blend(table, cells, values, clamp, out, rows, q, scale)
     # path 1: the six tetrahedra of the query's own cell
@@ -289,7 +291,11 @@ class _Blend:
         else:
             got, nodes, weights = _actual(self.table, cells, self.q[which], self.scale[which],
                                           candidates)
-            blend = np.einsum("bi,bik->bk", weights, self.values[nodes])
+            v = self.values
+            blend = v[nodes[:, 0]] * weights[:, :1]  # the kernel's order
+            blend += v[nodes[:, 1]] * weights[:, 1:2]
+            blend += v[nodes[:, 2]] * weights[:, 2:3]
+            blend += v[nodes[:, 3]] * weights[:, 3:]
             if self.clamp:
                 np.clip(blend, 0.0, 1.0, out=blend)
             self.out[self.rows[which[got]]] = blend
@@ -304,10 +310,12 @@ def _actual(table, cells: _Cells, q, scale, rows):
     R = rows.shape[1]
     usable = rows >= 0
     safe = np.where(usable, rows, 0)
+    # the operations of the compiled kernel (numba_kernels._actual_one), in its order
     d = q[:, None, None, :] - cells.origin[safe]                     # (w, R, 6, 3)
+    inv = cells.inverse[safe]                                        # (w, R, 6, 3, 3)
     with np.errstate(invalid="ignore"):
-        s = np.einsum("wrpij,wrpj->wrpi", cells.inverse[safe], d)    # (w, R, 6, 3)
-        beta = np.concatenate([1.0 - s.sum(axis=-1, keepdims=True), s], axis=-1)
+        s = (inv[..., 0] * d[..., :1] + inv[..., 1] * d[..., 1:2]) + inv[..., 2] * d[..., 2:]
+        beta = np.concatenate([1.0 - ((s[..., :1] + s[..., 1:2]) + s[..., 2:]), s], axis=-1)
         fits = np.all(beta >= -BARYCENTRIC_SLACK, axis=-1) & usable[..., None]  # NaN fails
     fits = fits.reshape(len(q), R * 6)
     has = np.flatnonzero(fits.any(axis=1))
@@ -316,6 +324,8 @@ def _actual(table, cells: _Cells, q, scale, rows):
     nodes = cells.nodes[safe[has, r], p]                              # (b, 4)
     weights = np.maximum(beta[has, r, p], 0.0)
     X = table.node_XYZ100.reshape(-1, 3)[nodes]
-    error = np.abs(np.einsum("bi,bij->bj", weights, X) - q[has]).max(axis=1)
+    colour = ((weights[:, :1] * X[:, 0] + weights[:, 1:2] * X[:, 1]) + weights[:, 2:3] * X[:, 2]
+              + weights[:, 3:] * X[:, 3])
+    error = np.abs(colour - q[has]).max(axis=1)
     good = error <= EXACT_TOLERANCE * scale[has]
     return has[good], nodes[good], weights[good]
