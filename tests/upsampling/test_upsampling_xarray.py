@@ -45,7 +45,7 @@ def test_dask_backed_is_lazy_and_equals_upsample_dask_and_numpy_bit_for_bit():
     # certified solutions of one strictly convex programme); the rest are blends
     solved = whole.path == PATHS_CODE["certified solve"]
     for other in (reference, whole.reflectance):
-        # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), whatever the batch or block
+        # exact: per-pixel blend of 4 nodes in a fixed order (no BLAS, no sum across pixels), any batch or block
         np.testing.assert_array_equal(computed[~solved], other[~solved])
         # 1e-12 on the 0-1 scale: 100 times the measured spread of two certified solutions
         np.testing.assert_allclose(computed[solved], other[solved], rtol=0, atol=1e-12)
