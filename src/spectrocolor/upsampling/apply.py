@@ -256,7 +256,7 @@ def _apply(table: UpsamplingTable, rgb_linear, name: str, values: np.ndarray, cl
     path = np.where(moved, OUTSIDE_CUBE, np.where(exact, EXACT_NODES, UNSETTLED)).astype(np.uint8)
     if settle_moved and not table.all_exact:
         _settle(table, t.reshape(-1, 3), values, clamp, from_spectra, result, exact, path)
-    if out is not None and not np.shares_memory(out, result):
+    if out is not None and not np.may_share_memory(out, result):  # result is a view of out, or new
         out[...] = result.reshape(out.shape)
         result = out
     return (result.reshape(*lead, channels), exact.reshape(lead), moved.reshape(lead),
