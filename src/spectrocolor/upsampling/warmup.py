@@ -25,8 +25,7 @@ def warm_up() -> bool:
     :func:`~spectrocolor.upsampling.upsample`, :func:`~spectrocolor.upsampling.relight`,
     :func:`~spectrocolor.upsampling.texel_coefficients`) from the main thread (the parallel
     kernels) and from another thread (the serial ones), and undoes the filters of a one-pixel
-    PNG, so that each kernel is compiled for the array types the library passes it (a small
-    Rec. 2020 table compiles the kernel that settles cells with moved nodes). Building
+    PNG, so that each kernel is compiled for the array types the library passes it. Building
     the table compiles the smoothest-reflectance kernels too
     (:func:`spectrocolor.recovery.warmup.warm_up`).
 
@@ -45,18 +44,13 @@ def warm_up() -> bool:
         return False
     table = upsampling_table("sRGB", "D65", wavelengths=(400.0, 700.0, 20.0), resolution=3,
                              measure_excess=False)
-    # a wide-gamut table has moved nodes: its queries there run the settling kernel too
-    wide = upsampling_table("Rec. 2020", "D65", wavelengths=(400.0, 700.0, 20.0), resolution=3,
-                            measure_excess=False)
-    colours = np.array([[0.5, 0.4, 0.3], [1.2, 0.5, -0.1], [0.1, 0.1, 0.9]])
+    colours = np.array([[0.5, 0.4, 0.3], [1.2, 0.5, -0.1]])
 
     def use_every_kernel():
         lookup(table, colours)
         texel_coefficients(table, colours)
         upsample(table, colours)
         relight(table, colours, "A")
-        upsample(wide, colours)
-        relight(wide, colours, "A")
 
     use_every_kernel()
     with ThreadPoolExecutor(1) as other_thread:  # .result() raises what the thread raised
