@@ -14,6 +14,14 @@ with other upsampling methods. Run by hand:
    Smits (1999), one colour per call, on 100 colours. All timed alternately in this one run,
    warm, best of N each (the NumPy path's spectra and their NumPy limit on one block), and
    recorded in the results file (bench/results.py).
+2b. A Rec. 2020 image (SIZE x SIZE uniform random linear Rec. 2020, 17³ table, 694 nodes moved
+   toward grey), exact wherever a reflectance exists (issue 27): spectra with the cells of moved
+   nodes settled (``upsample_spectra``; their queries blended by the nodes' actual colours or
+   solved by the certified solver), the same without settling (``settle_moved=False``, the
+   plain blend: inexact there), relighting under A settled, the NumPy path (one block) and the
+   bare NumPy gather-and-blend limit, and colour-science's Mallett (2019) and Smits (1999) on
+   100 colours; all timed alternately, with the count of each path and the exactness over the
+   image's colours. ``--rec2020-only`` runs this section alone.
 3. ``--compare``: ΔE00 under D65 over random colours of the sRGB cube and of Rec. 2020 (wide
    gamut), roughness excess over the exact smoothest reflectance, values < 0 or > 1, and
    speed, for this table, an rgb2spec-style sigmoid-polynomial model (Jakob & Hanika 2019: the
@@ -217,6 +225,82 @@ def _record(rates: dict[str, float], size: int, compiled: bool) -> None:
            f"{'compiled kernel (extra `fast`)' if compiled else 'NumPy path'}", figures, script=SCRIPT)
 
 
+def rec2020_speed(table, size: int, repeats: int, burst: float = BURST) -> None:
+    """Section 2b: a Rec. 2020 image, every colour inside the solid exact; colours/s and ratios."""
+    from colour.recovery import RGB_to_sd_Mallett2019, RGB_to_sd_Smits1999
+
+    from spectrocolor.upsampling import PATHS
+    from spectrocolor.upsampling.compiled import kernels
+
+    pixels = size * size
+    compiled = kernels() is not None
+    engine = "numba" if compiled else "numpy"
+    print(f"\n2b. A {size}x{size} Rec. 2020 image ({pixels / 1e6:.1f} Mpixel, uniform random linear "
+          f"RGB), 17³ table with {int(np.count_nonzero(table.node_status))} moved nodes; blocks of "
+          f"{BLOCK}; warm, best of {repeats}, timed alternately, {clock_name()}")
+    rng = np.random.default_rng(27)
+    blocks = [rng.random((min(BLOCK, pixels - start), 3)) for start in range(0, pixels, BLOCK)]
+    few = blocks[:1]
+    K = table.wavelengths_nm.size
+    spectra = np.empty((BLOCK, K))
+    W_A = np.asarray(sc.weights(table.wavelengths_nm, illuminant="A"))
+    _engine("numpy")
+    found = lookup(table, few[0])
+    counts: dict[str, int] = {}
+    functions = {}
+
+    def add(name, run, over):
+        functions[name] = run
+        counts[name] = sum(len(block) for block in over)
+
+    add(f"spectra exact {engine}", _on(engine, lambda b: upsample_spectra(table, b, "toward-grey", spectra[:len(b)]),
+                                       blocks), blocks)
+    add(f"spectra plain {engine}", _on(engine, lambda b: upsample_spectra(
+        table, b, "toward-grey", spectra[:len(b)], settle_moved=False), blocks), blocks)
+    add(f"relight exact {engine}", _on(engine, lambda b: colours_under(table, b, W_A), blocks), blocks)
+    if compiled:
+        add("spectra exact numpy", _on("numpy", lambda b: upsample_spectra(table, b, "toward-grey", spectra[:len(b)]),
+                                       few), few)
+    add("spectra numpy limit", _on("numpy", lambda f: _blend(table.flat_reflectance, f, spectra[:len(f.nodes)]),
+                                   [found]), few)
+    sample = np.random.default_rng(4).random((COLOUR_SCIENCE_COLOURS, 3))
+    for name, function in (("Mallett 2019", RGB_to_sd_Mallett2019), ("Smits 1999", RGB_to_sd_Smits1999)):
+        functions[name] = lambda function=function: [function(rgb) for rgb in sample]
+        counts[name] = len(sample)
+    best = alternate_best(functions, repeats=repeats, burst=burst)
+    _engine("numba")
+    rates = {name: counts[name] / best[name] for name in best}
+    for name in functions:
+        print(f"   {name:22s}: {rates[name]:10.3g} colours/s")
+    ours = rates[f"spectra exact {engine}"]
+    print(f"   exact spectra: {rates[f'spectra plain {engine}'] / ours:5.2f}x the time of the plain blend, "
+          f"{ours / rates['spectra numpy limit']:5.2f}x the bare NumPy gather-and-blend's rate, "
+          f"{ours / rates['Mallett 2019']:8.3g}x Mallett 2019's and {ours / rates['Smits 1999']:8.3g}x Smits 1999's")
+    # how the image's colours went, and the exactness claim checked on the first block
+    u = upsample(table, blocks[0])
+    paths = {PATHS[k]: int(np.count_nonzero(u.path == k)) for k in PATHS}
+    q = blocks[0] @ table.matrix.T
+    error = np.abs(u.reflectance @ table.weights - q).max(axis=-1) / np.abs(q).max(axis=-1)
+    print(f"   paths over the first block of {len(blocks[0])} colours: {paths}")
+    print(f"   exact: {int(u.exact.sum())} colours, largest relative colour error {error[u.exact].max():.2g}, "
+          f"reflectances in [{u.reflectance.min():.3g}, {u.reflectance.max():.3g}]")
+    figures = [
+        figure("rec2020_exact_spectra_per_s", ours, "ours", "Rec. 2020 image, exact spectra {}/s"),
+        figure("rec2020_plain_spectra_per_s", rates[f"spectra plain {engine}"], "ours",
+               "Rec. 2020 image, plain blend {}/s"),
+        figure("rec2020_exact_relight_per_s", rates[f"relight exact {engine}"], "ours",
+               "Rec. 2020 image, exact colours under A {}/s"),
+        ratio("rec2020_exact_over_mallett", ours / rates["Mallett 2019"], "colour-science",
+              "exact Rec. 2020 spectra {}× slower by Mallett 2019"),
+        ratio("rec2020_exact_over_smits", ours / rates["Smits 1999"], "colour-science",
+              "exact Rec. 2020 spectra {}× slower by Smits 1999"),
+        ratio("rec2020_numpy_limit_over_exact", rates["spectra numpy limit"] / ours, "limit",
+              "exact Rec. 2020 spectra: the bare NumPy blend {}× ours"),
+    ]
+    record("upsampling_rec2020", f"exact spectral upsampling of a {size}² Rec. 2020 image through a 17³ table",
+           figures, script=SCRIPT)
+
+
 def _metrics(name, rho, target_lab, W, white, optimum, seconds, count):
     finite = np.all(np.isfinite(rho), axis=-1)
     lab = sc.lab(np.where(finite[:, None], rho, 0.0) @ W, white)
@@ -391,11 +475,17 @@ def main() -> None:
     parser.add_argument("--meng", type=int, default=0)
     parser.add_argument("--apply-only", action="store_true",
                         help="skip the Rec. 2020 build and the measured excess (section 2 only)")
+    parser.add_argument("--rec2020-only", action="store_true",
+                        help="only section 2b: a Rec. 2020 image, exact wherever a reflectance exists")
     parser.add_argument("--pictures", action="store_true",
                         help="only write the pictures of docs/upsampling.md")
     args = parser.parse_args()
     if args.pictures:
         pictures()
+        return
+    if args.rec2020_only:
+        rec2020_speed(upsampling_table("Rec. 2020", "D65", resolution=17, measure_excess=False),
+                      args.size, args.repeats, args.burst)
         return
     if args.apply_only:
         apply_speed(upsampling_table("sRGB", "D65", resolution=17, measure_excess=False),
@@ -403,6 +493,7 @@ def main() -> None:
         return
     tables = build()
     apply_speed(tables["sRGB"], args.size, args.repeats, args.burst)
+    rec2020_speed(tables["Rec. 2020"], args.size, args.repeats, args.burst)
     if args.compare:
         compare(tables, args.meng)
 

@@ -1,7 +1,7 @@
 """Fuzzing the upsampling readers and options: hostile input gets one clear error, never a crash."""
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from PIL import Image
@@ -11,7 +11,7 @@ from spectrocolor.cli import main
 from spectrocolor.imagefiles import decode_png
 from spectrocolor.upsampling import load_table, upsample
 from spectrocolor.upsampling.fileformat import table_bytes
-from upsampling_tables import srgb_table
+from upsampling_tables import rec2020_table, srgb_table
 
 VALID = None
 
@@ -72,6 +72,48 @@ def test_any_floats_give_bounded_spectra_or_one_error(values):
     assert u.reflectance.min() >= 0.0 and u.reflectance.max() <= 1.0
     inside = np.all((values >= 0) & (values <= 1), axis=-1)
     np.testing.assert_array_equal(u.exact, inside)  # exact: booleans of the same comparisons with 0 and 1 on the input
+
+
+def assert_exact_wherever_a_reflectance_exists(table, t):
+    """Issue 27: inside the object-colour solid (the certified solver's own verdict) a query is
+    exact, to 1e-9 relative (the settled paths are checked at 1e-10: see
+    upsampling.moved_cells.EXACT_TOLERANCE), and every spectrum lies in [0, 1]."""
+    u = upsample(table, t)
+    q = t @ table.matrix.T
+    solved = sc.smoothest_reflectance(q, illuminant="D65", wavelengths=(380, 780, 5))
+    inside = np.asarray(solved.feasible) & np.asarray(solved.certificate.converged)
+    assert u.reflectance.min() >= 0.0 and u.reflectance.max() <= 1.0
+    np.testing.assert_array_equal(u.exact, inside)  # exact: booleans, the same verdict
+    error = np.abs(u.reflectance @ table.weights - q).max(axis=-1)
+    assert np.all(error[inside] <= 1e-9 * np.abs(q[inside]).max(axis=-1))
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@given(arrays(np.float64, 3, elements=st.floats(-1.0, 1.0, allow_nan=False)),
+       st.sampled_from([-1e-6, -1e-9, -1e-12, 0.0, 1e-12, 1e-9, 1e-6, 1e-3]))
+def test_colours_near_the_solid_boundary_are_exact_when_inside(direction, depth):
+    from spectrocolor.recovery.inputs import Setup
+    from spectrocolor.recovery.zonotope import ray_exit
+
+    table = rec2020_table()
+    assume(np.abs(direction).max() > 1e-3)
+    grey = table.matrix @ np.full(3, 0.5)
+    d = table.matrix @ direction
+    setup = Setup(table.wavelengths_nm, table.weights)
+    reach = ray_exit(setup.solid, grey, d[None])[0]
+    q = grey + (1.0 - depth) * reach * d  # relative depth `depth` below the boundary
+    t = np.linalg.solve(table.matrix, q)
+    assume(np.all((t >= 0.0) & (t <= 1.0)))
+    assert_exact_wherever_a_reflectance_exists(table, t[None])
+
+
+@settings(max_examples=40, deadline=None)
+@given(arrays(np.int64, 3, elements=st.integers(0, 4)),
+       arrays(np.float64, 3, elements=st.sampled_from([0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, -1e-9])))
+def test_cell_corners_and_their_neighbourhood_are_exact_when_inside(corner, offset):
+    table = rec2020_table()  # 5 nodes per axis: corners at multiples of 1/4
+    t = np.clip(corner / 4.0 + offset, 0.0, 1.0)
+    assert_exact_wherever_a_reflectance_exists(table, t[None])
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])

@@ -24,6 +24,12 @@ from upsampling_tables import rec2020_table, srgb_table
 pytest.importorskip("numba", reason="the compiled kernel needs numba (pip install spectrocolor[fast])")
 
 ULPS = 4
+#: Queries solved in cells with moved nodes (path 2 of upsampling.moved_cells) are held to this,
+#: relative to the largest value: their spectra come from the recovery solver's compiled or
+#: NumPy route, two certified solutions of one strictly convex programme (measured 4e-15 apart;
+#: the certificate's rounding level allows ~1e-13). Path 1 (the actual-colour blend) does the
+#: kernel's operations in its order and is held to ULPS like the plain blend.
+SETTLED = 1e-12
 STRATEGIES = ("toward-grey", "clip", "nan")
 
 # in the cube, outside it (HDR and negative wide-gamut values) and exactly on its faces
@@ -38,13 +44,16 @@ def numpy_path(function, *arguments):
         return function(*arguments)
 
 
-def assert_close_in_ulps(compiled, reference):
+def assert_close_in_ulps(compiled, reference, settled=None):
+    """Equal to ULPS units in the last place, except rows ``settled`` (to SETTLED relative)."""
     compiled, reference = np.asarray(compiled), np.asarray(reference)
     assert compiled.shape == reference.shape and compiled.dtype == reference.dtype
     assert np.array_equal(np.isnan(compiled), np.isnan(reference))
-    finite = ~np.isnan(reference)
-    scale = np.abs(reference[finite]).max(initial=1.0)
-    assert np.abs(compiled[finite] - reference[finite]).max(initial=0.0) <= ULPS * np.spacing(scale)
+    settled = np.zeros(compiled.shape[:-1], dtype=bool) if settled is None else settled
+    scale = np.abs(reference[~np.isnan(reference)]).max(initial=1.0)
+    difference = np.where(np.isnan(reference), 0.0, np.abs(compiled - reference))
+    assert difference[~settled].max(initial=0.0) <= ULPS * np.spacing(scale)
+    assert difference[settled].max(initial=0.0) <= SETTLED * scale
 
 
 def test_the_kernel_is_used_when_numba_is_installed(monkeypatch):
@@ -60,7 +69,7 @@ def test_spectra_equal_the_numpy_path(t, strategy, wide):
     table = rec2020_table() if wide else srgb_table()
     ours = upsample(table, t, strategy)
     reference = numpy_path(upsample, table, t, strategy)
-    assert_close_in_ulps(ours.reflectance, reference.reflectance)
+    assert_close_in_ulps(ours.reflectance, reference.reflectance, reference.path == 2)
     # exact: booleans of the same comparisons on the input in both paths
     assert np.array_equal(ours.exact, reference.exact)
     # exact: booleans of the same comparisons on the input in both paths
@@ -75,7 +84,8 @@ def test_relighting_and_coefficients_equal_the_numpy_path(t, strategy, wide):
     W_A = np.asarray(sc.weights(table.wavelengths_nm, illuminant="A"))
     XYZ, exact = colours_under(table, t, W_A, strategy)
     XYZ_ref, exact_ref = numpy_path(colours_under, table, t, W_A, strategy)
-    assert_close_in_ulps(XYZ, XYZ_ref)
+    settled = numpy_path(upsample, table, t, strategy).path
+    assert_close_in_ulps(XYZ, XYZ_ref, settled == 2)
     assert np.array_equal(exact, exact_ref)  # exact: booleans of the same comparisons on the input in both paths
     found, found_ref = lookup(table, t, strategy), numpy_path(lookup, table, t, strategy)
     # exact: integer indices of the same single roundings (no fastmath) in both paths

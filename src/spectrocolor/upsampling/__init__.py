@@ -6,7 +6,9 @@
 * :func:`upsample`, :func:`upsample_spectra`, :func:`colours_under`,
   :func:`texel_coefficients`, :func:`upsample_blocks`, :func:`upsample_dask` — tetrahedral
   blending of node spectra: the input colour is reproduced to 1e-9 relative and ``0 ≤ ρ ≤ 1``
-  holds exactly wherever the report says ``exact``.
+  holds exactly wherever the report says ``exact``; in cells with nodes moved toward grey
+  (wide-gamut spaces) every colour some reflectance produces is settled exactly
+  (:mod:`spectrocolor.upsampling.moved_cells`; :data:`PATHS` names the way each took).
 * :func:`relight` — an image's colours under another light.
 * :func:`save_table`, :func:`load_table` — the ``.scup`` binary layout (readers in Python and
   C in ``docs/upsampling/``).
@@ -36,6 +38,7 @@ from .apply import (
     upsample_spectra,
 )
 from .fileformat import load_table, save_table
+from .moved_cells import PATHS
 from .relight import relight, rgb_linear_from_image
 from .table import NODE_STATUS, UpsamplingTable, upsampling_table
 from .texels import TexelCoefficients, load_texel_coefficients, save_texel_coefficients
@@ -43,6 +46,7 @@ from .texels import TexelCoefficients, load_texel_coefficients, save_texel_coeff
 __all__ = [
     "NODE_STATUS",
     "OUT_OF_RANGE_STRATEGIES",
+    "PATHS",
     "Lookup",
     "TexelCoefficients",
     "Upsampled",

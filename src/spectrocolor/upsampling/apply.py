@@ -10,10 +10,12 @@ What "exact" means. The colour map is linear and ``Σ β_i t_i = t``, so
 are checked to 1e-11 relative (:data:`~spectrocolor.upsampling.table.NODE_TOLERANCE`), so a
 query in a tetrahedron of exact nodes is reproduced to that order (tests hold it to 1e-9), and
 ``0 ≤ ρ ≤ 1`` holds exactly (the blend is convex; the rounding excursion above 1 of at most a
-few ulps is clamped). Queries the table cannot reproduce exactly — outside the cube, or in a
-tetrahedron with a node moved toward grey because its colour is outside the object-colour
-solid — follow a named strategy from :data:`OUT_OF_RANGE_STRATEGIES` and are reported
-``exact=False``.
+few ulps is clamped). A query inside the cube in a tetrahedron with a node moved toward grey
+(its colour outside the object-colour solid) is settled by :mod:`.moved_cells`: exact
+wherever some reflectance produces it (a blend by the nodes' actual colours, or a certified
+solve), flagged otherwise. Queries outside the cube follow a named strategy from
+:data:`OUT_OF_RANGE_STRATEGIES` and are reported ``exact=False``; ``Upsampled.path`` says
+which way each query went.
 
 References
 ----------
@@ -38,6 +40,7 @@ from ..errors import ColorimetryError
 from ..registry import Registry
 from .compiled import MOVE_CODES, run_blend, run_locate
 from .compiled import kernels as compiled_kernels
+from .moved_cells import EXACT_NODES, OUTSIDE_CUBE, UNSETTLED, settle
 from .table import GREY, UpsamplingTable
 
 __all__ = ["OUT_OF_RANGE_STRATEGIES", "Lookup", "Upsampled", "lookup", "upsample",
@@ -218,34 +221,60 @@ def _kernel_table(table: UpsamplingTable, name: str) -> tuple[int, int, np.ndarr
 
 
 def _apply(table: UpsamplingTable, rgb_linear, name: str, values: np.ndarray, clamp: bool,
-           out: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Blend the node rows ``values`` (n³, C) at the queries: (result (..., C), exact, moved).
+           out: np.ndarray | None = None, from_spectra=None, settle_moved: bool = True
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Blend the node rows ``values`` (n³, C) at the queries: (result (..., C), exact, moved,
+    path).
 
     ``clamp`` applies ``min(·, 1)`` (reflectances); strategy ``"nan"`` gives NaN rows for
     inexact queries. The compiled kernel when available, else :func:`lookup` and :func:`_blend`.
+    Then, unless ``settle_moved`` is false, queries inside the cube in tetrahedra with moved
+    nodes are settled by :func:`.moved_cells.settle`: blended by the nodes' actual colours, or
+    solved (``from_spectra`` maps solved spectra (s, K) to result rows; None: the spectra
+    themselves).
     """
-    compiled = _compiled_kernels(name)
-    if compiled is None:
-        found = lookup(table, rgb_linear, name)
-        flat_out = None if out is None else out.reshape(-1, values.shape[1])
-        result = _blend(values, found, flat_out)
-        if clamp:
-            np.minimum(result, 1.0, out=result)
-        if name == "nan":
-            result[~found.exact] = np.nan
-        return result, found.exact, found.moved
     t = _coordinates(rgb_linear)
     lead, channels = t.shape[:-1], values.shape[1]
-    direct = (out is not None and out.dtype == np.float64 and out.flags.c_contiguous
-              and out.size == int(np.prod(lead, dtype=np.int64)) * channels)
-    flat_out = out.reshape(-1, channels) if direct and out is not None else np.empty((t.size // 3, channels))
-    exact, moved = run_blend(compiled, _flat(t), *_kernel_table(table, name),
-                             np.ascontiguousarray(values, dtype=np.float64), clamp,
-                             name == "nan", flat_out)
-    if out is not None and not direct:
-        out[...] = flat_out.reshape(out.shape)
-        flat_out = out
-    return flat_out.reshape(*lead, channels), exact.reshape(lead), moved.reshape(lead)
+    compiled = _compiled_kernels(name)
+    if compiled is None:
+        found = lookup(table, t, name)
+        flat_out = None if out is None else out.reshape(-1, channels)
+        result = _blend(values, found, flat_out).reshape(-1, channels)
+        if clamp:
+            np.minimum(result, 1.0, out=result)
+        exact, moved = found.exact.reshape(-1), found.moved.reshape(-1)
+        if name == "nan":
+            result[~exact] = np.nan
+    else:
+        direct = (out is not None and out.dtype == np.float64 and out.flags.c_contiguous
+                  and out.size == int(np.prod(lead, dtype=np.int64)) * channels)
+        result = (out.reshape(-1, channels) if direct and out is not None
+                  else np.empty((t.size // 3, channels)))
+        exact, moved = run_blend(compiled, _flat(t), *_kernel_table(table, name),
+                                 np.ascontiguousarray(values, dtype=np.float64), clamp,
+                                 name == "nan", result)
+    path = np.where(moved, OUTSIDE_CUBE, np.where(exact, EXACT_NODES, UNSETTLED)).astype(np.uint8)
+    if settle_moved and not table.all_exact:
+        _settle(table, t.reshape(-1, 3), values, clamp, from_spectra, result, exact, path)
+    if out is not None and not np.may_share_memory(out, result):  # result is a view of out, or new
+        out[...] = result.reshape(out.shape)
+        result = out
+    return (result.reshape(*lead, channels), exact.reshape(lead), moved.reshape(lead),
+            path.reshape(lead))
+
+
+def _settle(table, t, values, clamp, from_spectra, result, exact, path) -> None:
+    """Settle, in place, the inexact queries inside the cube (see :mod:`.moved_cells`)."""
+    chosen = np.flatnonzero(path == UNSETTLED)
+    if chosen.size == 0:
+        return
+    got = settle(table, t[chosen], values, clamp, result, chosen)
+    path[chosen] = got.path
+    rows = chosen[got.solved]
+    if rows.size:
+        result[rows] = got.spectra if from_spectra is None else from_spectra(got.spectra)
+    exact[chosen[got.blended]] = True
+    exact[rows] = True
 
 
 def _blend(values: np.ndarray, found: Lookup, out: np.ndarray | None = None) -> np.ndarray:
@@ -273,11 +302,18 @@ class Upsampled:
         refused a query.
     wavelengths_nm : ndarray (K,)
     exact : ndarray of bool (...)
-        The spectrum reproduces the query's colour (``table.matrix @ t``) to 1e-9 relative.
+        The spectrum reproduces the query's colour (``table.matrix @ t``) to 1e-9 relative
+        and lies in [0, 1]: every query inside the cube whose colour some reflectance
+        produces (inside the object-colour solid), unless ``settle_moved=False``.
     moved : ndarray of bool (...)
         The query lay outside the cube and was moved by the strategy.
     out_of_range : str
         The strategy used.
+    path : ndarray of uint8 (...)
+        How each query was answered: a code of
+        :data:`spectrocolor.upsampling.moved_cells.PATHS` (0 blend of exact nodes, 1 blend by
+        the nodes' actual colours, 2 certified solve, 3 outside the solid, 4 outside the cube,
+        5 not settled).
     """
 
     reflectance: np.ndarray
@@ -285,10 +321,18 @@ class Upsampled:
     exact: np.ndarray
     moved: np.ndarray
     out_of_range: str
+    path: np.ndarray
 
 
-def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey") -> Upsampled:
+def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey", *,
+             settle_moved: bool = True) -> Upsampled:
     """Reflectance spectra for colours, by tetrahedral blending of the table's nodes.
+
+    In tetrahedra with nodes moved toward grey (wide-gamut spaces), queries inside the cube
+    are settled exactly wherever a reflectance exists (:mod:`spectrocolor.upsampling.
+    moved_cells`): blended by the nodes' actual colours, or solved by the certified
+    smoothest-reflectance solver; colours outside the object-colour solid keep the table's
+    blend and ``exact=False``.
 
     Parameters
     ----------
@@ -299,6 +343,9 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
     out_of_range : {"toward-grey", "clip", "nan"}
         What to do with queries that cannot be reproduced exactly (see
         :data:`OUT_OF_RANGE_STRATEGIES`); they are reported in ``exact``/``moved``.
+    settle_moved : bool, keyword-only, default True
+        Settle the queries in tetrahedra with moved nodes exactly (above); False keeps the plain
+        grid blend there (path 5, ``exact=False``), at the table's full speed.
 
     Returns
     -------
@@ -317,12 +364,13 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
     """
     _check_table(table)
     out_of_range = _strategy(out_of_range)
-    rho, exact, moved = _apply(table, rgb_linear, out_of_range, table.flat_reflectance, True)
-    return Upsampled(rho, table.wavelengths_nm, exact, moved, out_of_range)
+    rho, exact, moved, path = _apply(table, rgb_linear, out_of_range, table.flat_reflectance,
+                                     True, settle_moved=settle_moved)
+    return Upsampled(rho, table.wavelengths_nm, exact, moved, out_of_range, path)
 
 
 def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-grey",
-                     out: np.ndarray | None = None) -> np.ndarray:
+                     out: np.ndarray | None = None, *, settle_moved: bool = True) -> np.ndarray:
     """Only the spectra of :func:`upsample` (``(..., K)`` float64), optionally into ``out``.
 
     Parameters
@@ -335,6 +383,8 @@ def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "to
         A key of :data:`OUT_OF_RANGE_STRATEGIES` (``"nan"`` gives NaN spectra outside).
     out : numpy.ndarray, shape (..., K), optional
         Where to write the spectra.
+    settle_moved : bool, keyword-only, default True
+        As in :func:`upsample`.
 
     Returns
     -------
@@ -356,7 +406,8 @@ def upsample_spectra(table: UpsamplingTable, rgb_linear, out_of_range: str = "to
     """
     _check_table(table)
     out_of_range = _strategy(out_of_range)
-    return _apply(table, rgb_linear, out_of_range, table.flat_reflectance, True, out)[0]
+    return _apply(table, rgb_linear, out_of_range, table.flat_reflectance, True, out,
+                  settle_moved=settle_moved)[0]
 
 
 #: Node colours per table and weights (relighting an image block by block reuses them; a
@@ -408,7 +459,8 @@ def node_colours(table: UpsamplingTable, weights) -> np.ndarray:
     return cached[key]
 
 
-def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str = "toward-grey"):
+def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str = "toward-grey",
+                  *, settle_moved: bool = True):
     """The colour of each query's upsampled spectrum under other weights, without the spectra.
 
     Because blending is linear, ``(Σ β_i ρ_i) @ W' = Σ β_i (ρ_i @ W')``: the node colours under
@@ -425,13 +477,18 @@ def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str
         E.g. ``spectrocolor.weights(table.wavelengths_nm, illuminant="A")`` (XYZ100 under A).
     out_of_range : str, default "toward-grey"
         A key of :data:`OUT_OF_RANGE_STRATEGIES`.
+    settle_moved : bool, keyword-only, default True
+        As in :func:`upsample`: queries in tetrahedra with moved nodes take the colour of their
+        exact spectrum (the actual-colour blend, or the certified solve's spectrum under
+        ``weights``).
 
     Returns
     -------
     XYZ : ndarray (..., 3)
         Colours under the new weights, on their scale.
     exact : ndarray of bool (...)
-        Whether each query was inside the table's cube.
+        Whether each query's spectrum reproduces it under the table's own light (as
+        :attr:`Upsampled.exact`).
 
     Examples
     --------
@@ -444,7 +501,9 @@ def colours_under(table: UpsamplingTable, rgb_linear, weights, out_of_range: str
     """
     _check_table(table)
     out_of_range = _strategy(out_of_range)
-    XYZ, exact, _ = _apply(table, rgb_linear, out_of_range, node_colours(table, weights), False)
+    W = np.asarray(weights, dtype=np.float64)
+    XYZ, exact, _, _ = _apply(table, rgb_linear, out_of_range, node_colours(table, W), False,
+                              from_spectra=lambda rho: rho @ W, settle_moved=settle_moved)
     return XYZ, exact
 
 

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..numba_support import pick, use_compiled
 
-__all__ = ["MOVE_CODES", "kernels", "run_blend", "run_locate"]
+__all__ = ["MOVE_CODES", "kernels", "run_actual", "run_blend", "run_locate"]
 
 #: The out-of-range strategies the kernel implements: strategy name -> how a query outside the
 #: cube is moved (0 toward grey, 1 clip per channel). Other strategies use the NumPy path.
@@ -39,7 +39,8 @@ def _compiled():
     except ImportError:  # numba is not installed (the extra "fast")
         return None
     return SimpleNamespace(blend=(numba_kernels.blend_serial, numba_kernels.blend_parallel),
-                           locate=(numba_kernels.locate_serial, numba_kernels.locate_parallel))
+                           locate=(numba_kernels.locate_serial, numba_kernels.locate_parallel),
+                           actual=(numba_kernels.actual_serial, numba_kernels.actual_parallel))
 
 
 def kernels():
@@ -49,7 +50,8 @@ def kernels():
     Returns
     -------
     types.SimpleNamespace or None
-        ``blend`` and ``locate``, each a (serial, parallel) pair of numba dispatchers.
+        ``blend``, ``locate`` and ``actual`` (path 1 of :mod:`.moved_cells`), each a (serial,
+        parallel) pair of numba dispatchers.
 
     Examples
     --------
@@ -82,3 +84,16 @@ def run_locate(found_kernels, t, n, move, offsets, status, node_dtype=np.intp,
     moved = np.empty(count, dtype=np.bool_)
     pick(found_kernels.locate)(t, n, move, offsets, status, nodes, weights, exact, moved)
     return nodes, weights, exact, moved
+
+
+def run_actual(found_kernels, q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack,
+               tolerance, values, clamp, rows, out):
+    """Path 1 of :mod:`.moved_cells` for queries ``q`` (m, 3): writes ``out[rows[i]]`` where
+    found; returns (found (m,), nodes (m, 4), weights (m, 4))."""
+    m = q.shape[0]
+    found = np.empty(m, dtype=np.bool_)
+    nodes = np.zeros((m, 4), dtype=np.intp)
+    weights = np.zeros((m, 4))
+    pick(found_kernels.actual)(q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack,
+                               tolerance, values, clamp, rows, out, nodes, weights, found)
+    return found, nodes, weights

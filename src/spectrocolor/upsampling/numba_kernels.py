@@ -13,7 +13,8 @@ import numpy as np
 
 from ..numba_support import jit
 
-__all__ = ["blend_parallel", "blend_serial", "locate_parallel", "locate_serial"]
+__all__ = ["actual_parallel", "actual_serial", "blend_parallel", "blend_serial", "locate_parallel",
+           "locate_serial"]
 
 
 _jit = jit
@@ -109,3 +110,65 @@ def locate_serial(t, n, move, offsets, status, nodes, weights, exact, moved):
     """:func:`locate_parallel` on one thread."""
     for q in range(t.shape[0]):
         _locate_one(t, n, move, offsets, status, nodes, weights, exact, moved, q)
+
+
+@_jit(inline="always")
+def _actual_one(q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack, tolerance,
+                values, clamp, rows, out, nodes, weights, found, i):
+    """Path 1 of :mod:`.moved_cells` for query ``i``: the first tetrahedron of actual colours
+    among the candidate cells that holds it, checked on its colour, blended into ``out``."""
+    found[i] = False
+    for r in range(candidates.shape[1]):
+        cell = candidates[i, r]
+        if cell < 0:
+            continue
+        for p in range(6):
+            d0 = q[i, 0] - origin[cell, p, 0]
+            d1 = q[i, 1] - origin[cell, p, 1]
+            d2 = q[i, 2] - origin[cell, p, 2]
+            b1 = inverse[cell, p, 0, 0] * d0 + inverse[cell, p, 0, 1] * d1 + inverse[cell, p, 0, 2] * d2
+            b2 = inverse[cell, p, 1, 0] * d0 + inverse[cell, p, 1, 1] * d1 + inverse[cell, p, 1, 2] * d2
+            b3 = inverse[cell, p, 2, 0] * d0 + inverse[cell, p, 2, 1] * d1 + inverse[cell, p, 2, 2] * d2
+            b0 = 1.0 - (b1 + b2 + b3)
+            # NaN (an unusable tetrahedron) fails every comparison
+            if not (b0 >= -slack and b1 >= -slack and b2 >= -slack and b3 >= -slack):
+                continue
+            w0, w1, w2, w3 = max(b0, 0.0), max(b1, 0.0), max(b2, 0.0), max(b3, 0.0)
+            i0, i1 = tet_nodes[cell, p, 0], tet_nodes[cell, p, 1]
+            i2, i3 = tet_nodes[cell, p, 2], tet_nodes[cell, p, 3]
+            error = 0.0
+            for j in range(3):
+                v = (w0 * node_XYZ[i0, j] + w1 * node_XYZ[i1, j] + w2 * node_XYZ[i2, j]
+                     + w3 * node_XYZ[i3, j])
+                error = max(error, abs(v - q[i, j]))
+            if not error <= tolerance * scale[i]:
+                continue
+            found[i] = True
+            nodes[i, 0], nodes[i, 1], nodes[i, 2], nodes[i, 3] = i0, i1, i2, i3
+            weights[i, 0], weights[i, 1], weights[i, 2], weights[i, 3] = w0, w1, w2, w3
+            row = rows[i]
+            for k in range(values.shape[1]):
+                v = values[i0, k] * w0
+                v += values[i1, k] * w1
+                v += values[i2, k] * w2
+                v += values[i3, k] * w3
+                out[row, k] = min(max(v, 0.0), 1.0) if clamp else v
+            return
+
+
+@_jit(parallel=True)
+def actual_parallel(q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack, tolerance,
+                    values, clamp, rows, out, nodes, weights, found):
+    """Path 1 of :mod:`.moved_cells` for every query, threaded."""
+    for i in numba.prange(q.shape[0]):
+        _actual_one(q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack, tolerance,
+                    values, clamp, rows, out, nodes, weights, found, i)
+
+
+@_jit()
+def actual_serial(q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack, tolerance,
+                  values, clamp, rows, out, nodes, weights, found):
+    """:func:`actual_parallel` on one thread."""
+    for i in range(q.shape[0]):
+        _actual_one(q, scale, candidates, origin, inverse, tet_nodes, node_XYZ, slack, tolerance,
+                    values, clamp, rows, out, nodes, weights, found, i)

@@ -20,7 +20,9 @@ A node that fails (its colour lies outside the object-colour solid, or the solve
 certify it) is handled by the node strategy ``"toward-grey"``: its colour is moved along the
 segment to the solid's centre ``t = (0.5, 0.5, 0.5)`` to the farthest point (bisection,
 :data:`BISECTION_STEPS` halvings) at which a certified solution exists, and the node is marked
-``moved`` (status 1). Tetrahedra with a moved vertex are not exact and are reported so.
+``moved`` (status 1). Blending by the grid weights is not exact in tetrahedra with a moved
+vertex; :mod:`spectrocolor.upsampling.moved_cells` settles their queries (exact wherever a
+reflectance exists, flagged outside the object-colour solid).
 
 Per cell the table records the roughness excess of interpolation over the true optimum:
 
