@@ -86,6 +86,7 @@ def edge_set(grid, depth, seed=0):
     return _pulled_in(W, np.concatenate([band, 1 - band]), depth)
 
 
+PLURAL = {"vertex": "vertices", "edge": "edges"}
 #: Narrow-band reflectances (Gaussian): centre nm and full width at half maximum nm.
 NARROW_BANDS = ((450.0, 5.0), (520.0, 10.0), (560.0, 5.0), (600.0, 15.0), (650.0, 10.0))
 
@@ -177,7 +178,8 @@ def solver_rates(step: float, repeats: int, burst: float, kernels: bool) -> dict
         if name in rates:
             r = last[name]
             methods = dict(zip(*np.unique(r.method, return_counts=True), strict=True))
-            print(f"{step:>4g} nm  unit, {counts[name]} colours near the solid's {name.replace(' ', 's at depth ')}: "
+            kind, depth = name.split()
+            print(f"{step:>4g} nm  unit, {counts[name]} colours near the solid's {PLURAL[kind]} at depth {depth}: "
                   f"{rates[name]:,.0f} colours/s ({rates[name] / rates['near']:.2f}x the random-direction set, "
                   f"{rates[name] / 5e4:.2f}x the 5e4/s goal), certified {r.certificate.converged.mean():.4%}; "
                   f"paths {methods}")
@@ -225,7 +227,8 @@ def main():
         figure("near_10nm_per_s", rates[10.0]["near"], "ours", "{} colours/s at relative depth 1e-9 (10 nm)"),
     ]
     figures += [figure(f"{name.replace(' ', '_').replace('-', '_')}_10nm_per_s", rates[10.0][name], "ours",
-                       f"{{}} colours/s near the solid's {name.replace(' ', 's at relative depth ')} (10 nm)")
+                       f"{{}} colours/s near the solid's {PLURAL[name.split()[0]]} at relative depth "
+                       f"{name.split()[1]} (10 nm)")
                 for name in ("vertex 1e-9", "vertex 1e-3", "edge 1e-9", "edge 1e-3")]
     figures += [ratio("vertex_1e_9_over_near_10nm", rates[10.0]["vertex 1e-9"] / rates[10.0]["near"], "ours",
                       "vertices at 1e-9 {}× the random-direction set's rate"),

@@ -9,7 +9,8 @@ the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch array
 * ``pdas``: the primal-dual active-set iterations of :func:`.qp._pdas` (the same reduced
   solve, refinement and rule for keeping a bound; the tridiagonal systems are solved by the
   Thomas algorithm, stable here because every run of free samples is a positive definite path
-  Laplacian);
+  Laplacian), and where the reduced matrix fails its determinant test (next to the solid's
+  vertices and edges), the dense KKT system of the free samples (``_dense_free_solve``);
 * ``measures``: the certificate's five measures (:func:`.certificate.certify`);
 * ``facet_maxima``: the facet each colour is farthest beyond (:func:`.zonotope.gauge`);
 * ``roughness``: the objective of each result (:meth:`.qp.Problem.objective`).
