@@ -107,6 +107,7 @@ def test_kernel_settles_on_ill_conditioned_free_sets():
     b = _pulled_in(prob.W, np.concatenate([rho, 1 - rho]), 1e-9)
     solved = smoothest_reflectance(b, wavelengths=GRID).spectrum.values
     found = compiled.kernels()
+    # exact: values at a bound are held exactly (the certificate requires it): they are the sets
     out = compiled.pdas(found, prob, b, 0.0, 1.0, solved == 0.0, solved == 1.0, 60, 3)
     assert np.all(out[4]) and np.all(out[3] == 1)  # exact: iteration counts
     cert = certificate.certify(prob.W, prob.step_nm, b, out[0], out[1], 0.0, 1.0, out[4])
