@@ -4,8 +4,12 @@ Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python bench/bench_reflectance.py [--repea
 
 sRGB cube every 5th level (52³ = 140 608 colours), D65, CIE 1931, 380–780 nm at 10 and 5 nm:
 unbounded (closed form) and unit-bounded (exact active set), the plain NumPy floor (one matrix
-product ``XYZ @ U``), and colours at relative depth 1e-9 inside the object-colour solid, timed
-alternately in this one process, warm, best of N each; then colour-science's ``XYZ_to_sd``
+product ``XYZ @ U``), colours at relative depth 1e-9 inside the object-colour solid (random
+directions), and at 10 nm the solid's vertices (every 0/1 reflectance with two transitions at grid
+points, 1 720 colours) and edges (a band whose next sample is partial, 1 640 colours), each pulled
+toward grey by relative depth 1e-9 and 1e-3, timed alternately in this one process, warm, best of
+N each; narrow-band colours (Gaussian reflectances, FWHM 5-15 nm) at 1 nm under the 1931 and the
+1964 observer, seconds per colour; then colour-science's ``XYZ_to_sd``
 (Meng 2015, SLSQP, ρ ≥ 0 only, seconds per colour) alternately with ours on the same cube, on
 ``--meng`` colours per call (best of two: it takes seconds per colour).
 
@@ -51,6 +55,67 @@ def near_boundary(grid, n, depth):
     return centre + (rho @ W - centre) * (1 - depth)
 
 
+def _pulled_in(W, rho, depth):
+    """The colours of reflectances ``rho`` moved toward the grey ``W.sum(0) / 2`` by ``depth``."""
+    centre = W.sum(axis=0) / 2
+    return centre + (rho @ W - centre) * (1 - depth)
+
+
+def vertex_set(grid, depth):
+    """Every 0/1 reflectance with two transitions at grid points (a band and its complement:
+    the optimal colours, vertices of the discrete solid), at relative depth ``depth``."""
+    W = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant="D65"))
+    K = len(W)
+    i, j = np.triu_indices(K + 1, 1)
+    keep = (j - i) < K  # not the white
+    k = np.arange(K)
+    band = ((k >= i[keep, None]) & (k < j[keep, None])).astype(float)
+    return _pulled_in(W, np.concatenate([band, 1 - band]), depth)
+
+
+def edge_set(grid, depth, seed=0):
+    """Points on the solid's edges between two adjacent vertices (a band whose first sample
+    past its end takes a value in (0.05, 0.95), and the complement), at relative depth
+    ``depth``."""
+    W = np.asarray(sc.weights(sc.wavelength_grid(*grid), observer="1931", illuminant="D65"))
+    K = len(W)
+    i, j = np.triu_indices(K, 1)
+    k = np.arange(K)
+    band = ((k >= i[:, None]) & (k < j[:, None])).astype(float)
+    band[np.arange(len(j)), j] = np.random.default_rng(seed).uniform(0.05, 0.95, len(j))
+    return _pulled_in(W, np.concatenate([band, 1 - band]), depth)
+
+
+PLURAL = {"vertex": "vertices", "edge": "edges"}
+#: Narrow-band reflectances (Gaussian): centre nm and full width at half maximum nm.
+NARROW_BANDS = ((450.0, 5.0), (520.0, 10.0), (560.0, 5.0), (600.0, 15.0), (650.0, 10.0))
+
+
+def narrow_band_seconds(observer: str) -> tuple[float, float]:
+    """Worst and median seconds per narrow-band colour at 1 nm (380–780 nm) under ``observer``,
+    warm (each colour solved twice, the second timed), and whether all were certified."""
+    import time
+
+    grid = (380.0, 780.0, 1.0)
+    lam = np.asarray(sc.wavelength_grid(*grid))
+    W = np.asarray(sc.weights(lam, observer=observer, illuminant="D65"))
+    sc.smoothest_reflectance(0.3 * W.sum(axis=0), wavelengths=grid, observer=observer)
+    seconds, certified = [], True
+    for centre, fwhm in NARROW_BANDS:
+        b = np.exp(-0.5 * ((lam - centre) / (fwhm / 2.3548200450309493)) ** 2) @ W
+        best = np.inf
+        for _ in range(2):
+            start = time.perf_counter()
+            r = sc.smoothest_reflectance(b, wavelengths=grid, observer=observer)
+            best = min(best, time.perf_counter() - start)
+        certified &= bool(r.certificate.converged)
+        seconds.append(best)
+    print(f"   1 nm  narrow-band (Gaussian, FWHM 5-15 nm), {observer} observer, {len(seconds)} colours: "
+          f"worst {max(seconds):.3f} s, median {np.median(seconds):.3f} s per colour, "
+          f"{'all' if certified else 'NOT all'} certified")
+    return max(seconds), float(np.median(seconds))
+
+
 def numpy_path(function):
     """``function`` run with the compiled kernels switched off (``SPECTROCOLOR_NUMBA=0``)."""
     def run():
@@ -89,6 +154,11 @@ def solver_rates(step: float, repeats: int, burst: float, kernels: bool) -> dict
                  "limit": lambda: XYZ @ U,
                  "near": solve("near", near, bounds="unit")}
     counts = {"closed form": len(XYZ), "unit": len(XYZ), "limit": len(XYZ), "near": len(near)}
+    if step == 10.0:
+        for name, colours in (("vertex 1e-9", vertex_set(grid, 1e-9)), ("vertex 1e-3", vertex_set(grid, 1e-3)),
+                              ("edge 1e-9", edge_set(grid, 1e-9)), ("edge 1e-3", edge_set(grid, 1e-3))):
+            functions[name] = solve(name, colours, bounds="unit")
+            counts[name] = len(colours)
     if kernels and step == 10.0:
         functions["unit numpy"] = numpy_path(solve("unit numpy", XYZ[::4], bounds="unit"))
         counts["unit numpy"] = len(XYZ[::4])
@@ -104,6 +174,15 @@ def solver_rates(step: float, repeats: int, burst: float, kernels: bool) -> dict
     r = last["near"]
     print(f"{step:>4g} nm  unit, {len(near)} colours at relative depth 1e-9: {rates['near']:,.0f} colours/s, "
           f"converged {r.certificate.converged.mean():.4%}, max residual {r.certificate.primal_residual.max():.1e}")
+    for name in ("vertex 1e-9", "vertex 1e-3", "edge 1e-9", "edge 1e-3"):
+        if name in rates:
+            r = last[name]
+            methods = dict(zip(*np.unique(r.method, return_counts=True), strict=True))
+            kind, depth = name.split()
+            print(f"{step:>4g} nm  unit, {counts[name]} colours near the solid's {PLURAL[kind]} at depth {depth}: "
+                  f"{rates[name]:,.0f} colours/s ({rates[name] / rates['near']:.2f}x the random-direction set, "
+                  f"{rates[name] / 5e4:.2f}x the 5e4/s goal), certified {r.certificate.converged.mean():.4%}; "
+                  f"paths {methods}")
     if "unit numpy" in rates:
         print(f"{step:>4g} nm  unit on the NumPy path: {rates['unit numpy']:,.0f} colours/s; the kernels are "
               f"{rates['unit'] / rates['unit numpy']:.1f}x faster")
@@ -140,12 +219,24 @@ def main():
     print(f"solver path: {path}; OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}; "
           f"warm, best of {args.repeats}, timed alternately, {clock_name()}")
     rates = {step: solver_rates(step, args.repeats, args.burst, kernels) for step in (10.0, 5.0)}
+    narrow = {observer: narrow_band_seconds(observer) for observer in ("1931", "1964")}
     meng = meng_rates(args.meng, repeats=2)
     figures = [
         figure("unit_10nm_per_s", rates[10.0]["unit"], "ours", "{} colours/s at 10 nm"),
         figure("unit_5nm_per_s", rates[5.0]["unit"], "ours", "{} at 5 nm"),
         figure("near_10nm_per_s", rates[10.0]["near"], "ours", "{} colours/s at relative depth 1e-9 (10 nm)"),
     ]
+    figures += [figure(f"{name.replace(' ', '_').replace('-', '_')}_10nm_per_s", rates[10.0][name], "ours",
+                       f"{{}} colours/s near the solid's {PLURAL[name.split()[0]]} at relative depth "
+                       f"{name.split()[1]} (10 nm)")
+                for name in ("vertex 1e-9", "vertex 1e-3", "edge 1e-9", "edge 1e-3")]
+    figures += [ratio("vertex_1e_9_over_near_10nm", rates[10.0]["vertex 1e-9"] / rates[10.0]["near"], "ours",
+                      "vertices at 1e-9 {}× the random-direction set's rate"),
+                ratio("edge_1e_9_over_near_10nm", rates[10.0]["edge 1e-9"] / rates[10.0]["near"], "ours",
+                      "edges at 1e-9 {}× the random-direction set's rate")]
+    figures += [figure(f"narrow_band_1nm_{observer}_worst_s", narrow[observer][0], "ours",
+                       f"worst {{}} s per narrow-band colour at 1 nm ({observer} observer)")
+                for observer in ("1931", "1964")]
     if kernels:
         figures += [figure("unit_numpy_10nm_per_s", rates[10.0]["unit numpy"], "ours",
                            "NumPy path {} at 10 nm"),

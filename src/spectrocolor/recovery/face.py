@@ -46,6 +46,25 @@ def _normals(G: np.ndarray) -> np.ndarray:
     return np.concatenate([n, -n])
 
 
+def _known_facets(facets, c, tol, choice):
+    """:func:`_touching_facet` on the precomputed facets of the whole solid or cone
+    (:class:`.zonotope.Facets`, from the setup's cache): the first level of a face solution
+    then costs one product with the K (K − 1) normals instead of their projections on all K
+    generators (K³ products: seconds at 1 nm)."""
+    slack = facets.support - (c - facets.centre) @ facets.normals.T
+    near = np.flatnonzero(slack <= tol)
+    if near.size == 0:
+        return None
+    near = near[np.argsort(slack[near], kind="stable")[:4 * (choice + 1)]]
+    distinct: list[np.ndarray] = []
+    for k in near:
+        if all(abs(float(facets.normals[k] @ d)) < 1.0 - 1e-9 for d in distinct):
+            distinct.append(facets.normals[k])
+        if len(distinct) > choice:
+            return distinct[choice]
+    return None
+
+
 def _touching_facet(G, c, lower, upper, tol, choice=0):
     """The outward normal of a facet of the zonotope (or cone) of G containing c, or None.
 
@@ -183,12 +202,15 @@ def _deepest_multipliers(W, Q, rho, mu, basis, fixed, lower):
 
 
 def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upper: float,
-                  facet_tolerance: float = FACET_TOLERANCE, choice: int = 0):
+                  facet_tolerance: float = FACET_TOLERANCE, choice: int = 0,
+                  facets: zonotope.Facets | None = None):
     """The smoothest ``rho`` with ``W.T rho = b`` and bounds, for a colour b on the boundary.
 
     ``facet_tolerance`` (relative, see :data:`FACET_TOLERANCE`) decides which facets the
     colour is on; ``choice`` picks, at the first level, the facet with that rank among those
-    holding the colour (:func:`_touching_facet`); the caller checks the result.
+    holding the colour (:func:`_touching_facet`); the caller checks the result. ``facets``,
+    the precomputed facets of the whole solid (or cone) for these ``W`` and bounds, serve the
+    first level (:func:`_known_facets`) in place of the candidates formed here.
 
     Returns rho (K,), mu (m,), lam (K,) and whether it was solved; NaN where not.
     """
@@ -209,7 +231,10 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
             break
         G = W[F] @ basis
         c = (b - rho @ W) @ basis
-        n = _touching_facet(G, c, lower, upper, on_facet, choice if not levels else 0)
+        if facets is not None and not levels and rank == m:
+            n = _known_facets(facets, b, on_facet, choice)  # basis is the identity here
+        else:
+            n = _touching_facet(G, c, lower, upper, on_facet, choice if not levels else 0)
         if n is None:
             break
         p = G @ n

@@ -9,7 +9,8 @@ the NumPy path of :mod:`.qp` and :mod:`.certificate` does with whole-batch array
 * ``pdas``: the primal-dual active-set iterations of :func:`.qp._pdas` (the same reduced
   solve, refinement and rule for keeping a bound; the tridiagonal systems are solved by the
   Thomas algorithm, stable here because every run of free samples is a positive definite path
-  Laplacian);
+  Laplacian), and where the reduced matrix fails its determinant test (next to the solid's
+  vertices and edges), the dense KKT system of the free samples (``_dense_free_solve``);
 * ``measures``: the certificate's five measures (:func:`.certificate.certify`);
 * ``facet_maxima``: the facet each colour is farthest beyond (:func:`.zonotope.gauge`);
 * ``roughness``: the objective of each result (:meth:`.qp.Problem.objective`).
@@ -551,6 +552,92 @@ def _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
     return 1
 
 
+#: Most free samples for which :func:`_dense_free_solve` takes over an ill-conditioned reduced
+#: solve (its dense KKT matrix has at most ``DENSE_FREE + m`` rows: a few tens of microseconds).
+DENSE_FREE = 64
+#: Iterations of the full active-set rule after which :func:`_pdas_one` changes one index at a
+#: time (the full rule can cycle next to the solid's vertices; a settled run takes at most 12).
+CYCLE_GUARD = 15
+
+
+@_compiled
+def _dense_free_solve(WT, absWT, b, t, lower, upper, lo, up, rho_out, mu_out, work, small, D,
+                      dpiv, x, index, trial, refine_steps, primal_factor, dual_factor):
+    """The reduced solve of :func:`_reduced_solve` on the dense KKT system of the free samples,
+    for the sets whose reduced matrix ``M = W_Fᵀ Q_FF⁻¹ W_F`` failed its determinant test.
+
+    Next to the solid's vertices and edges only a few samples are free and their weights are
+    nearly dependent (cond ``W_F`` up to about 1e8); ``M`` squares that condition and its
+    determinant test rejects it, yet the KKT matrix ``[[Q_FF, −W_F], [W_Fᵀ, 0]]`` itself is
+    solved by LU with partial pivoting and iterative refinement (Higham 2002, ch. 12) to the
+    certificate's rounding level, as :func:`.dense_active_set._equality_qp` does. Returns 3
+    where the refined residuals are within a quarter of the certificate's tolerance, else 0
+    (more than ``DENSE_FREE`` or fewer than m free samples, a zero pivot, or residuals that
+    refinement could not bring down: the caller treats the sets as singular). ``rho_out`` and
+    ``mu_out`` are written only on success (the caller's fallback needs the last solve's)."""
+    K, m = WT.shape[1], WT.shape[0]
+    rho, mu = trial[:K], trial[K:K + m]
+    free = work[4]
+    n = 0
+    for k in range(K):
+        if lo[k] or up[k]:
+            free[k] = 0.0
+            rho[k] = lower if lo[k] else upper
+        else:
+            free[k] = 1.0
+            rho[k] = 0.0
+            if n < index.shape[0]:
+                index[n] = k
+            n += 1
+    if n < m or n > DENSE_FREE:
+        return 0
+    size = n + m
+    A = D[:size, :size]
+    for i in range(size):
+        for j in range(size):
+            A[i, j] = 0.0
+    for a in range(n):
+        k = index[a]
+        A[a, a] = t if (k == 0 or k == K - 1) else 2.0 * t
+        if a + 1 < n and index[a + 1] == k + 1:
+            A[a, a + 1] = -t
+            A[a + 1, a] = -t
+        for j in range(m):
+            A[a, n + j] = -WT[j, k]
+            A[n + j, a] = WT[j, k]
+    _lu_small(A, dpiv)
+    for i in range(size):  # the pivots, not their product (which can underflow)
+        if not (A[i, i] != 0.0 and np.isfinite(A[i, i])):
+            return 0
+    for j in range(m):
+        mu[j] = 0.0
+    r, sizes = small[0], small[1]
+    s = work[0]
+    # the first solve is a refinement step from ρ_F = 0, μ = 0 (its residuals are the
+    # right-hand side), and so is every later one
+    for step in range(refine_steps + 3):
+        bad = _residuals(WT, absWT, b, rho, mu, t, free, primal_factor, dual_factor, True, work,
+                         r, sizes)
+        if step > 0 and not bad:
+            for k in range(K):
+                rho_out[k] = rho[k]
+            for j in range(m):
+                mu_out[j] = mu[j]
+            return 3
+        if step == refine_steps + 2:
+            break
+        for a in range(n):
+            x[a] = s[index[a]]
+        for j in range(m):
+            x[n + j] = r[j]
+        _lu_solve_small(A, dpiv[:size], x[:size])
+        for a in range(n):
+            rho[index[a]] += x[a]
+        for j in range(m):
+            mu[j] += x[n + j]
+    return 0
+
+
 @_compiled
 def _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work, X,
                     M, piv, small):
@@ -626,11 +713,14 @@ def _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, l
 
 
 @_compiled
-def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size):
+def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size,
+                   banned):
     """The safeguarded step of :func:`_pdas_one`: ``lam`` as in :func:`_update_active_sets`, and
     at most one change of the active sets (in place): the free value farthest beyond a bound
     joins it, or, with none beyond, the bound whose multiplier has the most wrong sign
-    (relative to the rule's tolerance) is released. Returns whether nothing had to change."""
+    (relative to the rule's tolerance) is released. Indices ``banned`` (K,) do not join (their
+    bound made the free weights singular from these sets). Returns whether nothing had to
+    change."""
     K = WT.shape[1]
     _stationarity(WT, absWT, t, rho, mu, lam, size)
     add, add_score, release, release_score = -1, 0.0, -1, 1.0
@@ -643,7 +733,7 @@ def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up
         else:
             lam[k] = 0.0
             beyond = max(lower - rho[k], rho[k] - upper)
-            if beyond > add_score:
+            if beyond > add_score and not banned[k]:
                 add, add_score = k, beyond
     if add >= 0:
         lo[add], up[add] = rho[add] < lower, rho[add] > upper
@@ -655,19 +745,21 @@ def _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up
 
 
 @_inline
-def _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size):
+def _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up, size,
+                banned):
     """The next active sets by the full rule, or by one change where ``single``; returns
     whether they stayed the same."""
     if single:
         return _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
-                              size)
+                              size, banned)
     return _update_active_sets(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
                                size)
 
 
 @_inline
 def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, refine_steps,
-              primal_factor, dual_factor, rho, mu, lam, work, R, X, M, piv, small, saved):
+              primal_factor, dual_factor, rho, mu, lam, work, R, X, M, piv, small, saved, D, dpiv,
+              x, index, trial):
     """:func:`.qp._pdas` for one colour from the active sets ``lo``/``up`` (updated in place).
     Returns (iterations, converged); on failure the outputs are NaN.
 
@@ -685,34 +777,51 @@ def _pdas_one(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, max_iter, ref
     it = 0
     precise = False
     single = False
+    banned = saved[2]
+    for k in range(K):
+        banned[k] = False
     for it in range(1, max_iter + 1):
+        if it == CYCLE_GUARD + 1:  # the full rule is cycling: one change at a time from here
+            single = True
         status = _reduced_solve(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, rho, mu,
                                 work, R, X, M, piv, small)
         if status == 0:
-            if single or it == 1:
+            status = _dense_free_solve(WT, absWT, b, t, lower, upper, lo, up, rho, mu, work,
+                                       small, D, dpiv, x, index, trial, refine_steps,
+                                       primal_factor, dual_factor)
+        if status == 0:
+            if it == 1:
                 break
-            # back to the sets of the last solve (rho, mu and lam are still its), one change
+            # back to the sets of the last solve (rho, mu and lam are still its), one change;
+            # where a single change made the sets singular (a bound joined that the free
+            # weights cannot spare), that index may not join from these sets: the next
+            # candidate joins, or a bound is released
             for k in range(K):
+                if single and (lo[k] or up[k]) and not (saved[0, k] or saved[1, k]):
+                    banned[k] = True
                 lo[k], up[k] = saved[0, k], saved[1, k]
             single = True
-            _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
-                           work[3])
+            if _single_change(WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo, up,
+                              work[3], banned):
+                break
             continue
+        for k in range(K):
+            banned[k] = False
         if precise and status == 1:
             _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu,
                             work, X, M, piv, small)
         for k in range(K):
             saved[0, k], saved[1, k] = lo[k], up[k]
         settled = _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                              up, work[3])
+                              up, work[3], banned)
         if not settled:
             continue
-        if precise or status == 2:
+        if precise or status >= 2:  # the closed form, or a dense solve (refined already)
             return it, True
         _refine_reduced(WT, absWT, b, t, refine_steps, primal_factor, dual_factor, rho, mu, work,
                         X, M, piv, small)
         settled = _apply_rule(single, WT, absWT, t, dual_factor, lower, upper, rho, mu, lam, lo,
-                              up, work[3])
+                              up, work[3], banned)
         if settled:
             return it, True
         precise = True
@@ -737,7 +846,12 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, 
     M = np.empty((m, m))
     piv = np.empty(m, dtype=np.int64)
     small = np.empty((3, m))
-    saved = np.empty((2, K), dtype=np.bool_)
+    saved = np.empty((3, K), dtype=np.bool_)  # the last solve's sets; indices banned
+    D = np.empty((DENSE_FREE + m, DENSE_FREE + m))
+    dpiv = np.empty(DENSE_FREE + m, dtype=np.int64)
+    x = np.empty(DENSE_FREE + m)
+    index = np.empty(DENSE_FREE + 1, dtype=np.int64)
+    trial = np.empty(K + m)
     for n in range(b.shape[0]):
         if from_closed_form:
             _linear_map(b[n], U, rho[n])
@@ -754,7 +868,8 @@ def pdas(WT, absWT, b, U, Mu, off_q, t, lower, upper, lo, up, from_closed_form, 
                 continue
         iterations[n], converged[n] = _pdas_one(
             WT, absWT, b[n], U, Mu, off_q, t, lower, upper, lo[n], up[n], max_iter, refine_steps,
-            primal_factor, dual_factor, rho[n], mu[n], lam[n], work, R, X, M, piv, small, saved)
+            primal_factor, dual_factor, rho[n], mu[n], lam[n], work, R, X, M, piv, small, saved,
+            D, dpiv, x, index, trial)
 
 
 # --- the certificate's measures --------------------------------------------------------------

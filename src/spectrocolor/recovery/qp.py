@@ -47,7 +47,7 @@ from .interior_point import _interior_point
 from .pinned_kkt import PinnedKKT, _pinned_kkt
 from .tolerances import REFINE_STEPS as _REFINE_STEPS
 
-_MAX_PDAS_ITER = 30
+_MAX_PDAS_ITER = 60
 #: Values of :attr:`Solution.method`: how each colour was solved.
 METHODS = ("unconstrained", "active set", "active set restarted from interior point",
            "dense primal active set")
