@@ -20,8 +20,13 @@ the grid in use, each measured shape is multiplied by the smooth positive factor
 ``exp(a + b·t + c·t²)``, ``t = (λ − 550 nm)/100 nm``, whose three coefficients make its CIE 1931
 tristimulus values equal the display's primary (a column of ``RGBSpace.matrix_to_XYZ``)
 exactly. For SPECTRA's monitor (the same kind of phosphors) the factor varies by at most a
-factor 2.3 over 400-700 nm, mostly in the weak tails; for sRGB it suppresses the red phosphor's
-shorter side lines (a factor up to 9: sRGB's red is more saturated than this CRT's). Where no
+factor 2.3 over 400-700 nm, mostly in the weak tails. sRGB's red is more saturated than this
+CRT's: the only such factor rises ninefold towards 700 nm and lifts the phosphor's 705 nm
+europium line, cut by the grid's edge, far above its 625 nm peak (a spike at 700 nm on the
+page). A reshaped phosphor whose largest value lands on an edge of the grid, with a factor
+varying more than threefold, is therefore replaced by a smooth model (sRGB's and Adobe RGB's
+red): a band 10 nm beyond the primary's dominant wavelength, a weaker band 25 nm short of it and
+a weak 450 nm band, in the non-negative amounts that make its XYZ exact. Where no
 such factor exists (Display P3's red is beyond the CRT red phosphor; P3 displays are LCD/LED or
 OLED, not CRTs) the shape is a model band, a Gaussian of σ = 10 nm at the primary's dominant
 wavelength, reshaped in the same way. P3's red (x + y = 1.000) lies on the edge of the
@@ -61,6 +66,12 @@ _FIT_OBSERVER = "1931"  # display primaries are specified by CIE 1931 chromatici
 _BAND_SIGMA_NM = 10.0  # width of the model band used where no phosphor shape fits
 _EXACT_XY = 1e-12  # a reshaped spectrum counts as exact below this chromaticity error
 _NEAR_XY = 1e-3  # ... and is refused above this one
+_EDGE_FACTOR = 3.0  # a reshaping factor varying more than this may not make a grid edge the peak
+# A mixed model primary (where a reshaped phosphor would peak at the grid's edge): a band 10 nm
+# beyond the dominant wavelength, a weaker band 25 nm short of it (σ 15 nm) and a weak short-wave
+# band (450 nm, σ 15 nm), in the amounts that make its XYZ exact.
+_MIX_OFFSETS_NM = (10.0, -25.0)
+_SHORT = (450.0, 15.0)
 
 
 def _grid(wavelengths_nm) -> np.ndarray:
@@ -122,6 +133,37 @@ def _reshape(base: np.ndarray, W: np.ndarray, basis: np.ndarray, target: np.ndar
     return spectrum, float(np.abs(XYZ[:2] / XYZ.sum() - target[:2] / target.sum()).max())
 
 
+def _edge_spike(spectrum: np.ndarray, factor: np.ndarray) -> bool:
+    """True where the reshaping made an edge of the grid the spectrum's peak: the largest value
+    lies at the first or last wavelength and the factor varies by more than
+    :data:`_EDGE_FACTOR` over the grid. (sRGB's red: the factor rises ninefold towards 700 nm and
+    lifts the CRT's 705 nm europium line, cut by the grid's edge, above the 625 nm peak. A factor
+    that barely changes the measured shape leaves the phosphor's own edge line as measured.)"""
+    peak = int(np.argmax(spectrum))
+    if 0 < peak < spectrum.size - 1:
+        return False
+    finite = factor[np.isfinite(factor) & (factor > 0)]
+    return bool(finite.size and finite.max() / finite.min() > _EDGE_FACTOR)
+
+
+def _band_mixture(dominant: float, wl: np.ndarray, W: np.ndarray, target: np.ndarray):
+    """A smooth model primary with XYZ ``target``: a band just beyond the dominant wavelength
+    (σ :data:`_BAND_SIGMA_NM`), a weaker one short of it and a weak short-wave band, in the
+    non-negative amounts that make its XYZ exact (three shapes, three tristimulus values: one
+    linear solve); None where an amount would be negative. It peaks inside the grid and falls
+    smoothly to both edges."""
+    main, side = (dominant + d for d in _MIX_OFFSETS_NM)
+    shapes = np.stack([np.exp(-0.5 * ((wl - p) / s) ** 2)
+                       for p, s in ((main, _BAND_SIGMA_NM), (side, 15.0), _SHORT)])
+    try:
+        amounts = np.linalg.solve((shapes @ W).T, target)
+    except np.linalg.LinAlgError:
+        return None
+    if not np.all(amounts >= 0):
+        return None
+    return amounts @ shapes
+
+
 @cache
 def _fit(space: RGBSpace, grid: tuple) -> tuple[np.ndarray, tuple[str, ...]]:
     from .chromaticity import dominant_wavelength
@@ -138,9 +180,19 @@ def _fit(space: RGBSpace, grid: tuple) -> tuple[np.ndarray, tuple[str, ...]]:
         target = space.matrix_to_XYZ[:, c]
         spectrum, error = _reshape(measured[c], W, basis, target)
         source = f"{MEASURED_PRIMARIES}, reshaped"
-        if error > _EXACT_XY:  # more saturated than the phosphor can be made: a narrow band
+        spiked = error <= _EXACT_XY and _edge_spike(spectrum, spectrum / measured[c])
+        if error > _EXACT_XY or spiked:
+            # more saturated than the phosphor can be made, or made so only by raising a line at
+            # the grid's edge into the spectrum's peak: a narrow band
             peak = float(dominant_wavelength(target[:2] / target.sum(), space.white_xy,
                                              _FIT_OBSERVER).wavelength_nm)
+        mixed = _band_mixture(peak, wl, W, target) if spiked else None
+        if mixed is not None:
+            XYZ = mixed @ W
+            spectrum, error = mixed, float(np.abs(XYZ[:2] / XYZ.sum() - target[:2] / target.sum()).max())
+            source = (f"model bands at {peak + _MIX_OFFSETS_NM[0]:.0f}, {peak + _MIX_OFFSETS_NM[1]:.0f} "
+                      f"and {_SHORT[0]:g} nm, mixed (the reshaped phosphor peaked at the grid's edge)")
+        elif error > _EXACT_XY or spiked:
             band = np.exp(-0.5 * ((wl - peak) / _BAND_SIGMA_NM) ** 2)
             spectrum, error = _reshape(band, W, basis, target)
             source = f"model band at {peak:.0f} nm (σ {_BAND_SIGMA_NM:g} nm), reshaped"
@@ -205,8 +257,10 @@ def emission_sources(space="SPECTRA 7000K", wavelengths_nm=None) -> tuple[str, .
 
     Examples
     --------
-    >>> emission_sources("sRGB")[0]
+    >>> emission_sources("sRGB")[1]
     'typical CRT, P22 phosphors (Brainard 1997), reshaped'
+    >>> emission_sources("sRGB")[0]
+    "model bands at 621, 586 and 450 nm, mixed (the reshaped phosphor peaked at the grid's edge)"
     """
     sp = rgb_space(space)
     return _fit(sp, tuple(_grid(wavelengths_nm).tolist()))[1]

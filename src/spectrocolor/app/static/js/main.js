@@ -43,8 +43,8 @@ function requestBody() {
   return body;
 }
 
-let urlTimer = null;
-/** Repaint now from the local fast path, then ask the server. `final`: an edit has ended. */
+/** Repaint now from the local fast path, then ask the server. `final`: an edit has ended (the
+ * address and storage are written after the frame either way: see queueSave). */
 function update(final = true) {
   S.settled = false;
   const e = evalSpec();
@@ -60,8 +60,7 @@ function update(final = true) {
   }
   S.dirty = true;
   pump();
-  clearTimeout(urlTimer);
-  if (final) saveState(); else urlTimer = setTimeout(saveState, 250);
+  queueSave();
   undoButtons();
 }
 async function pump() {
@@ -78,13 +77,13 @@ async function pump() {
       markStale(null);
       succeeded("evaluate");
       if (S.afterEvaluate) { const after = S.afterEvaluate; S.afterEvaluate = null; after(r); }
-      S.settled = optionsWaiting === 0;
+      S.settled = settledUnlessSaving(optionsWaiting === 0);
     }
   } catch (err) {
     if (!S.dirty && seq === S.seq) {
       markStale("the library refused the last change");
       fail("Could not compute the colours", err, "evaluate");
-      S.settled = optionsWaiting === 0;
+      S.settled = settledUnlessSaving(optionsWaiting === 0);
     }
   }
   S.inflight = false;
@@ -131,6 +130,43 @@ function emittedCaption() {
 }
 
 // ---------------------------------------------------------------- history and the URL
+// ---- issue 28, glitch 5: the address and storage are written after the frame, at most once per
+// frame and at most every SAVE_GAP_MS (a held arrow key repeats 30 times a second: writing both on
+// every press cost a frame on up to 39 % of presses, and Chromium ignores an address changed more
+// than 200 times in 10 s). The last state is always written: when the gap has passed, when the page
+// is hidden or left (pagehide), and before the address is pushed or read (settings, Back). The page
+// counts as settled only once it is written.
+const SAVE_GAP_MS = 120;
+let saveQueued = false, lastSave = -Infinity, saveTimer = null, settleAfterSave = false;
+function queueSave() {
+  if (saveQueued) return;
+  saveQueued = true;
+  requestAnimationFrame(() => {  // the frame of this edit is painted first
+    saveTimer = setTimeout(flushSave, Math.max(0, lastSave + SAVE_GAP_MS - performance.now()));
+  });
+}
+function flushSave() {
+  clearTimeout(saveTimer);
+  if (!saveQueued) return;
+  saveQueued = false;
+  lastSave = performance.now();
+  saveState();
+  if (settleAfterSave) {
+    settleAfterSave = false;
+    if (!S.dirty && !S.inflight && optionsWaiting === 0) S.settled = true;
+  }
+}
+/** `settled` as the page would set it, held back (until flushSave) while a write is queued. */
+function settledUnlessSaving(settled) {
+  settleAfterSave = settled && saveQueued;
+  return settled && !saveQueued;
+}
+/** Back/Forward moved to another address: a write still queued would overwrite it. */
+function dropSave() { clearTimeout(saveTimer); saveQueued = false; }
+window.addEventListener("pagehide", flushSave);
+document.addEventListener("visibilitychange", () => { if (document.hidden) flushSave(); });
+// ---- end of glitch 5's part
+
 function saveState() {
   persist();
   const url = stateURL();
@@ -149,6 +185,7 @@ function doUndo(back) {
 
 // ---------------------------------------------------------------- settings and options
 function selectSetting(n, push = true) {
+  if (push) flushSave();  // the setting left keeps its last edit in its history entry
   S.setting = n;
   document.querySelectorAll("#tabs [role=tab]").forEach((b) => {
     const on = Number(b.dataset.setting) === n;
@@ -202,7 +239,7 @@ function queueOption(where, task) {
     optionsWaiting--;
     if (optionsWaiting === 0) syncControls();  // the controls show the state the page holds
     if (failed) update();  // the page as it was (settles again)
-    else if (optionsWaiting === 0 && !S.dirty && !S.inflight) S.settled = true;
+    else if (optionsWaiting === 0 && !S.dirty && !S.inflight) S.settled = settledUnlessSaving(true);
   };
   optionQueue = optionQueue.then(run);
   return optionQueue;
@@ -283,13 +320,14 @@ const pairSource = () => (S.setting === 2 ? 3 : 2);
 function moveCursor(delta) {
   const a = S.active[S.setting];
   S.cursor[`${S.setting}:${a}`] = Math.min(S.wl.length - 1, Math.max(0, cursorOf(a) + delta));
-  drawEditors();
+  drawEditors(a);
 }
 function stepLevel(delta) {
   const a = S.active[S.setting], k = cursorOf(a);
   S.cursor[`${S.setting}:${a}`] = k;
   remember();
   setLevel(a, k, S.dists[S.setting][a][k] + delta);
+  S.editing = a;  // only its bars (and those that follow them) change: redraw just those
   update();
 }
 function nextDistribution() {
@@ -464,6 +502,7 @@ function syncControls() {
 
 /** Back/Forward: the options and distributions of the address, queued like any option change. */
 function onPopState() {
+  dropSave();
   return queueOption("Could not go back", async () => {
     const keys = ["step", "display", "observer", "adaptation", "normalise"];
     const T = Object.fromEntries([...keys, "gamut", "normaliseA"].map((k) => [k, S[k]]));

@@ -1,6 +1,10 @@
 // The object-colour solid lab. The library sends the solid (MacAdam limits in CIELAB with their
 // colours, the display cube's edges), a section at Y and a sample's metamer mismatch region; the
 // page only projects and draws them (a rotatable orthographic view on a 2-D canvas).
+// It turns by mouse or finger (Pointer Events, captured; two fingers pinch to zoom), fits its canvas
+// at any width (the view is scaled to the solid's largest radius, so no angle clips it), and a
+// click or tap on a point of the solid (a MacAdam limit's point, the display cube's edge, the
+// sample) shows its numbers; the Point controls pick the same points by keyboard.
 
 import { $, api, context, css, showError, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
 
@@ -12,8 +16,10 @@ let section = null;
 let region = null;
 const undoStack = [];
 const redoStack = [];
-
-
+let zoom = 1;  // the view's magnification (pinch, + and − buttons); not part of the URL
+let picked = null;  // {kind: "level", i, h} | {kind: "cube", e, k} | {kind: "sample"}
+window.__solid = { get state() { return state; }, get solid() { return solid; }, get region() { return region; },
+  get picked() { return picked; }, get zoom() { return zoom; }, view: () => view(), pickAt: (x, y) => pickAt(x, y) };
 
 function decode(hash) {
   const params = new URLSearchParams(hash.slice(1));
@@ -64,6 +70,7 @@ async function load(before = null) {
     if (!solid || changed(["light", "display"])) {
       $("status").textContent = "Computing the solid…";
       solid = await api("/api/lab/solid", request(state));
+      fillPickLevels();
     }
     if (!section || changed(["light", "display", "Y"])) section = await api("/api/lab/solid/section", request(state));
     if (state.mismatch && (!region || changed(["light", "display", "sample", "second", "mismatch"]))) {
@@ -75,12 +82,22 @@ async function load(before = null) {
       ? `Sample ${region.sample}: matched under ${region.illuminant}, its metamers under ${region.second_illuminant} fill the purple region.`
       : "";
     $("error").hidden = true;
+    if (picked && !pointData(picked)) picked = null;
+    choosePoint(picked);
     paint();
     document.body.dataset.ready = "true";
   } catch (error) {
     $("status").textContent = "";
     showError(error.message);
   }
+}
+
+function fillPickLevels() {
+  const select = $("pick-level"), keep = select.value;
+  select.replaceChildren(...solid.levels.map((level, i) =>
+    Object.assign(document.createElement("option"), { value: String(i), textContent: `Y = ${level.Y} %` })));
+  $("pick-hue").max = String(solid.levels[0].lab.length - 1);
+  if (keep) select.value = keep;
 }
 
 // ---- drawing ----------------------------------------------------------------------------
@@ -113,10 +130,81 @@ export function project([L, a, b], yawDeg, pitchDeg) {
   return [x, y];
 }
 
-function drawSolid() {
-  const { ctx, width, height } = context($("solid"));
-  const scale = Math.min(width, height) / 260;
+/** The solid's largest distance from the view's centre (L* 50, a* = b* = 0): a scale that fits
+ * it fits every angle (an orthographic view never draws a point further out than this). */
+function radius() {
+  let r = 110 * 0.5 + 60;  // the L* axis (0 to 110) and its label
+  const reach = ([L, a, b]) => { r = Math.max(r, Math.hypot(L - 50, a, b)); };
+  for (const level of solid.levels) level.lab.forEach(reach);
+  for (const edge of solid.cube_edges_lab) edge.forEach(reach);
+  if (region) region.region_lab.forEach(reach);
+  return r;
+}
+
+/** The view of the solid canvas in CSS pixels: its size and the map from L*a*b* to a pixel. */
+function view() {
+  const canvas = $("solid");
+  const width = canvas.clientWidth, height = canvas.clientHeight;
+  const scale = (zoom * (Math.min(width, height) / 2 - 14)) / radius();
   const P = (lab) => { const [x, y] = project(lab, state.yaw, state.pitch); return [width / 2 + x * scale, height / 2 - y * scale]; };
+  return { width, height, scale, P };
+}
+
+/** Every point that can be picked, with what the page says about it. */
+function pickables() {
+  const out = [];
+  solid.levels.forEach((level, i) => level.lab.forEach((lab, h) => out.push({ kind: "level", i, h, lab })));
+  solid.cube_edges_lab.forEach((edge, e) => edge.forEach((lab, k) => out.push({ kind: "cube", e, k, lab })));
+  if (region) out.push({ kind: "sample", lab: region.sample_lab });
+  return out;
+}
+
+/** Pick the point nearest to (x, y) (CSS pixels in the canvas) within 18 px; null when none. */
+function pickAt(x, y) {
+  const { P } = view();
+  let best = null, bestD = 18;
+  for (const point of pickables()) {
+    const [px, py] = P(point.lab);
+    const d = Math.hypot(px - x, py - y);
+    if (d < bestD) { best = point; bestD = d; }
+  }
+  choosePoint(best ? { kind: best.kind, i: best.i, h: best.h, e: best.e, k: best.k } : null);
+  return picked;
+}
+
+function pointData(p) {
+  if (!p || !solid) return null;
+  if (p.kind === "level") {
+    const level = solid.levels[p.i];
+    return { lab: level.lab[p.h], rgb8: level.rgb8[p.h],
+      text: `MacAdam limit at Y = ${level.Y} %, hue ${p.h + 1} of ${level.lab.length}` };
+  }
+  if (p.kind === "cube") {
+    return { lab: solid.cube_edges_lab[p.e][p.k], rgb8: null, text: `edge ${p.e + 1} of the ${solid.display} cube` };
+  }
+  if (p.kind === "sample" && region) {
+    return { lab: region.sample_lab, rgb8: region.rgb8_second, text: `sample ${region.sample} under ${region.second_illuminant}` };
+  }
+  return null;
+}
+
+/** Show (and mark) the picked point; the Point controls follow it. */
+function choosePoint(p) {
+  picked = p && pointData(p) ? p : null;
+  const data = pointData(picked);
+  $("pick-out").textContent = data
+    ? `${data.text}: L* ${data.lab[0].toFixed(1)}, a* ${data.lab[1].toFixed(1)}, b* ${data.lab[2].toFixed(1)}`
+      + (data.rgb8 ? `; shown as rgb(${data.rgb8.join(", ")})` : "")
+    : "Click or tap a point of the solid, or choose one here.";
+  $("pick-swatch").style.background = data && data.rgb8 ? css(data.rgb8) : "transparent";
+  $("pick-swatch").hidden = !(data && data.rgb8);
+  if (picked && picked.kind === "level") { $("pick-level").value = String(picked.i); $("pick-hue").value = String(picked.h); }
+  if (solid) drawSolid();
+}
+
+function drawSolid() {
+  const { ctx } = context($("solid"));
+  const { P } = view();
   ctx.lineWidth = 1;
   ctx.strokeStyle = "#9a9aa5";
   for (const [from, to, label] of [[[0, -100, 0], [0, 100, 0], "a*"], [[0, 0, -100], [0, 0, 100], "b*"], [[0, 0, 0], [110, 0, 0], "L*"]]) {
@@ -156,6 +244,13 @@ function drawSolid() {
     const [sx, sy] = P(region.sample_lab);
     ctx.fillStyle = "#6a1b9a"; ctx.beginPath(); ctx.arc(sx, sy, 4, 0, 2 * Math.PI); ctx.fill();
   }
+  const mark = pointData(picked);
+  if (mark) {  // the picked point: a ring, dark inside light, visible on any colour
+    const [px, py] = P(mark.lab);
+    for (const [colour, width, r] of [["#ffffff", 5, 8], ["#1b1b1f", 2, 8]]) {
+      ctx.strokeStyle = colour; ctx.lineWidth = width; ctx.beginPath(); ctx.arc(px, py, r, 0, 2 * Math.PI); ctx.stroke();
+    }
+  }
 }
 
 function drawSection() {
@@ -184,6 +279,55 @@ function paint() {
   if (section) drawSection();
 }
 
+/** Mouse, pen and finger on the solid (Pointer Events, captured: the drag goes on outside the
+ * canvas): one pointer turns it, two pinch to zoom, a press that barely moves picks a point. */
+function wirePointer(canvas) {
+  const pointers = new Map();
+  let drag = null, pinch = null;
+  const local = (e) => { const r = canvas.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; };
+  canvas.addEventListener("pointerdown", (e) => {
+    if (!solid) return;
+    e.preventDefault();
+    canvas.setPointerCapture(e.pointerId);
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    if (pointers.size === 1) {
+      drag = { x: e.clientX, y: e.clientY, yaw: state.yaw, pitch: state.pitch, before: { ...state }, moved: 0 };
+    } else if (pointers.size === 2) {
+      const [a, b] = [...pointers.values()];
+      pinch = { d: Math.hypot(a[0] - b[0], a[1] - b[1]) || 1, zoom };
+      if (drag) drag.moved = Infinity;  // two fingers never pick
+    }
+  });
+  canvas.addEventListener("pointermove", (e) => {
+    if (!pointers.has(e.pointerId)) return;
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    if (pinch && pointers.size >= 2) {
+      const [a, b] = [...pointers.values()];
+      zoom = Math.max(0.5, Math.min(4, pinch.zoom * Math.hypot(a[0] - b[0], a[1] - b[1]) / pinch.d));
+      drawSolid();
+      return;
+    }
+    if (!drag) return;
+    drag.moved = Math.max(drag.moved, Math.hypot(e.clientX - drag.x, e.clientY - drag.y));
+    state.yaw = (drag.yaw + (e.clientX - drag.x) * 0.5 + 360) % 360;
+    state.pitch = Math.max(-80, Math.min(80, drag.pitch + (e.clientY - drag.y) * 0.5));
+    drawSolid();
+  });
+  const end = (e) => {
+    if (!pointers.delete(e.pointerId)) return;
+    if (pointers.size < 2) pinch = null;
+    if (!drag || pointers.size) return;
+    const { yaw, pitch } = state;
+    const tap = drag.moved < 6 && e.type === "pointerup";
+    state = drag.before;
+    drag = null;
+    if (tap) { pickAt(...local(e)); return; }
+    commit({ yaw: Math.round(yaw), pitch: Math.round(pitch) });
+  };
+  canvas.addEventListener("pointerup", end);
+  canvas.addEventListener("pointercancel", end);
+}
+
 async function start() {
   const options = await api("/api/lab/solid/options");
   const fill = (select, values, labels = values) => select.replaceChildren(
@@ -206,21 +350,14 @@ async function start() {
       commit({ yaw: (state.yaw + dy + 360) % 360, pitch: Math.max(-80, Math.min(80, state.pitch + dp)) });
     });
   }
-  let drag = null;
-  $("solid").addEventListener("pointerdown", (e) => { drag = { x: e.clientX, y: e.clientY, yaw: state.yaw, pitch: state.pitch, before: { ...state } }; $("solid").setPointerCapture(e.pointerId); });
-  $("solid").addEventListener("pointermove", (e) => {
-    if (!drag) return;
-    state.yaw = (drag.yaw + (e.clientX - drag.x) * 0.5 + 360) % 360;
-    state.pitch = Math.max(-80, Math.min(80, drag.pitch + (e.clientY - drag.y) * 0.5));
-    drawSolid();
-  });
-  $("solid").addEventListener("pointerup", () => {
-    if (!drag) return;
-    const { yaw, pitch } = state;
-    state = drag.before;
-    drag = null;
-    commit({ yaw: Math.round(yaw), pitch: Math.round(pitch) });
-  });
+  wirePointer($("solid"));
+  const keyPick = () => choosePoint({ kind: "level", i: Number($("pick-level").value), h: Number($("pick-hue").value) });
+  $("pick-level").addEventListener("change", keyPick);
+  $("pick-hue").addEventListener("input", keyPick);
+  for (const button of document.querySelectorAll("[data-zoom]")) {
+    button.addEventListener("click", () => { zoom = Math.max(0.5, Math.min(4, zoom * Number(button.dataset.zoom))); drawSolid(); });
+  }
+  if (window.ResizeObserver) new ResizeObserver(() => paint()).observe($("solid"));
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
   wireCommon(undo, redo);
