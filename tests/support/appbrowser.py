@@ -40,8 +40,12 @@ def serve():
         if server.started:
             break
         time.sleep(0.05)
+    url = f"http://127.0.0.1:{port}/"
     try:
-        yield f"http://127.0.0.1:{port}/"
+        # A page opened before the interactive lane's workers run is refused with 429 and never
+        # settles; every browser test starts after the lane has answered once.
+        warm_server(url)
+        yield url
     finally:
         server.should_exit = True
         thread.join(timeout=10)
