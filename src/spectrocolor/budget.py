@@ -28,6 +28,11 @@ The budget is set, most specific first:
 Sizes are written as bytes (``1073741824``) or with a unit: ``kB``/``MB``/``GB``/``TB`` (powers
 of 1000) or ``KiB``/``MiB``/``GiB``/``TiB`` (powers of 1024); ``K``, ``M``, ``G``, ``T`` alone are
 binary.
+
+Why this file is long: it is the one place where every size from outside is turned into bytes
+and checked (the budget, the size grammar, claims against a file's length, its stored blocks
+and its compression ratio, the sizes of streamed blocks), with a runnable example for each
+check; spreading them out would bring back the readers' own, differing limits it replaced.
 """
 
 from __future__ import annotations

@@ -56,12 +56,13 @@ def test_tiff_blocks_join_to_what_tifffile_decodes(tmp_path, dtype, layout):
 def test_grey_tiff_is_repeated_into_rgb_and_rgba_drops_alpha(tmp_path):
     grey = np.arange(40 * 9, dtype=np.uint16).reshape(40, 9)
     tifffile.imwrite(tmp_path / "grey.tif", grey, compression="zlib", rowsperstrip=9)
-    np.testing.assert_array_equal(_joined(open_photo(tmp_path / "grey.tif"), 7),  # exact: codes
-                                  np.repeat(grey[..., None], 3, axis=-1))
+    # exact: integer codes, copied
+    np.testing.assert_array_equal(_joined(open_photo(tmp_path / "grey.tif"), 7), np.repeat(grey[..., None], 3, -1))
     rgba = np.arange(40 * 9 * 4, dtype=np.uint8).reshape(40, 9, 4)
     tifffile.imwrite(tmp_path / "rgba.tif", rgba, photometric="rgb", extrasamples=["unassalpha"],
                      rowsperstrip=6, compression="zlib")
-    np.testing.assert_array_equal(_joined(open_photo(tmp_path / "rgba.tif"), 4), rgba[..., :3])  # exact: codes
+    # exact: integer codes, copied
+    np.testing.assert_array_equal(_joined(open_photo(tmp_path / "rgba.tif"), 4), rgba[..., :3])
 
 
 @pytest.mark.parametrize("kind", ["jpeg", "palette", "palette 4-bit", "grey jpeg"])
@@ -82,7 +83,8 @@ def test_pillow_photos_blocks_join_to_what_pillow_decodes(tmp_path, kind):
     with Image.open(path) as image:
         expected = np.asarray(image.convert("RGB"))
     for rows in ROWS:
-        np.testing.assert_array_equal(_joined(open_photo(path), rows), expected)  # exact: codes
+        # exact: integer codes, copied out of the same decoder's buffer
+        np.testing.assert_array_equal(_joined(open_photo(path), rows), expected)
 
 
 def test_what_pillow_must_hold_is_checked_against_the_budget(tmp_path, monkeypatch):
@@ -119,8 +121,11 @@ def test_npz_members_beyond_the_budget_are_read_lazily_with_the_same_values(tmp_
     assert cube.shape == values.shape
     # exact: stored float32 values, read back, never computed
     np.testing.assert_array_equal(cube.values[40:77], values[40:77])
-    np.testing.assert_array_equal(cube.values[0:3], values[0:3])  # a read above the last: rewinds
+    # exact: the same stored values, after a read above the last one (the member rewinds)
+    np.testing.assert_array_equal(cube.values[0:3], values[0:3])
+    # exact: stored values, the last row
     np.testing.assert_array_equal(cube.values[299:300, 5], values[299:300, 5])
+    # exact: stored values, read whole by a pickled copy
     np.testing.assert_array_equal(np.asarray(pickle.loads(pickle.dumps(cube.values))), values)
     small = read_cube(path)  # within the default budget: read whole, as before
     assert isinstance(small.values, np.ndarray)
