@@ -449,6 +449,31 @@ def test_a_40_megapixel_png_of_zeros_relights_in_bounded_memory_on_the_server_si
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("channels", [3, 4])
+def test_the_server_holds_one_8_bit_copy_of_a_40_megapixel_png(tmp_path, record_property, channels):
+    """The worker decodes an 8-bit PNG block by block into one RGB image before downscaling (it
+    held Pillow's decoded image and its RGB conversion: two full-size copies, 2 x 153 MiB)."""
+    photo = zero_png(tmp_path / "zeros8.png", 6324, 6324, channels=channels)
+    outcome = api(f"""
+        import resource
+        from spectrocolor.app.relight_photo import decode_photo
+        data = open({str(photo)!r}, "rb").read()
+        before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        def decode():
+            codes, size = decode_photo(data)
+            return (size, codes.shape, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024 - before)
+        report(decode)
+    """)
+    assert outcome["outcome"] == "result", outcome
+    size, shape, grown = eval(outcome["summary"])  # a tuple of numbers written by repr
+    assert size == (6324, 6324) and shape == (1024, 1024, 3)
+    record_peak(record_property, f"decode_photo of a 40 MP 8-bit PNG ({channels} channels), growth", grown)
+    # one copy, 40 MP x 4 B = 153 MiB (Pillow keeps RGB in 4 bytes), an 8 MiB block of rows and the
+    # downscale's 1024-row pass (25 MiB); it was 330 MiB (two copies and the resize)
+    assert grown < 260
+
+
+@pytest.mark.slow
 def test_png_headers_that_lie_are_one_error(tmp_path):
     lying = zero_png(tmp_path / "lying.png", 4, 4)
     data = bytearray(lying.read_bytes())

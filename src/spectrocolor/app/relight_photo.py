@@ -146,6 +146,10 @@ def _bad(what: str) -> SpectrumError:
     return SpectrumError(f"image: {what}")
 
 
+#: Bytes of one block of decoded rows while a PNG upload is pasted into its one RGB image.
+_BLOCK_BYTES = 8 * 2**20
+
+
 def _open_photo(data: bytes):
     """A Pillow image of the photo, the one full-size copy of its 8-bit codes that is held.
 
@@ -171,7 +175,9 @@ def _open_photo(data: bytes):
     try:
         header = png_header(data, "the upload")
         image = Image.new("RGB", (header.width, header.height))
-        for top, codes in iter_png_rows(data, name="the upload"):
+        row_bytes = header.width * header.channels * header.dtype.itemsize
+        rows = max(1, _BLOCK_BYTES // row_bytes)  # small blocks: the image itself is the one copy
+        for top, codes in iter_png_rows(data, rows_per_block=rows, name="the upload"):
             colour = codes[..., :1] if codes.shape[-1] < 3 else codes[..., :3]
             if header.bit_depth == 16:
                 # round(c / 257) exactly, in integers: (c + 128) // 257 (c / 257 is never k + 1/2)
