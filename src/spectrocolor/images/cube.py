@@ -302,12 +302,23 @@ class ZipMemberArray:
         rows, rest = _split_row_key(key, self.shape[0])
         if rows is not None:
             with self._lock:
-                return self._read(*rows)[rest]
+                return self._checked_read(*rows)[rest]
         return np.asarray(self)[key]
+
+    def _checked_read(self, start: int, stop: int) -> np.ndarray:
+        """``_read``, with a damaged member (bad deflate data, CRC-32) named in one error."""
+        import zipfile
+        import zlib
+
+        try:
+            return self._read(start, stop)
+        except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as exc:
+            self.close()
+            raise SpectrumError(f"{self.path}: member {self.member!r} cannot be read ({exc})") from None
 
     def __array__(self, dtype=None, copy=None) -> np.ndarray:
         with self._lock:
-            whole = self._read(0, self.shape[0]) if self.shape[0] else np.empty(self.shape, self.dtype)
+            whole = self._checked_read(0, self.shape[0]) if self.shape[0] else np.empty(self.shape, self.dtype)
         return np.asarray(whole, dtype=self.dtype if dtype is None else dtype)
 
 
