@@ -9,6 +9,8 @@ readers and options hostile sizes under an address-space limit.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 
@@ -80,6 +82,34 @@ def test_file_claims_against_length_sparse_holes_and_compression(tmp_path):
     assert budget.check_file_claim(dense, 1032 * 1000, "x", compressed_bytes=1000) == 1032 * 1000
     with pytest.raises(BudgetError, match="expansion over 1032:1"):
         budget.check_file_claim(dense, 1032 * 1000 + 1, "x", compressed_bytes=1000)
+
+
+class _StatWithout:
+    """An ``os.stat`` result as Windows gives it: no ``st_blocks``; ``st_file_attributes`` set."""
+
+    def __init__(self, real, attributes: int) -> None:
+        self.st_size = real.st_size
+        self.st_file_attributes = attributes
+
+
+@pytest.mark.parametrize("attributes", [0, 0x200])
+def test_without_st_blocks_the_sparse_check_degrades_to_the_length_and_the_sparse_mark(
+        tmp_path, monkeypatch, attributes):
+    sparse = tmp_path / "sparse.raw"
+    with open(sparse, "wb") as handle:
+        handle.truncate(2**36)  # 64 GiB long, nothing stored
+    real_stat = os.stat
+    monkeypatch.setattr(budget.os, "stat", lambda path: _StatWithout(real_stat(path), attributes))
+    assert budget.stored_bytes(sparse) is None  # the system does not say: no error, no guess
+    with pytest.raises(BudgetError, match="but the file holds"):  # the length check stays
+        budget.check_file_claim(sparse, 2**36 + 1, "the header claims 64 GiB + 1 B")
+    if attributes:  # marked sparse: how much is stored is unknown, so a large claim is refused
+        with pytest.raises(BudgetError, match="the system marks sparse"):
+            budget.check_file_claim(sparse, 2**36, "the header claims 64 GiB")
+    else:  # a plain file: its length is believed
+        assert budget.check_file_claim(sparse, 2**36, "the header claims 64 GiB") == 2**36
+    # small claims are never refused as sparse
+    assert budget.check_file_claim(sparse, 2**16, "the header claims 64 KiB") == 2**16
 
 
 def test_blocks_are_a_sixteenth_of_the_budget_and_one_row_must_fit():

@@ -28,6 +28,11 @@ The budget is set, most specific first:
 Sizes are written as bytes (``1073741824``) or with a unit: ``kB``/``MB``/``GB``/``TB`` (powers
 of 1000) or ``KiB``/``MiB``/``GiB``/``TiB`` (powers of 1024); ``K``, ``M``, ``G``, ``T`` alone are
 binary.
+
+Why this file is long: it is the one place where every size from outside is turned into bytes
+and checked (the budget, the size grammar, claims against a file's length, its stored blocks
+and its compression ratio, the sizes of streamed blocks), with a runnable example for each
+check; spreading them out would bring back the readers' own, differing limits it replaced.
 """
 
 from __future__ import annotations
@@ -271,7 +276,16 @@ def stored_bytes(path) -> int | None:
     Returns
     -------
     int or None
-        ``st_blocks * 512`` on POSIX systems; None where the system does not say (Windows).
+        ``st_blocks * 512`` on POSIX systems; None where the system does not say (Windows,
+        whose ``os.stat`` has no ``st_blocks``).
+
+    Notes
+    -----
+    Where the system does not say (None), :func:`check_file_claim` falls back, so that a missing
+    ``st_blocks`` never turns into an error or a crash: a file that the system marks sparse
+    (Windows' ``FILE_ATTRIBUTE_SPARSE_FILE`` in ``st_file_attributes``) and that claims more than
+    the sparse allowance is refused, since how much of it is holes cannot be known; any other
+    file is judged by its length alone (and by the memory budget where it is read whole).
 
     Examples
     --------
@@ -364,7 +378,23 @@ def check_file_claim(path, claimed: int, what: str, *, offset: int = 0,
             f"{path}: {what}: {format_size(claimed)} of data, but the file stores only "
             f"{format_size(stored)} on disk (a sparse file: the rest are holes that read as "
             "zeros); the header is wrong or the data were never written")
+    if stored is None and claimed > _SPARSE_ALLOWANCE * max_ratio and _marked_sparse(path):
+        raise BudgetError(
+            f"{path}: {what}: {format_size(claimed)} of data in a file the system marks sparse "
+            "(holes that read as zeros), and this system does not say how much of it is stored; "
+            "copy the file to a plain (not sparse) file if its data are really there")
     return claimed
+
+
+#: Windows' file attribute of a sparse file (``stat.FILE_ATTRIBUTE_SPARSE_FILE``).
+_FILE_ATTRIBUTE_SPARSE_FILE = 0x200
+
+
+def _marked_sparse(path) -> bool:
+    """Whether the system marks ``path`` sparse where ``st_blocks`` is missing (Windows'
+    ``st_file_attributes``); False where it says nothing either."""
+    attributes = getattr(os.stat(path), "st_file_attributes", 0) or 0
+    return bool(int(attributes) & _FILE_ATTRIBUTE_SPARSE_FILE)
 
 
 def block_bytes(budget=None) -> int:

@@ -146,26 +146,49 @@ def _bad(what: str) -> SpectrumError:
     return SpectrumError(f"image: {what}")
 
 
+#: Bytes of one block of decoded rows while a PNG upload is pasted into its one RGB image.
+_BLOCK_BYTES = 8 * 2**20
+
+
 def _open_photo(data: bytes):
-    """A Pillow image of the photo; a 16-bit PNG is decoded by the library's own reader (Pillow
-    would cut it to 8 bits) block by block of rows, each block rounded to the 8-bit codes the page
-    shows as it comes, so a 40-megapixel photo never exists as 16-bit or float values."""
+    """A Pillow image of the photo, the one full-size copy of its 8-bit codes that is held.
+
+    A 16-bit PNG, and an 8-bit one that is not interlaced and has no palette, is decoded by the library's
+    own reader (Pillow would cut 16 bits to 8 its own way, and would hold an RGBA or grey copy
+    besides the RGB one) block by block of rows, each block rounded to the 8-bit RGB codes the
+    page shows and pasted into one RGB image as it comes: a 40-megapixel photo never exists as
+    16-bit or float values, nor twice. Other photos (JPEG, palette or interlaced PNG) are opened
+    by Pillow, which decodes nothing yet."""
     from PIL import Image
 
-    if not (data[:8] == _PNG and len(data) > 24 and data[24] == 16):
+    from ..imagefiles import CHANNELS
+
+    streamed = data[:8] == _PNG and len(data) > 28 and (
+        data[24] == 16 or (data[24] == 8 and data[25] in CHANNELS and data[28] == 0))
+    if not streamed:
         return Image.open(io.BytesIO(data), formats=("PNG", "JPEG"))
     width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
     if width * height > MAX_PHOTO_PIXELS:  # before any pixel is decoded
         raise _bad(f"{width} x {height} pixels; at most {MAX_PHOTO_PIXELS} are read")
     from ..imagefiles import iter_png_rows, png_header
 
-    header = png_header(data, "the upload")
-    rgb8 = np.empty((header.height, header.width, 3), np.uint8)
-    for top, codes16 in iter_png_rows(data, name="the upload"):
-        colour = codes16[..., :1] if codes16.shape[-1] < 3 else codes16[..., :3]
-        # round(c / 257) exactly, in integers: (c + 128) // 257 (c / 257 is never k + 1/2)
-        rgb8[top:top + len(codes16)] = ((colour.astype(np.uint32) + 128) // 257).astype(np.uint8)
-    return Image.fromarray(rgb8, "RGB")
+    try:
+        header = png_header(data, "the upload")
+        image = Image.new("RGB", (header.width, header.height))
+        row_bytes = header.width * header.channels * header.dtype.itemsize
+        rows = max(1, _BLOCK_BYTES // row_bytes)  # small blocks: the image itself is the one copy
+        for top, codes in iter_png_rows(data, rows_per_block=rows, name="the upload"):
+            colour = codes[..., :1] if codes.shape[-1] < 3 else codes[..., :3]
+            if header.bit_depth == 16:
+                # round(c / 257) exactly, in integers: (c + 128) // 257 (c / 257 is never k + 1/2)
+                colour = ((colour.astype(np.uint32) + 128) // 257).astype(np.uint8)
+            if colour.shape[-1] == 1:
+                colour = np.repeat(colour, 3, axis=-1)
+            image.paste(Image.fromarray(np.ascontiguousarray(colour, np.uint8), "RGB"), (0, top))
+    except SpectrumError as exc:
+        message = str(exc).removeprefix("image: ")
+        raise _bad(message if "cannot be read" in message else f"cannot be read as a PNG ({message})") from None
+    return image
 
 
 def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
@@ -212,7 +235,7 @@ def decode_photo(data: bytes) -> tuple[np.ndarray, tuple[int, int]]:
             shown = (max(1, round(width * scale)), max(1, round(height * scale)))
             if image.format == "JPEG":
                 image.draft("RGB", shown)  # decode at a reduced scale where JPEG allows it
-            rgb = image.convert("RGB")
+            rgb = image if image.mode == "RGB" else image.convert("RGB")  # no second copy
             if rgb.size != shown:
                 rgb = rgb.resize(shown, Image.Resampling.LANCZOS)
             codes = np.asarray(rgb, dtype=np.uint8)

@@ -2,13 +2,16 @@
 
 A cube's values may live in memory (``ndarray``), or stay on disk as a :class:`MappedArray`
 that opens the file on each access, so a cube larger than memory is read block by block
-and can be shipped to dask workers as a few bytes (a path and a layout), not as data.
+and can be shipped to dask workers as a few bytes (a path and a layout), not as data. A
+deflate-compressed ``.npz`` member larger than the memory budget is a :class:`ZipMemberArray`:
+its rows are inflated as they are asked for, top to bottom.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import threading
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -16,7 +19,7 @@ import numpy as np
 
 from ..errors import SpectrumError
 
-__all__ = ["SpectralCube", "MappedArray", "wavelengths_to_nm"]
+__all__ = ["SpectralCube", "MappedArray", "ZipMemberArray", "wavelengths_to_nm"]
 
 # accepted spellings of wavelength units (lower case, spaces removed) -> nanometres per unit
 _UNITS_TO_NM = {
@@ -190,6 +193,133 @@ class MappedArray:
 
     def __len__(self) -> int:
         return self.shape[0]
+
+
+class ZipMemberArray:
+    """A read-only C-order array in a deflate-compressed ZIP member (an ``.npz`` array), read by rows.
+
+    Rows are inflated as they are asked for: reading top to bottom (as the streamed
+    conversions do) inflates the member once, holding one block of rows and zlib's window; a
+    read above the last one starts the member again from its beginning. Indexing with
+    anything but a range of rows reads the whole array. It pickles as its path and layout.
+
+    Parameters
+    ----------
+    path : str
+        The ZIP archive.
+    member : str
+        The member's name (e.g. ``"values.npy"``).
+    stored_dtype : str
+        NumPy dtype string with byte order (e.g. ``"<f4"``).
+    shape : tuple of int
+        The array's shape (rows first).
+    data_offset : int
+        Bytes of the member before the array's data (the ``.npy`` header).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, zipfile
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "cube.npz"
+    ...     np.savez_compressed(path, values=np.arange(24, dtype="<f4").reshape(4, 3, 2))
+    ...     cube = ZipMemberArray(str(path), "values.npy", "<f4", (4, 3, 2), 128)
+    ...     print(cube.shape, cube[1:3, 0].tolist(), cube[0:1, 2].tolist())
+    (4, 3, 2) [[6.0, 7.0], [12.0, 13.0]] [[4.0, 5.0]]
+    """
+
+    def __init__(self, path: str, member: str, stored_dtype: str, shape: tuple[int, ...],
+                 data_offset: int) -> None:
+        self.path, self.member, self.stored_dtype = path, member, stored_dtype
+        self.shape = tuple(int(n) for n in shape)
+        self.data_offset = int(data_offset)
+        self._stream: Any = None
+        self._archive: Any = None
+        self._row = 0
+        self._lock = threading.Lock()  # one reader at a time (dask's threads share the stream)
+
+    def __getstate__(self) -> dict:
+        return {**self.__dict__, "_stream": None, "_archive": None, "_row": 0, "_lock": None}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state, _lock=threading.Lock())
+
+    def __repr__(self) -> str:
+        return f"ZipMemberArray({self.path!r}, {self.member!r}, {self.stored_dtype!r}, {self.shape})"
+
+    @property
+    def dtype(self) -> np.dtype:
+        """The dtype of what reads return: the stored type in native byte order."""
+        return np.dtype(self.stored_dtype).newbyteorder("=")
+
+    @property
+    def ndim(self) -> int:
+        return len(self.shape)
+
+    @property
+    def nbytes(self) -> int:
+        return int(np.prod(self.shape, dtype=np.int64)) * np.dtype(self.stored_dtype).itemsize
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def _row_bytes(self) -> int:
+        return int(np.prod(self.shape[1:], dtype=np.int64)) * np.dtype(self.stored_dtype).itemsize
+
+    def _rewind(self) -> None:
+        import zipfile
+
+        self.close()
+        archive = zipfile.ZipFile(self.path)
+        stream = archive.open(self.member)
+        stream.read(self.data_offset)
+        self._stream, self._archive, self._row = stream, archive, 0
+
+    def close(self) -> None:
+        """Close the member (the next read opens it again)."""
+        if self._stream is not None:
+            self._stream.close()
+            self._archive.close()
+        self._stream, self._archive, self._row = None, None, 0
+
+    def _read(self, start: int, stop: int) -> np.ndarray:
+        if self._stream is None or start < self._row:
+            self._rewind()
+        row_bytes = self._row_bytes()
+        while self._row < start:  # skip forward, a block of rows at a time
+            skip = min(start - self._row, max(1, 2**24 // max(row_bytes, 1)))
+            if len(self._stream.read(skip * row_bytes)) != skip * row_bytes:
+                raise SpectrumError(f"{self.path}: member {self.member!r} ends before row {start}")
+            self._row += skip
+        data = self._stream.read((stop - start) * row_bytes)
+        if len(data) != (stop - start) * row_bytes:
+            raise SpectrumError(f"{self.path}: member {self.member!r} ends before row {stop}")
+        self._row = stop
+        block = np.frombuffer(data, np.dtype(self.stored_dtype)).reshape((stop - start, *self.shape[1:]))
+        return block.astype(self.dtype, copy=False)
+
+    def __getitem__(self, key) -> np.ndarray:
+        rows, rest = _split_row_key(key, self.shape[0])
+        if rows is not None:
+            with self._lock:
+                return self._checked_read(*rows)[rest]
+        return np.asarray(self)[key]
+
+    def _checked_read(self, start: int, stop: int) -> np.ndarray:
+        """``_read``, with a damaged member (bad deflate data, CRC-32) named in one error."""
+        import zipfile
+        import zlib
+
+        try:
+            return self._read(start, stop)
+        except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as exc:
+            self.close()
+            raise SpectrumError(f"{self.path}: member {self.member!r} cannot be read ({exc})") from None
+
+    def __array__(self, dtype=None, copy=None) -> np.ndarray:
+        with self._lock:
+            whole = self._checked_read(0, self.shape[0]) if self.shape[0] else np.empty(self.shape, self.dtype)
+        return np.asarray(whole, dtype=self.dtype if dtype is None else dtype)
 
 
 @dataclass(frozen=True)

@@ -225,14 +225,16 @@ def _read_npz(path: Path, wavelengths_nm, wavelength_units, budget: int) -> Spec
                 f"found {sorted(names)}"
             )
 
-        def load(name: str) -> np.ndarray:
-            _check_npz_member(path, archive.zip, name, budget)
+        def load(name: str, stream: bool = False):
+            lazy = _check_npz_member(path, archive.zip, name, budget, stream)
+            if lazy is not None:
+                return lazy
             try:
                 return archive[name]
             except (ValueError, OSError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
                 raise SpectrumError(f"{path}: member {name!r} cannot be read ({exc})") from None
 
-        values = load("values")
+        values = load("values", stream=True)
         if wavelengths_nm is not None:
             wavelengths = _given_wavelengths(wavelengths_nm, path)
         elif "wavelengths_nm" in names:
@@ -249,12 +251,16 @@ def _read_npz(path: Path, wavelengths_nm, wavelength_units, budget: int) -> Spec
     return SpectralCube(values, wavelengths, str(path))
 
 
-def _check_npz_member(path: Path, archive, name: str, budget: int) -> None:
+def _check_npz_member(path: Path, archive, name: str, budget: int, stream: bool = False):
     """Check the shape a member's .npy header claims before NumPy allocates it.
 
     The claim must fit in the member's uncompressed size, that size in its compressed size times
     :data:`~spectrocolor.budget.MAX_COMPRESSION_RATIO` (a 1 kB member cannot hold 4.5 GB), and
-    the array in the memory budget (an .npz member is read whole).
+    -- where the member is read whole -- the array in the memory budget. With ``stream`` a
+    member beyond the budget is not read: a stored (``np.savez``) member becomes a
+    :class:`~spectrocolor.images.cube.MappedArray` of its bytes in the archive, a deflated one
+    (``np.savez_compressed``, C order) a :class:`~spectrocolor.images.cube.ZipMemberArray`, read
+    in blocks of rows; None is returned where the member is to be read whole.
     """
     import zipfile
 
@@ -267,7 +273,7 @@ def _check_npz_member(path: Path, archive, name: str, budget: int) -> None:
                            (2, 0): np.lib.format.read_array_header_2_0}.get(version)
             if read_header is None:
                 raise ValueError(f".npy format version {version} is not supported")
-            shape, _, dtype = read_header(handle)
+            shape, fortran_order, dtype = read_header(handle)
             offset = handle.tell()
     except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile, zlib.error) as exc:
         raise SpectrumError(f"{path}: member {name!r} is not a readable .npy array ({exc})") from None
@@ -276,13 +282,37 @@ def _check_npz_member(path: Path, archive, name: str, budget: int) -> None:
     if offset + nbytes > info.file_size:
         raise SpectrumError(f"{path}: {what}: {format_size(nbytes)} of data, but the member holds "
                             f"{format_size(max(info.file_size - offset, 0))}; the archive is damaged")
-    if info.compress_type != zipfile.ZIP_STORED:
+    stored = info.compress_type == zipfile.ZIP_STORED
+    if not stored:
         check_file_claim(path, info.file_size, what, compressed_bytes=info.compress_size)
     elif info.file_size > info.compress_size:
         raise SpectrumError(f"{path}: member {name!r} is stored uncompressed in "
                             f"{format_size(info.compress_size)} but claims {format_size(info.file_size)}")
-    check_bytes(nbytes, f"{path}: {what} (an .npz member is read whole; a .npy file is streamed)",
-                budget=budget)
+    if stream and nbytes > budget and len(shape) == 3 and dtype.kind in "biuf":
+        if stored:
+            start = _zip_data_start(path, info) + offset
+            check_file_claim(path, nbytes, what, offset=start)
+            if fortran_order:
+                return MappedArray(str(path), dtype.str, tuple(reversed(shape)), start, (2, 1, 0))
+            return MappedArray(str(path), dtype.str, tuple(shape), start, (0, 1, 2))
+        if not fortran_order:
+            from .cube import ZipMemberArray
+
+            return ZipMemberArray(str(path), member, dtype.str, tuple(shape), offset)
+    check_bytes(nbytes, f"{path}: {what} (an .npz member is read whole where it is deflated in "
+                "Fortran order, or small; a .npy file is streamed)", budget=budget)
+    return None
+
+
+def _zip_data_start(path: Path, info) -> int:
+    """Where a stored ZIP member's bytes start in the archive (after its local header)."""
+    with open(path, "rb") as handle:
+        handle.seek(info.header_offset)
+        local = handle.read(30)
+    if len(local) != 30 or local[:4] != b"PK\x03\x04":
+        raise SpectrumError(f"{path}: member {info.filename!r}: its local header is damaged")
+    name_length, extra_length = struct.unpack("<HH", local[26:30])
+    return info.header_offset + 30 + name_length + extra_length
 
 
 # --- TIFF --------------------------------------------------------------------------------

@@ -133,11 +133,30 @@ def _local(tag: str) -> str:
     return tag.rsplit("}", 1)[-1]
 
 
-def _leaves(element, prefix: str, into: dict[str, object]) -> None:
-    for child in element:
-        name = f"{prefix}/{_local(child.tag)}" if prefix else _local(child.tag)
+#: Deepest header element read, in levels below the document element (TM-27's are 2 or 3 deep).
+MAX_DEPTH = 32
+
+
+def _leaves(element, prefix: str, into: dict[str, object], source: str = "<text>") -> None:
+    """The text of every leaf below ``element`` as ``into["Header/Laboratory"] = ...``.
+
+    Iterative, in document order: the depth is the file's, never the interpreter's stack; a
+    document nested deeper than :data:`MAX_DEPTH` is refused (each level's name would be
+    repeated in every key below it).
+    """
+    pending = [(prefix, iter(element))]
+    while pending:
+        name_above, children = pending[-1]
+        child = next(children, None)
+        if child is None:
+            pending.pop()
+            continue
+        name = f"{name_above}/{_local(child.tag)}" if name_above else _local(child.tag)
         if len(child):
-            _leaves(child, name, into)
+            if len(pending) >= MAX_DEPTH:
+                raise SpectrumError(f"{source}: <{name.split('/')[0]}> is nested more than {MAX_DEPTH} "
+                                    f"levels deep; TM-27 headers are a few levels deep ({EXPECTED})")
+            pending.append((name, iter(child)))
         elif child.text and child.text.strip():
             into[name] = child.text.strip()
 
@@ -190,7 +209,7 @@ def parse_tm27(text: str, source: str, percent: bool | None = None) -> Spectrum:
     metadata: dict[str, object] = {"format": f"IES TM-27 XML (version {root.get('version', 'not given')})"}
     for section in root:
         if _local(section.tag) != "SpectralDistribution":
-            _leaves(section, _local(section.tag), metadata)
+            _leaves(section, _local(section.tag), metadata, source)
     distributions = [e for e in root if _local(e.tag) == "SpectralDistribution"]
     if not distributions:
         raise SpectrumError(f"{source}: no <SpectralDistribution> element; expected {EXPECTED}")

@@ -248,7 +248,7 @@ def load_table(path, *, memory_budget=None) -> UpsamplingTable:
     try:
         meta = json.loads(text.decode("utf-8"))
         labels = [meta[k] for k in ("space", "illuminant", "observer")]
-    except (UnicodeDecodeError, ValueError, KeyError, TypeError):
+    except (UnicodeDecodeError, ValueError, KeyError, TypeError, RecursionError):  # RecursionError: nested JSON
         raise _bad(path, "the metadata block is not the expected JSON object") from None
     if not all(isinstance(v, str) for v in labels):
         raise _bad(path, "space, illuminant and observer must be strings")
