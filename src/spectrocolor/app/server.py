@@ -62,6 +62,7 @@ from .choices import (
     observer_labels,
     select_options,
 )
+from .demos import router as demo_router
 from .guards import MAX_JSON_DEPTH, BodyLimit, LocalOnly, allowed_hosts, client_key
 from .import_routes import MAX_PARSERS, PARSER_TIMEOUT_S, PARSER_WAIT_S
 from .import_routes import router as import_router
@@ -229,6 +230,7 @@ def create_app(port: int | None = None, *, check_host: bool = True) -> FastAPI:
 
     app.mount("/static", StaticFiles(directory=static), name="static")
     app.include_router(lab_router)
+    app.include_router(demo_router)  # GET /api/demos (issue 28: guided demonstrations)
     app.include_router(relight_router)
     app.include_router(import_router)
     app.include_router(router)
