@@ -296,7 +296,7 @@ def load_demo(path: str | Path) -> dict[str, Any]:
         try:
             data = json.loads(raw.decode("utf-8"), parse_constant=_no_constant)
         except (UnicodeDecodeError, ValueError, RecursionError) as exc:
-            raise DemoError(f"not UTF-8 JSON ({str(exc).splitlines()[0][:120]})") from None
+            raise DemoError(f"not valid UTF-8 JSON ({str(exc).splitlines()[0][:120]})") from None
         return validate_demo(data, path.stem)
     except DemoError as exc:
         raise DemoError(f"demo file {path.name}: {exc}") from None
