@@ -30,7 +30,7 @@ pytestmark = pytest.mark.browser
 SIZE = (1440, 900)
 DEMOS = load_demos(DEMO_FOLDER)
 SHOTS = {"straw-short-waves", "notch-540", "three-line-match", "metamers-under-a",
-         "filters-in-series", "soap-film-thinning", "smoothest-reflectance"}
+         "filters-in-series", "soap-film-thinning", "smoothest-reflectance", "colour-rendering-tube"}
 # the patch pairs whose ΔE00 the card shows (setting 2 and 3: the split patch; 4: the samples)
 PAIR = {2: (0, 1), 3: (0, 1), 4: (1, 2)}
 # one 8-bit code step per channel is 1/255; "visibly the same" here means every channel of the
@@ -125,6 +125,10 @@ def lab_values(pg, lab):
     rows = lab_rows(pg)
     if lab == "thinfilm":
         return {"Y": float(rows["Y"].split()[0]), "thickness_nm": float(rows["thickness"].split()[0])}
+    if lab == "light":
+        return {"Ra": number(rows["Ra (CIE 13.3)"]), "R9": number(rows["R9 (strong red)"]),
+                "Rf": number(rows["Rf (TM-30 / CIE 224)"]), "Rg": number(rows["Rg (gamut)"]),
+                "cct_K": number(rows["CCT"].split()[0])}
     ranges = {}
     for label, key in (("unconstrained", "unconstrained"), ("0 ≤ ρ ≤ 1", "unit")):
         m = re.search(r"ρ from (-?[\d.]+) to (-?[\d.]+)", rows[label])
@@ -162,6 +166,11 @@ def wait_lab_state(pg, lab, st):
                              " return dd && dd.nextElementSibling.textContent === `${d} nm`; }", arg=st["d"])
         assert pg.locator("#thickness").input_value() == str(st["d"])
         assert pg.locator("#film").input_value() == st["film"]
+    elif lab == "light":
+        pg.wait_for_function("(w) => { const dt = [...document.querySelectorAll('#numbers dt')]"
+                             ".find((e) => e.textContent === 'light'); return dt &&"
+                             " dt.nextElementSibling.textContent === w; }", arg=st["name"])
+        assert pg.locator("#name").input_value() == st["name"]
     else:
         want = f"x {st['x']:.4f}, y {st['y']:.4f}, Y {st['Y']:.1f} under {st['light']}"
         pg.wait_for_function("(w) => { const dt = [...document.querySelectorAll('#numbers dt')]"
@@ -291,7 +300,7 @@ def test_every_demo_reaches_what_it_says(browser, base_url, artifacts_dir, demo)
             pg.screenshot(path=str(artifacts_dir / f"demo_{demo['id']}.png"))
 
 
-@pytest.mark.parametrize("url", ["", "labs/thinfilm", "labs/reflectance"])
+@pytest.mark.parametrize("url", ["", "labs/thinfilm", "labs/reflectance", "labs/light"])
 def test_the_demos_panel_passes_axe_and_lists_its_page(browser, base_url, url):
     opener = open_page(browser, base_url, SIZE) if not url else _lab(browser, base_url + url)
     with opener as pg:
