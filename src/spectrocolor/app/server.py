@@ -64,6 +64,7 @@ from .choices import (
 )
 from .classroom import CLASS_BODY_BYTES, Classroom, ClassroomGuard, exempt_teacher_only
 from .classroom import router as classroom_router
+from .demos import router as demo_router
 from .guards import MAX_JSON_DEPTH, BodyLimit, LocalOnly, allowed_hosts, client_key
 from .import_routes import MAX_PARSERS, PARSER_TIMEOUT_S, PARSER_WAIT_S
 from .import_routes import router as import_router
@@ -243,6 +244,7 @@ def create_app(port: int | None = None, *, check_host: bool = True,
 
     app.mount("/static", StaticFiles(directory=static), name="static")
     app.include_router(lab_router)
+    app.include_router(demo_router)  # GET /api/demos (issue 28: guided demonstrations)
     app.include_router(relight_router)
     app.include_router(import_router)
     app.include_router(router)

@@ -14,6 +14,7 @@ import {applyPreset, presetButtons, moveButtons} from "./presets.js";
 import {setupPhoto, refreshPhoto} from "./relight.js";
 import {setupProjector} from "./projector.js";  // issue 28 item 4
 import {setupSnapshot} from "./snapshot.js";  // issue 28 item 5
+import {mountDemos} from "./demos.js";  // issue 28: guided demonstrations
 
 window.__spectra = S;  // for the browser tests and the latency bench
 
@@ -517,6 +518,12 @@ function onPopState() {
     showURLState(setting);
   });
 }
+/** A demonstration's address (demos.js): pushed, so Back returns to what was there, then shown
+ * as Back/Forward show an address (queued like any option change). */
+function loadState(search) {
+  history.pushState({}, "", `${location.pathname}${search}`);
+  return onPopState();
+}
 function showURLState(setting) {
   const d = readURLDistributions(location.search, setting, S.wl.length);
   if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
@@ -578,6 +585,8 @@ async function init() {
   window.addEventListener("popstate", onPopState);
   setupProjector();  // key P, the Projector button (issue 28 item 4)
   setupSnapshot({say, fail});  // Picture SVG / PNG (issue 28 item 5)
+  mountDemos({explorer: true, where: () => `setting${S.setting}`, title: () => `Demos · setting ${S.setting}`,
+    load: loadState, anchor: () => $("about-open")});
 
   setupPhoto(fail).then(refreshPhoto).catch((err) => fail("The photo panel could not start", err));
   const start = (async () => {  // option changes chosen meanwhile wait for it (queueOption)
