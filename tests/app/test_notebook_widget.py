@@ -105,6 +105,7 @@ def test_requests_are_answered_as_the_server_answers_them():
     body = {"step_nm": 10, "observer": "1931", "display": "sRGB", "normalise": "fixed", "gamut": "flag",
             "spectra": [[15] * 31, list(range(31))], "pairs": [[0, 1]]}
     for method, path, payload in [("GET", "/api/options", None), ("GET", "/api/presets?step_nm=5", None),
+                                  ("GET", "/api/demos", None),
                                   ("POST", "/api/model", {"step_nm": 5}), ("POST", "/api/evaluate", body),
                                   ("POST", "/api/metamer", {"target": [15] * 31}),
                                   ("POST", "/api/evaluate", {**body, "spectra": [[15] * 30]})]:

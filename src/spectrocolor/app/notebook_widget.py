@@ -190,6 +190,10 @@ def answer_request(method: str, path: str, body: str | None) -> dict:
     route = urlsplit(path)
     if method == "GET" and route.path == "/api/options":
         return _json(200, server.options())
+    if method == "GET" and route.path == "/api/demos":
+        from .demos import demos_route
+
+        return _json(200, demos_route())
     if method == "GET" and route.path == "/api/relight/options":
         return _json(200, relight_routes.photo_options())
     if method == "GET" and route.path == "/api/presets":
