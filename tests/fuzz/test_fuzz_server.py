@@ -38,7 +38,7 @@ def _router_routes(module: str) -> list[tuple[str, str]]:
             if "{" not in r.path]
 
 
-ROUTES = [("GET", "/"), ("GET", "/api/options"), ("GET", "/api/presets"),
+ROUTES = [("GET", "/"), ("GET", "/api/options"), ("GET", "/api/presets"), ("GET", "/api/demos"),
           ("POST", "/api/model"), ("POST", "/api/evaluate"), ("POST", "/api/metamer"),
           ("POST", "/api/import"), ("POST", "/api/export"),
           *_router_routes("spectrocolor.app.lab_routes"),

@@ -143,7 +143,11 @@ def test_a_bar_edited_in_jupyterlab_comes_back_to_python(browser, tmp_path, arti
                                  "return Boolean(w && w.sessionContext && w.sessionContext.session "
                                  "&& w.sessionContext.session.kernel); }", timeout=90000)
             run_cell(pg, 0)
-            pg.wait_for_selector(".spectrocolor-explorer #editors canvas", timeout=90000)
+            try:
+                pg.wait_for_selector(".spectrocolor-explorer #editors canvas", timeout=90000)
+            except Exception:
+                pg.screenshot(path=str(shots / "explore_not_shown.png"))
+                raise AssertionError(f"the widget did not draw its bars; page errors: {errors}") from None
             pg.wait_for_function(SETTLED, timeout=90000)
             S = pg.evaluate(STATE)
             assert S["setting"] == 1 and S["step"] == 10

@@ -102,7 +102,8 @@ def _distribution(spec: object, setting: int, editor: int, what: str) -> dict[st
     sources = [k for k in ("preset", "levels", "constant") if k in spec]
     if len(sources) != 1:
         raise DemoError(f"{what} needs exactly one of preset, levels, constant")
-    if "preset" in spec and spec["preset"] not in _preset_keys(setting, editor):
+    if "preset" in spec and (not isinstance(spec["preset"], str)
+                             or spec["preset"] not in _preset_keys(setting, editor)):
         raise DemoError(f"{what}.preset must be one of {sorted(_preset_keys(setting, editor))}"
                         f" (the keys of setting {setting}'s defaults for this distribution)")
     if "levels" in spec:
@@ -136,7 +137,7 @@ def _state(state: object, where: str, what: str) -> dict[str, Any]:
         if extra:
             raise DemoError(f"{what} has unknown keys {sorted(extra)}")
         for key, allowed in choices.items():
-            if key in state and state[key] not in allowed:
+            if key in state and (not isinstance(state[key], str) or state[key] not in allowed):
                 raise DemoError(f"{what}.{key} must be one of {list(allowed)}")
         dists = state.get("distributions")
         if not isinstance(dists, list) or len(dists) != EDITORS[n]:
@@ -173,6 +174,8 @@ def _expect(items: object, where: str, has_then: bool) -> list[dict[str, Any]]:
         if at not in ("state", "then") or (at == "then" and not has_then):
             raise DemoError(f"{what}.at must be 'state'" + (" or 'then'" if has_then else " (the demo has no 'then')"))
         q = e.get("quantity")
+        if not isinstance(q, str):
+            q = None  # not a name: refused below with the accepted names
         per_patch = where in SETTINGS and q in PATCH_QUANTITIES
         if not per_patch and q not in PAGE_QUANTITIES[page]:
             raise DemoError(f"{what}.quantity must be one of "
@@ -235,7 +238,7 @@ def validate_demo(data: object, name: str = "demo") -> dict[str, Any]:
     if data["id"] != name:
         raise DemoError(f"id {data['id']!r} must equal the file's name ({name!r})")
     where = data.get("where")
-    if where not in SETTINGS and where not in LABS:
+    if not isinstance(where, str) or (where not in SETTINGS and where not in LABS):
         raise DemoError(f"where must be one of {[*SETTINGS, *LABS]}")
     for key in _TEXT_KEYS:
         _text(data.get(key), key, 120 if key == "title" else MAX_TEXT)

@@ -162,7 +162,9 @@ export function mountDemos(host) {
   }
 
   // the explorer's setting changes the list (its title names the setting)
-  new MutationObserver(() => { if (!panel.hidden) renderList(); }).observe(document.querySelector("title"), {childList: true});
+  // (a page without its own <title>, as the notebook widget's shadow root, has nothing to observe)
+  const title = document.querySelector("title");
+  if (title) new MutationObserver(() => { if (!panel.hidden) renderList(); }).observe(title, {childList: true});
   getJSON("/api/demos").then((r) => { demos = r.demos; if (!panel.hidden) renderList(); document.body.dataset.demos = "ready"; })
     .catch((err) => { list.replaceChildren(make("li", {class: "demos-none", text: `The demos could not be read: ${err.message}`})); });
 }
