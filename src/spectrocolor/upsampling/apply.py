@@ -329,8 +329,8 @@ def upsample(table: UpsamplingTable, rgb_linear, out_of_range: str = "toward-gre
     """Reflectance spectra for colours, by tetrahedral blending of the table's nodes.
 
     In tetrahedra with nodes moved toward grey (wide-gamut spaces), queries inside the cube
-    are settled exactly wherever a reflectance exists (:mod:`spectrocolor.upsampling.
-    moved_cells`): blended by the nodes' actual colours, or solved by the certified
+    are settled exactly wherever a reflectance exists
+    (:mod:`spectrocolor.upsampling.moved_cells`): blended by the nodes' actual colours, or solved by the certified
     smoothest-reflectance solver; colours outside the object-colour solid keep the table's
     blend and ``exact=False``.
 
