@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Annotated, Literal
 
 from fastapi import APIRouter, Request
-from fastapi.responses import FileResponse, JSONResponse
+from fastapi.responses import FileResponse, JSONResponse, Response
 from pydantic import BaseModel, ConfigDict, Field
 
 from ..errors import ColorimetryError
@@ -49,11 +49,25 @@ def _ready() -> bool:
     return True
 
 
+def _rendered(function, *args) -> bytes:
+    """Worker side: ``function(*args)`` written as JSON text (bytes returned as they are).
+
+    The worker writes the answer, not the server: the thin-film table is 1.3 MB of JSON, and
+    writing it in the server's process held the interpreter lock for a tenth of a second per
+    request, stalling every other client's request (a third of the server's time under a class
+    of 40, ``bench/bench_server_load.py --only classroom``). NaN or an infinity raise
+    :class:`~spectrocolor.errors.ColorimetryError` (``FiniteJSONResponse``).
+    """
+    answer = function(*args)
+    return answer if isinstance(answer, bytes) else bytes(FiniteJSONResponse(answer).body)
+
+
 def _computed(request: Request, function, *args):
     """``function(*args)`` in a lab worker, with the server's answers for a busy or stuck one."""
     client = client_key(request)  # (address, the tab's token)
     try:  # the worker says whether it used the NumPy path (kernels still compiling)
-        answer, used_numpy_path = _workers.run(call_noting_numpy_path, function, *args, client=client)
+        answer, used_numpy_path = _workers.run(call_noting_numpy_path, _rendered, function, *args,
+                                               client=client)
     except Busy:
         return JSONResponse({"error": "the server is busy computing for other pages; try again"},
                             status_code=429)
@@ -65,9 +79,7 @@ def _computed(request: Request, function, *args):
                                "settings") from None
     if used_numpy_path:
         note_numpy_path()
-    # the labs answer plain JSON values: written at once (FastAPI's encoder walked the 1.3 MB
-    # thin-film table for 0.3 s), and never with NaN (FiniteJSONResponse refuses it)
-    return FiniteJSONResponse(answer)
+    return Response(answer, media_type="application/json")
 
 
 class ThinFilmRequest(BaseModel):
@@ -85,6 +97,13 @@ class ThinFilmRequest(BaseModel):
 @lru_cache(maxsize=32)
 def _table(film: str, model: str, angle_deg: float, illuminant: str, observer: str, display: str) -> dict:
     return thinfilm_lab.thinfilm_lab(film, model, angle_deg, illuminant, observer, display)
+
+
+@lru_cache(maxsize=32)
+def _table_json(film: str, model: str, angle_deg: float, illuminant: str, observer: str,
+                display: str) -> bytes:
+    """Worker side: :func:`_table` as JSON text, kept (writing it takes longer than reading it)."""
+    return _rendered(_table, film, model, angle_deg, illuminant, observer, display)
 
 
 class NamedLight(BaseModel):
@@ -156,7 +175,7 @@ def thinfilm_options():
 
 @router.post("/api/lab/thinfilm")
 def thinfilm(req: ThinFilmRequest, request: Request):
-    return _computed(request, _table, req.film, req.model, round(req.angle_deg, 3), req.illuminant,
+    return _computed(request, _table_json, req.film, req.model, round(req.angle_deg, 3), req.illuminant,
                      req.observer, req.display)
 
 
