@@ -18,7 +18,7 @@ import time
 
 import pytest
 
-from spectrocolor.app.workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
+from spectrocolor.app.workers import HEAVY_NICENESS, Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 #: ``re.match(CATASTROPHIC, "a" * 40)`` backtracks 2**40 times in C: hours, holding the GIL.
 CATASTROPHIC = re.compile(r"(a+)+b")
@@ -300,3 +300,31 @@ def test_the_reaper_ends_workers_stuck_in_c_when_the_server_is_killed(tmp_path, 
     finally:
         parent.kill()
         parent.wait(10)
+
+
+@pytest.mark.skipif(not hasattr(os, "nice"), reason="os.nice is POSIX only")
+def test_heavy_lanes_run_at_a_lower_priority_than_the_server():
+    """A pool's ``niceness`` lowers its workers' priority (by exactly that much, capped at 19),
+    and the heavy lanes (labs, relit photos, uploads) use it while the interactive lane does not:
+    on two cores a class's thin-film tables must yield to dragged sliders."""
+    from spectrocolor.app import lab_routes, relight_routes, server
+    from spectrocolor.app.uploads import UploadParser
+
+    mine = os.nice(0)
+    heavy = WorkerPool(1, wait_s=10.0, timeout_s=60.0, niceness=HEAVY_NICENESS)
+    plain = WorkerPool(1, wait_s=10.0, timeout_s=60.0)
+    try:
+        assert heavy.run(os.nice, 0) == min(19, mine + HEAVY_NICENESS)
+        assert plain.run(os.nice, 0) == mine
+    finally:
+        heavy.close()
+        plain.close()
+    assert HEAVY_NICENESS > 0
+    assert lab_routes._workers.niceness == HEAVY_NICENESS
+    assert relight_routes._workers.niceness == HEAVY_NICENESS
+    parser = UploadParser(1, wait_s=10.0, timeout_s=60.0)  # (the server builds one per app)
+    try:
+        assert parser.pool.niceness == HEAVY_NICENESS
+    finally:
+        parser.close()
+    assert server._interactive.niceness == 0

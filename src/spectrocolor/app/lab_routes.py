@@ -20,6 +20,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Annotated, Literal
 
+import numpy as np
 from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse, Response
 from pydantic import BaseModel, ConfigDict, Field
@@ -31,7 +32,7 @@ from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
 from .choices import LabObserver, LightKindName, choice
 from .guards import client_key
 from .responses import FiniteJSONResponse
-from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
+from .workers import HEAVY_NICENESS, Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 router = APIRouter()
 
@@ -40,7 +41,7 @@ LAB_WORKERS = 2
 #: Longest wait for a free worker, s (then 429), and longest computation, s.
 LAB_WAIT_S, LAB_TIMEOUT_S = 10.0, 60.0
 
-_workers = WorkerPool(LAB_WORKERS, LAB_WAIT_S, LAB_TIMEOUT_S)
+_workers = WorkerPool(LAB_WORKERS, LAB_WAIT_S, LAB_TIMEOUT_S, niceness=HEAVY_NICENESS)
 router.on_shutdown.append(_workers.close)
 
 
@@ -164,7 +165,16 @@ def light(req: LightRequest, request: Request):
     # the SPD here, from this process's registries (a kind registered at run time is unknown to
     # the spawned workers); the worker computes the metrics from the numbers
     spd, label = light_lab.light_spd(req.source.model_dump())
-    return _computed(request, light_lab.light_lab_of, spd, label, req.display)
+    return _computed(request, _light_json, np.asarray(spd, dtype=float).tobytes(), label,
+                     req.display)
+
+
+@lru_cache(maxsize=64)
+def _light_json(spd_bytes: bytes, label: str, display: str) -> bytes:
+    """Worker side: :func:`~spectrocolor.app.light_lab.light_lab_of` of an SPD given as its
+    float64 bytes, as JSON text, kept: a class asks for the same few lights again and again
+    (0.1 to 0.3 s each), and the bytes make the SPD itself the key."""
+    return _rendered(light_lab.light_lab_of, np.frombuffer(spd_bytes, dtype=float), label, display)
 
 
 @router.get("/api/lab/thinfilm/options")

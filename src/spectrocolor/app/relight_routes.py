@@ -39,7 +39,7 @@ from .relight_photo import (
     relight_photo,
 )
 from .request_models import Level, StrictRequest, registries_as_imported, validation_message
-from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
+from .workers import HEAVY_NICENESS, Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 #: Photos relit at the same time (each worker keeps its own tables).
 RELIGHT_WORKERS = 1
@@ -75,7 +75,7 @@ class RelightRequest(StrictRequest):
         return self
 
 
-_workers = WorkerPool(RELIGHT_WORKERS, RELIGHT_WAIT_S, RELIGHT_TIMEOUT_S)
+_workers = WorkerPool(RELIGHT_WORKERS, RELIGHT_WAIT_S, RELIGHT_TIMEOUT_S, niceness=HEAVY_NICENESS)
 router.on_shutdown.append(_workers.close)
 
 

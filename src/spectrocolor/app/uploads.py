@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpectrumError
-from .workers import Busy, WorkerDied, WorkerPool, WorkerTimeout
+from .workers import HEAVY_NICENESS, Busy, WorkerDied, WorkerPool, WorkerTimeout
 
 __all__ = ["Busy", "UploadParser"]
 
@@ -115,7 +115,8 @@ class UploadParser:
     """
 
     def __init__(self, workers: int, wait_s: float, timeout_s: float, per_client: int = 1):
-        self._pool = WorkerPool(workers, wait_s, timeout_s, per_client=per_client)
+        self._pool = WorkerPool(workers, wait_s, timeout_s, per_client=per_client,
+                                niceness=HEAVY_NICENESS)
 
     @property
     def pool(self) -> WorkerPool:

@@ -57,13 +57,17 @@ import threading
 import time
 
 __all__ = ["Busy", "WorkerDied", "WorkerPool", "WorkerTimeout", "die_with_parent", "Reaper",
-           "REAPER_VARIABLE", "LOOPBACK_ADDRESSES"]
+           "REAPER_VARIABLE", "LOOPBACK_ADDRESSES", "HEAVY_NICENESS"]
 
 #: How often a worker's watchdog checks that its parent is alive, s.
 WATCHDOG_INTERVAL_S = 0.5
 #: How long a worker asked to stop may take before it is killed, s.
 STOP_GRACE_S = 2.0
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+#: The heavy lanes' workers' niceness (:class:`WorkerPool`'s ``niceness``): under Linux's
+#: scheduler a nice-10 process gets about a tenth of a core's time against a nice-0 one, so a
+#: class's thin-film tables yield to its dragged sliders instead of sharing the cores evenly.
+HEAVY_NICENESS = 10
 #: The addresses of the server's own machine (no per-address cap by default).
 LOOPBACK_ADDRESSES = ("127.0.0.1", "::1")
 #: Set to ``1`` in the server's environment: workers end through a :class:`Reaper` even where the
@@ -118,10 +122,15 @@ def _watch_parent(parent_pid: int) -> None:
             os._exit(1)
 
 
-def _serve(connection, parent_pid: int, kernel_signal: bool = True) -> None:
+def _serve(connection, parent_pid: int, kernel_signal: bool = True, niceness: int = 0) -> None:
     """A worker's life: run the jobs that arrive on ``connection`` until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl+C is the server's: it closes the pool
     die_with_parent(parent_pid, kernel_signal)
+    if niceness > 0 and hasattr(os, "nice"):  # a lower scheduling priority (POSIX only)
+        try:
+            os.nice(niceness)
+        except OSError:
+            pass
     while True:
         try:
             message = connection.recv_bytes()
@@ -282,9 +291,10 @@ def _reaper_wanted(reaper: bool | None) -> bool:
 class _Worker:
     """One worker process and the server's end of its pipe."""
 
-    def __init__(self, context, reaper: Reaper | None = None) -> None:
+    def __init__(self, context, reaper: Reaper | None = None, niceness: int = 0) -> None:
         self.connection, child = context.Pipe(duplex=True)
-        self.process = context.Process(target=_serve, args=(child, os.getpid(), reaper is None),
+        self.process = context.Process(target=_serve,
+                                       args=(child, os.getpid(), reaper is None, niceness),
                                        daemon=True, name="spectrocolor-worker")
         self.reaper = reaper
         try:
@@ -350,6 +360,11 @@ class WorkerPool:
         Whether a :class:`Reaper` ends the workers with the server (instead of the kernel's
         parent-death signal); default: where that signal is not available, or where the
         environment variable :data:`REAPER_VARIABLE` is ``1``.
+    niceness : int, optional
+        How much lower than the server's the workers' scheduling priority is (``os.nice``; POSIX
+        only, ignored elsewhere). Default 0. The heavy lanes (labs, relit photos, uploads) use
+        :data:`HEAVY_NICENESS` so that, on a machine with fewer cores than busy workers, the
+        page's interactive requests are scheduled first and a lab's second of work waits.
 
     Examples
     --------
@@ -362,8 +377,9 @@ class WorkerPool:
     def __init__(self, workers: int, wait_s: float, timeout_s: float, *,
                  per_client: int | None = None, max_waiting: int | None = None,
                  per_address: int | None = None, max_waiting_per_client: int | None = None,
-                 unlimited_addresses=None, reaper: bool | None = None):
+                 unlimited_addresses=None, reaper: bool | None = None, niceness: int = 0):
         self.workers, self.wait_s, self.timeout_s = workers, wait_s, timeout_s
+        self.niceness = niceness
         self.per_client = workers if per_client is None else per_client
         self.max_waiting = 4 * workers if max_waiting is None else max_waiting
         self.per_address = max(1, workers - 1) if per_address is None else per_address
@@ -484,7 +500,7 @@ class WorkerPool:
                 worker = None
             if worker is None:
                 try:
-                    worker = _Worker(self._context, self._reaper)
+                    worker = _Worker(self._context, self._reaper, self.niceness)
                 except Exception as exc:  # noqa: BLE001 - no descriptors, no memory, ...
                     raise WorkerDied(f"no worker process could be started ({exc.__class__.__name__})") from None
                 with self._condition:
