@@ -175,6 +175,32 @@ def test_the_roles_and_bounds_are_kept(classroom):
         assert svg.status_code == 200 and svg.headers["content-type"].startswith("image/svg+xml")
 
 
+def test_a_class_editing_at_once_is_queued_not_refused(classroom):
+    """24 students send an edit at the same instant: every one is answered, none gets 429.
+
+    The interactive lane has two workers; in normal mode its line holds 8 jobs and refuses the
+    rest at once, which in a class refused a fifth of the edits (bench_server_load.py --only
+    classroom). In class mode the line holds a job of each device.
+    """
+    students = [f"127.0.0.{20 + i}" for i in range(24)]
+    barrier = threading.Barrier(len(students))
+    statuses: list[int] = []
+    body = {"spectra": [[float(k % 31) for k in range(31)], [15.0] * 31], "pairs": [[0, 1]]}
+
+    def edit(address: str) -> None:
+        with joined(classroom, address) as s:
+            headers = {"X-Spectrocolor-Client": f"tab-{address.replace('.', '-')}"}
+            barrier.wait(30)
+            statuses.append(s.post("/api/evaluate", json=body, headers=headers).status_code)
+
+    threads = [threading.Thread(target=edit, args=(a,)) for a in students]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(120)
+    assert sorted(statuses) == [200] * len(students), statuses
+
+
 def test_renewing_the_code_disconnects_every_student(classroom):
     with teacher(classroom) as t, joined(classroom, "127.0.0.9") as s:
         stream = Events(s)

@@ -28,6 +28,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
+import anyio.to_thread
 from fastapi import APIRouter, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
@@ -94,6 +95,11 @@ INTERACTIVE_WORKERS = 2
 INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S = 10.0, 60.0
 INTERACTIVE_WAITING_PER_CLIENT = 4  # of one client (or remote address); beyond, 429 at once
 # (a waiting job holds one of the server's 40 threads: the pools' lines together hold under 40)
+#: In class mode (issue 30) forty devices edit at once: the interactive lane's line holds one
+#: job of each of CLASS_INTERACTIVE_WAITING devices (a page has one such request in flight)
+#: instead of refusing a student's dragged bar with 429 whenever 8 others wait (a fifth of the
+#: edits of a class of 40 were refused), and the server gets CLASS_THREADS threads for it.
+CLASS_INTERACTIVE_WAITING, CLASS_THREADS = 48, 120
 
 _interactive = WorkerPool(INTERACTIVE_WORKERS, INTERACTIVE_WAIT_S, INTERACTIVE_TIMEOUT_S,
                           per_client=1, max_waiting=4 * INTERACTIVE_WORKERS,
@@ -235,6 +241,8 @@ def create_app(port: int | None = None, *, check_host: bool = True,
     # --- classroom mode (issue 30): its routes, and the pools' exemption for the teacher only
     if classroom is not None:
         exempt_teacher_only([_interactive, lab_workers, relight_workers, parsers.pool])
+        _interactive.max_waiting = CLASS_INTERACTIVE_WAITING
+        app.router.on_startup.append(_threads_for_a_class)
         app.include_router(classroom_router)
     # --- end of classroom mode
 
@@ -431,6 +439,11 @@ def _pooled_answer(route: str, body: bytes) -> tuple[int, bytes, str, dict]:
         return 200, bytes(FiniteJSONResponse(result).body), _JSON, {}
     except (SpectrumError, ColorimetryError) as exc:
         return _error(422, str(exc))
+
+
+def _threads_for_a_class() -> None:
+    """Class mode: CLASS_THREADS threads for the routes (a waiting job holds one)."""
+    anyio.to_thread.current_default_thread_limiter().total_tokens = CLASS_THREADS
 
 
 def _warm_interactive() -> None:
