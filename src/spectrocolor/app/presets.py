@@ -218,7 +218,7 @@ def _band(start_nm: float, stop_nm: float, floor: int) -> list[int]:
 
 
 SPOT_RED = _band(600, 700, 3)
-SPOT_GREEN = _band(500, 560, 8)
+SPOT_GREEN = _band(500, 570, 8)
 SPOT_BLUE = _band(400, 470, 4)
 #: Setting 5 as two spotlights: (key, name, light 1's filter, light 2's filter).
 SETTING5_ADDITIVE = [

@@ -204,7 +204,7 @@ function setMode5(mode) {
 }
 function setupMode5() {
   document.querySelectorAll("#mode5 input").forEach((r) => r.addEventListener("change", () => {
-    if (r.checked) setMode5(r.value);
+    if (r.checked) { setMode5(r.value); focusBars(); }  // the keys go back to the bars, as after an option
   }));
 }
 // ---- end of item 7's part
