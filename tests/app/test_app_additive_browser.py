@@ -112,10 +112,17 @@ def test_two_spotlights_add_and_their_overlap_lies_on_the_line(browser, base_url
 
 
 @pytest.mark.parametrize("size", [DESKTOP, PHONE], ids=["desktop", "phone"])
-def test_spotlights_axe_and_phone(browser, base_url, artifacts_dir, size):
+def test_spotlights_axe_and_phone(browser, base_url, artifacts_dir, size, tmp_path):
     with open_page(browser, base_url, size) as pg:
         spotlights(pg)
         assert pg.locator("#mode5").is_visible()
+        if size == DESKTOP:  # the picture for a slide names the sum graph and the overlap
+            with pg.expect_download() as d:
+                pg.click("#save-svg")
+            path = tmp_path / d.value.suggested_filename
+            d.value.save_as(path)
+            text = path.read_text(encoding="utf-8")
+            assert "both lights (sum" in text and "both lights (overlap)" in text
         if size == PHONE:
             shots(pg, artifacts_dir, "additive_phone")
             # nothing wider than the phone
