@@ -30,7 +30,8 @@ pytestmark = pytest.mark.browser
 SIZE = (1440, 900)
 DEMOS = load_demos(DEMO_FOLDER)
 SHOTS = {"straw-short-waves", "notch-540", "three-line-match", "metamers-under-a",
-         "filters-in-series", "soap-film-thinning", "smoothest-reflectance", "colour-rendering-tube"}
+         "filters-in-series", "soap-film-thinning", "smoothest-reflectance", "colour-rendering-tube",
+         "spotlights-red-green"}
 # the patch pairs whose ΔE00 the card shows (setting 2 and 3: the split patch; 4: the samples)
 PAIR = {2: (0, 1), 3: (0, 1), 4: (1, 2)}
 # one 8-bit code step per channel is 1/255; "visibly the same" here means every channel of the
