@@ -30,7 +30,8 @@ pytestmark = pytest.mark.browser
 SIZE = (1440, 900)
 DEMOS = load_demos(DEMO_FOLDER)
 SHOTS = {"straw-short-waves", "notch-540", "three-line-match", "metamers-under-a",
-         "filters-in-series", "soap-film-thinning", "smoothest-reflectance", "colour-rendering-tube"}
+         "filters-in-series", "soap-film-thinning", "smoothest-reflectance", "colour-rendering-tube",
+         "spotlights-red-green"}
 # the patch pairs whose ΔE00 the card shows (setting 2 and 3: the split patch; 4: the samples)
 PAIR = {2: (0, 1), 3: (0, 1), 4: (1, 2)}
 # one 8-bit code step per channel is 1/255; "visibly the same" here means every channel of the
@@ -55,7 +56,7 @@ def warm_server(base_url):
         time.sleep(1)
 
 
-def expected_levels(base_url, setting, distributions):
+def expected_levels(base_url, setting, distributions, mode="series"):
     """The levels a demo's explorer state should put on the page (rebuilt from /api/presets)."""
     with urllib.request.urlopen(base_url + "api/presets?step_nm=10") as r:
         P = json.load(r)
@@ -74,7 +75,8 @@ def expected_levels(base_url, setting, distributions):
                 q = find(P["setting4"]["illuminants"] if i == 0 else P["setting4"]["samples"])
                 levels = q["levels"] if i == 0 else q["left" if i == 1 else "right"]
             else:
-                q = find(P["setting3" if setting == 3 else "setting5"])
+                q = find(P["setting3" if setting == 3 else
+                           "setting5_additive" if mode == "additive" else "setting5"])
                 levels = q["left" if i == 0 else "right"]
         elif "levels" in spec:
             levels = spec["levels"]
@@ -153,7 +155,10 @@ def check_explorer_state(pg, base_url, demo, st):
     if "normalise" in st:
         assert got["normalise"] == st["normalise"], demo["id"]
     # exact: whole levels 0-30, copied, never computed
-    assert got["dists"] == expected_levels(base_url, n, st["distributions"]), demo["id"]
+    assert got["dists"] == expected_levels(base_url, n, st["distributions"], st.get("mode", "series")), demo["id"]
+    got_mode = pg.evaluate("() => window.__spectra.mode5")
+    if n == 5:
+        assert got_mode == st.get("mode", "series"), demo["id"]
     assert f"s={n}" in pg.evaluate("location.search")
     tab = pg.locator(f"#tabs [data-setting='{n}']")
     assert tab.get_attribute("aria-selected") == "true"

@@ -84,3 +84,24 @@ def test_unknown_choices_get_a_clear_422(field, value):
 
 def test_the_fuzzed_grid_matches_the_page():
     assert len(compute.grid(10.0)) == 31 and np.isclose(compute.grid(10.0)[19], 590.0)
+
+
+# Setting 5's two spotlights (issue 28 item 7): the ``additive`` pairs of /api/evaluate, any
+# indices and any number of them: 200 with one colour more per pair (their sum, possibly above the
+# full level, still finite), or one 422 line naming ``additive``.
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(spectra=st.lists(levels, min_size=1, max_size=4),
+       additive=st.lists(st.tuples(st.integers(-2, 5), st.integers(-2, 5)), max_size=4),
+       gamut=st.sampled_from(compute.GAMUTS), normalise=st.sampled_from(compute.NORMALISATIONS))
+def test_additive_pairs_answer_or_name_the_field(spectra, additive, gamut, normalise):
+    r = CLIENT.post("/api/evaluate", json={"spectra": spectra, "additive": additive, "gamut": gamut,
+                                           "normalise": normalise})
+    fits = all(0 <= a < len(spectra) and 0 <= b < len(spectra) for a, b in additive) \
+        and len(spectra) + len(additive) <= 4
+    if not fits:
+        assert r.status_code == 422 and "additive" in r.json()["error"], r.text
+        assert "\n" not in r.json()["error"]
+        return
+    assert r.status_code == 200, r.text
+    answer = r.json()
+    assert finite_or_none(answer) and len(answer["colours"]) == len(spectra) + len(additive)

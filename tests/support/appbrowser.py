@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from spectrocolor.app import compute
+from spectrocolor.mixing import additive_mix
 
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync"]
@@ -90,7 +91,7 @@ def state(pg):
         return {setting: S.setting, dists: S.dists[S.setting], names: S.names[S.setting],
                 server: S.server, local: S.local, normalise: S.normalise, step: S.step,
                 gamut: S.gamut, display: S.display, observer: S.observer,
-                adaptation: S.adaptation, stale: S.stale}; }""")
+                adaptation: S.adaptation, stale: S.stale, mode5: S.mode5}; }""")
 
 
 def evaluated(st):
@@ -104,6 +105,8 @@ def evaluated(st):
             return [d[0], d[1]], None, [(0, 1)]
         case 4:
             return [full, d[1], d[2]], d[0], [(1, 2)]
+        case 5 if st.get("mode5") == "additive":  # two spotlights: the server adds the lights
+            return [full, d[0], d[1], additive_mix(d[0], d[1]).tolist()], None, []
         case 5:
             product = (np.array(d[0]) * np.array(d[1]) / 30).tolist()
             return [full, d[0], d[1], product], None, []

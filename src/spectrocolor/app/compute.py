@@ -35,6 +35,7 @@ from ..display_emission import emission_sources, excitation_function, primary_em
 from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import illuminant
 from ..io import read_spectra, write_spectra
+from ..mixing import additive_mix
 from ..observers import observer as observer_cmfs
 from ..pictures import wavelength_tint
 from ..recovery.smoothest import smoothest_reflectance
@@ -193,7 +194,7 @@ def _dominant(xy_: np.ndarray, white_xy: np.ndarray, observer: str, lit: np.ndar
 
 
 def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_levels=None,
-             pairs=(), adaptation: str = DEFAULT_ADAPTATION) -> dict:
+             pairs=(), adaptation: str = DEFAULT_ADAPTATION, additive=()) -> dict:
     """Colorimetry and display rendering of up to a few distributions (bin levels).
 
     Returns per distribution: XYZ (CIE, Y = 100 for the full spectrum / perfect white), the cone
@@ -205,10 +206,17 @@ def evaluate(step_nm, observer, display, normalise, gamut, spectra, illuminant_l
     to show (after SPECTRA's per-channel k and the adaptation), the rendering (linear RGB,
     codes, flags, the gamut strategy applied and the library's explanation), the light the
     screen emits for those codes (seed 002 STEP 4) and a status line; per pair, ΔE00.
+
+    ``additive`` lists pairs ``(a, b)`` of ``spectra``: each appends their overlap, the sum
+    :func:`spectrocolor.mixing.additive_mix` (two spotlights on one screen, seed 002 "Serial and
+    parallel composition"), after the spectra, so the answer has one colour more per pair and
+    ``pairs`` may name it. A sum may pass the full level.
     """
     wl = grid(step_nm)
     reference = _reference(wl, illuminant_levels)
     levels = np.asarray(spectra, dtype=float)
+    if len(additive):
+        levels = np.vstack([levels, *(additive_mix(levels[a], levels[b]) for a, b in additive)])
     XYZ, white_XYZ, xy_, white_xy, lit, dominant = _cie_values(wl, levels, reference, observer)
     chain = pipeline(step_nm, observer, display, normalise, adaptation, illuminant_levels)
     shown_XYZ = chain.shown_XYZ(XYZ)
@@ -457,6 +465,8 @@ def presets(step_nm: float) -> dict:
                                   "right": resolve(b, wl)} for k, n, a, b in P.SETTING4_SAMPLES]},
         "setting5": [{"key": k, "name": n, "left": resolve(a, wl), "right": resolve(b, wl)}
                      for k, n, a, b in P.SETTING5],
+        "setting5_additive": [{"key": k, "name": n, "left": resolve(a, wl), "right": resolve(b, wl)}
+                              for k, n, a, b in P.SETTING5_ADDITIVE],
     }
 
 

@@ -64,11 +64,16 @@ class DemoError(ValueError):
     """A demo file that is not a valid demonstration (the message names the file and why)."""
 
 
-def _preset_keys(setting: int, editor: int) -> set[str]:
+#: Setting 5's modes (``state.mode``): filters in series, or two spotlights (issue 28 item 7).
+MODES5 = ("series", "additive")
+
+
+def _preset_keys(setting: int, editor: int, mode: str = "series") -> set[str]:
     """The keys (``"1"``-``"8"``) of the defaults an editor of a setting can start from."""
     tables: dict[int, list[Any]] = {
         1: _presets.SETTING1, 2: _presets.SETTING2_LEFT if editor == 0 else _presets.SETTING2_RIGHT,
-        3: _presets.SETTING3, 5: _presets.SETTING5,
+        3: _presets.SETTING3,
+        5: _presets.SETTING5_ADDITIVE if mode == "additive" else _presets.SETTING5,
         4: _presets.SETTING4_ILLUMINANTS if editor == 0 else _presets.SETTING4_SAMPLES}
     return {row[0] for row in tables[setting]}
 
@@ -91,7 +96,8 @@ def _level(value: object, what: str) -> int:
     return value
 
 
-def _distribution(spec: object, setting: int, editor: int, what: str) -> dict[str, Any]:
+def _distribution(spec: object, setting: int, editor: int, what: str,
+                  mode: str = "series") -> dict[str, Any]:
     """One editor's distribution: a default of the setting (``preset``), 31 ``levels`` or a
     ``constant``, with optional ``set`` ({"460": 9}: the level of single 10 nm bins) and ``name``."""
     if not isinstance(spec, dict):
@@ -103,8 +109,8 @@ def _distribution(spec: object, setting: int, editor: int, what: str) -> dict[st
     if len(sources) != 1:
         raise DemoError(f"{what} needs exactly one of preset, levels, constant")
     if "preset" in spec and (not isinstance(spec["preset"], str)
-                             or spec["preset"] not in _preset_keys(setting, editor)):
-        raise DemoError(f"{what}.preset must be one of {sorted(_preset_keys(setting, editor))}"
+                             or spec["preset"] not in _preset_keys(setting, editor, mode)):
+        raise DemoError(f"{what}.preset must be one of {sorted(_preset_keys(setting, editor, mode))}"
                         f" (the keys of setting {setting}'s defaults for this distribution)")
     if "levels" in spec:
         levels = spec["levels"]
@@ -133,9 +139,13 @@ def _state(state: object, where: str, what: str) -> dict[str, Any]:
         n = SETTINGS[where]
         choices = {"display": DISPLAYS, "gamut": GAMUTS, "normalise": NORMALISATIONS,
                    "adaptation": ADAPTATIONS}
-        extra = set(state) - {"distributions", *choices}
+        extra = set(state) - {"distributions", *choices, *(("mode",) if n == 5 else ())}
         if extra:
             raise DemoError(f"{what} has unknown keys {sorted(extra)}")
+        mode = state.get("mode", "series")
+        if mode not in MODES5:  # compared as given: a list or number is refused too
+            raise DemoError(f"{what}.mode must be one of {list(MODES5)} (setting 5: filters in "
+                            f"series or two spotlights)")
         for key, allowed in choices.items():
             if key in state and (not isinstance(state[key], str) or state[key] not in allowed):
                 raise DemoError(f"{what}.{key} must be one of {list(allowed)}")
@@ -143,7 +153,7 @@ def _state(state: object, where: str, what: str) -> dict[str, Any]:
         if not isinstance(dists, list) or len(dists) != EDITORS[n]:
             raise DemoError(f"{what}.distributions must list {EDITORS[n]} distribution(s) for setting {n}")
         for i, d in enumerate(dists):
-            _distribution(d, n, i, f"{what}.distributions[{i}]")
+            _distribution(d, n, i, f"{what}.distributions[{i}]", mode)
         return state
     allowed_keys = LAB_KEYS[where]
     for key, value in state.items():

@@ -200,3 +200,36 @@ SETTING5 = [
     ("7", "two moss-green filters: a dark red (dichroism)", MOSS_GREEN, MOSS_GREEN),
     ("8", "two medium grey filters: a darker grey", GREY, GREY),
 ]
+
+
+# --- setting 5, two spotlights (issue 28 item 7) ---------------------------------------
+# Seed 002, "Serial and parallel composition": two filters, each in front of its own spotlight,
+# the beams on one spot: an additive mixture ("an orange-red and a green filter will give yellow
+# illumination"); and "Complementarity": filters r and 1 - r in two identical spotlights give
+# the colourless light of one spotlight without a filter. The seed prints no levels: these
+# bands (a low floor so that each light stays near the sRGB gamut) were written for this program.
+def _band(start_nm: float, stop_nm: float, floor: int) -> list[int]:
+    """Full (30) from ``start_nm`` to ``stop_nm``, half-way in the bins just outside, ``floor``
+    elsewhere (SPECTRA's 10 nm grid)."""
+    wl = np.arange(START_NM, STOP_NM + 1, STEP_NM)
+    inside = (wl >= start_nm) & (wl <= stop_nm)
+    edge = (wl == start_nm - STEP_NM) | (wl == stop_nm + STEP_NM)
+    return [FULL_LEVEL if i else 15 if e else floor for i, e in zip(inside, edge, strict=True)]
+
+
+SPOT_RED = _band(600, 700, 3)
+SPOT_GREEN = _band(500, 570, 8)
+SPOT_BLUE = _band(400, 470, 4)
+#: Setting 5 as two spotlights: (key, name, light 1's filter, light 2's filter).
+SETTING5_ADDITIVE = [
+    ("1", "orange-red and green: yellow", SPOT_RED, SPOT_GREEN),
+    ("2", "green and blue: cyan", SPOT_GREEN, SPOT_BLUE),
+    ("3", "red and blue: magenta, a purple", SPOT_RED, SPOT_BLUE),
+    ("4", "red and cyan (green + blue): white, the three primaries", SPOT_RED,
+     [FULL_LEVEL - v for v in SPOT_RED]),
+    ("5", "yellow and blue, complementary: white", _smooth_yellow(),
+     [FULL_LEVEL - v for v in _smooth_yellow()]),
+    ("6", "green and magenta: nearly white", GREEN, MAGENTA),
+    ("7", "yellow and blue filters (in series: dark green): a pale grey-green", YELLOW_FILTER, BLUE_FILTER),
+    ("8", "two orange lights: the same colour, twice as bright", ORANGE, ORANGE),
+]

@@ -138,6 +138,10 @@ class EvaluateRequest(DisplayRequest):
     gamut: Gamut = compute.DEFAULT_GAMUT
     spectra: Annotated[list[Levels], Field(min_length=1, max_length=MAX_SPECTRA)]
     pairs: Annotated[list[tuple[int, int]], Field(max_length=MAX_SPECTRA)] = []
+    #: Setting 5's two spotlights (issue 28 item 7): each (a, b) appends the overlap of sent
+    #: spectra a and b, their sum (:func:`spectrocolor.mixing.additive_mix`), which may pass
+    #: the full level where both lights have light.
+    additive: Annotated[list[tuple[int, int]], Field(max_length=MAX_SPECTRA - 1)] = []
 
     @model_validator(mode="after")
     def _check_sizes(self):
@@ -147,8 +151,15 @@ class EvaluateRequest(DisplayRequest):
                 raise ValueError(
                     f"spectra[{i}] has {len(s)} bins; step {self.step_nm} nm over 400-700 nm "
                     f"needs {k}")
-        for a, b in self.pairs:
+        for a, b in self.additive:
             if not (0 <= a < len(self.spectra) and 0 <= b < len(self.spectra)):
+                raise ValueError(f"additive ({a}, {b}) names a spectrum that was not sent")
+        total = len(self.spectra) + len(self.additive)
+        if total > MAX_SPECTRA:
+            raise ValueError(f"{len(self.spectra)} spectra and {len(self.additive)} additive mixes: "
+                             f"at most {MAX_SPECTRA} colours in all")
+        for a, b in self.pairs:
+            if not (0 <= a < total and 0 <= b < total):
                 raise ValueError(f"pair ({a}, {b}) names a spectrum that was not sent")
         return self
 
@@ -398,7 +409,8 @@ def _model_answer(req: DisplayRequest) -> dict:
 
 def _evaluate_answer(req: EvaluateRequest) -> dict:
     return compute.evaluate(float(req.step_nm), req.observer, req.display, req.normalise,
-                            req.gamut, req.spectra, req.illuminant, req.pairs, req.adaptation)
+                            req.gamut, req.spectra, req.illuminant, req.pairs, req.adaptation,
+                            req.additive)
 
 
 def _metamer_answer(req: MetamerRequest) -> dict:

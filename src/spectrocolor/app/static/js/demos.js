@@ -34,7 +34,7 @@ async function getJSON(path) {
 let presets10 = null;  // the defaults on SPECTRA's grid: demos are written on it (31 bins, 10 nm)
 
 /** A default's levels and name for editor `i` of setting `n` (as the keys 1–8 load them). */
-function presetOf(P, n, i, key) {
+function presetOf(P, n, i, key, mode5 = "series") {
   const find = (list) => list.find((q) => q.key === key);
   const first = (q) => (q.cycle ? q.cycle[0].levels : q.levels);
   if (n === 1) { const q = find(P.setting1); return [first(q), q.name]; }
@@ -43,7 +43,7 @@ function presetOf(P, n, i, key) {
     if (i === 0) { const q = find(P.setting4.illuminants); return [q.levels, q.name]; }
     const q = find(P.setting4.samples); return [i === 1 ? q.left : q.right, `${q.name} ${i}`];
   }
-  const q = find(n === 3 ? P.setting3 : P.setting5);
+  const q = find(n === 3 ? P.setting3 : mode5 === "additive" ? P.setting5_additive : P.setting5);
   const parts = q.name.split(":")[0].split(n === 3 ? " / " : " and ");
   return [i === 0 ? q.left : q.right, (parts[i] || parts[0]).trim()];
 }
@@ -58,9 +58,10 @@ export async function explorerSearch(where, st) {
     g: st.gamut || d.gamut || "desaturate", n: st.normalise || d.normalise || "fixed"});
   const a = st.adaptation || d.adaptation;
   if (a) q.set("a", a);
+  if (n === 5 && st.mode === "additive") q.set("m", "add");  // setting 5 as two spotlights
   st.distributions.forEach((spec, i) => {
     let levels, name;
-    if (spec.preset) [levels, name] = presetOf(presets10, n, i, spec.preset);
+    if (spec.preset) [levels, name] = presetOf(presets10, n, i, spec.preset, st.mode);
     else if (spec.levels) [levels, name] = [spec.levels, ""];
     else [levels, name] = [Array(31).fill(spec.constant), `constant ${spec.constant}`];
     levels = levels.slice();

@@ -4,7 +4,7 @@
 
 import {$, el, fill, svgEl} from "./dom.js";
 import {S} from "./state.js";
-import {cssColour} from "./view.js";
+import {cssColour, additive} from "./view.js";
 
 const P = (x, y) => `${x.toFixed(4)},${(-y).toFixed(4)}`;
 const LABELLED_NM = [460, 480, 490, 500, 520, 540, 560, 580, 600, 620, 700];
@@ -67,11 +67,28 @@ export function drawPoints(colours, labels, server) {
     dot.firstChild.textContent = labels[i];
     n.setAttribute("x", c.xy[0]); n.setAttribute("y", -c.xy[1] + 0.0075);
   }
+  mixLine(colours);
   for (const li of document.querySelectorAll("#legend li[data-i]")) {
     const i = Number(li.dataset.i);
     li.firstChild.style.background = cssColour(colours[i]);
     if (li.lastChild.textContent !== labels[i]) li.lastChild.textContent = labels[i];
   }
+}
+
+/** Setting 5 as two spotlights (issue 28 item 7): the segment joining the two lights, on which
+ * their overlap lies (weighted by luminance); hidden otherwise. */
+function mixLine(colours) {
+  let line = $("mix-line");
+  if (!line) {
+    line = svgEl("line", {id: "mix-line", class: "mix-line"}, svgEl("title", {}, "additive mixtures of light 1 and light 2 lie on this line"));
+    $("chroma").insertBefore(line, $("pts"));
+  }
+  const [a, b] = [colours[1], colours[2]];
+  const shown = additive() && a && b && a.xy[0] !== null && b.xy[0] !== null;
+  line.style.display = shown ? "" : "none";
+  if (!shown) return;
+  line.setAttribute("x1", a.xy[0]); line.setAttribute("y1", -a.xy[1]);
+  line.setAttribute("x2", b.xy[0]); line.setAttribute("y2", -b.xy[1]);
 }
 
 function curve(g, w, h, values, top, colour, dash = []) {

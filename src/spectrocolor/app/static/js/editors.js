@@ -3,7 +3,7 @@
 
 import {$, el, fill} from "./dom.js";
 import {S, EDITORS, FULL, quantise, remember} from "./state.js";
-import {displayName, product} from "./view.js";
+import {displayName, product, additive, sum} from "./view.js";
 
 const PAD_TOP = 14, PAD_BOTTOM = 16;
 const OUTLINE = "#d7dbe4";  // bar outline: ≥ 3:1 against the panel (#1e2128) for every tint
@@ -14,13 +14,14 @@ export const cursorOf = (i) => S.cursor[`${S.setting}:${i}`] ?? Math.floor(S.wl.
 /** Build the editors of the current setting; `onEdit` runs after every change of levels. */
 export function buildEditors(onEdit) {
   const names = EDITORS[S.setting];
-  const readonly = S.setting === 5 ? ["product"] : [];
+  const readonly = S.setting === 5 ? [additive() ? "sum (both lights)" : "product"] : [];
   const box = $("editors");
   box.className = names.length + readonly.length === 3 ? "three" : names.length === 2 ? "two" : "";
   fill(box, [...names, ...readonly].map((n, i) => {
     const ro = i >= names.length;
     const canvas = el("canvas", ro
-      ? {role: "img", "aria-label": "the product of the two filters: light through both"}
+      ? {role: "img", "aria-label": additive() ? "the sum of the two lights: where both spotlights overlap (scale 0–60)"
+        : "the product of the two filters: light through both"}
       : {role: "slider", tabindex: 0, "aria-label": `${n}: level of the selected bin`,
         "aria-valuemin": 0, "aria-valuemax": FULL, "aria-orientation": "vertical"});
     return el("div", {class: `editor ${ro ? "readonly" : ""}`, "data-e": i},
@@ -86,18 +87,18 @@ function plotArea(cv) {
   return [g, w, h];
 }
 
-function grid(g, w, hh) {
+function grid(g, w, hh, top = FULL) {
   g.strokeStyle = "#3a3f4b"; g.lineWidth = 1;
-  for (const L of [10, 20, 30]) {
-    const y = PAD_TOP + hh * (1 - L / FULL);
+  for (const L of top > FULL ? [20, 40, 60] : [10, 20, 30]) {
+    const y = PAD_TOP + hh * (1 - L / top);
     g.beginPath(); g.moveTo(0, y); g.lineTo(w, y); g.stroke();
   }
 }
 
-function labels(g, w, h, hh) {  // drawn over the bars, with a dark halo so they stay readable
+function labels(g, w, h, hh, top = FULL) {  // drawn over the bars, with a dark halo so they stay readable
   g.font = "10px system-ui, sans-serif"; g.lineWidth = 3; g.strokeStyle = "#15171c"; g.fillStyle = "#cfd4de";
   const text = (t, x, y) => { g.strokeText(t, x, y); g.fillText(t, x, y); };
-  for (const L of [10, 20, 30]) text(String(L), 2, PAD_TOP + hh * (1 - L / FULL) - 2);
+  for (const L of top > FULL ? [20, 40, 60] : [10, 20, 30]) text(String(L), 2, PAD_TOP + hh * (1 - L / top) - 2);
   const K = S.wl.length, bw = w / K;
   for (const nm of [400, 500, 600, 700]) {
     const k = S.wl.indexOf(nm);
@@ -111,25 +112,26 @@ export function drawEditors(only = null) {
   const names = EDITORS[S.setting];
   const follows = (i) => only === null || i === only || S.setting === 3 || (S.setting === 5 && i === 2);
   const lists = [...S.dists[S.setting]];
-  if (S.setting === 5) lists.push(product());
+  if (S.setting === 5) lists.push(additive() ? sum() : product());
   const tints = S.model ? S.model.tints : null;
   document.querySelectorAll("#editors .editor").forEach((ed, i) => {
     if (!follows(i)) return;
     const cv = ed.querySelector("canvas");
     const [g, w, h] = plotArea(cv);
     const levels = lists[i], K = levels.length, bw = w / K, hh = h - PAD_TOP - PAD_BOTTOM;
-    grid(g, w, hh);
+    const top = S.setting === 5 && i === 2 && additive() ? 2 * FULL : FULL;  // the sum reaches 60
+    grid(g, w, hh, top);
     const gap = K <= 61 ? 1 : 0;
     for (let k = 0; k < K; k++) {
       const t = tints ? tints[k] : [0.6, 0.6, 0.6];
       g.fillStyle = `rgb(${t[0] * 255},${t[1] * 255},${t[2] * 255})`;
-      const bh = hh * levels[k] / FULL;
+      const bh = hh * levels[k] / top;
       g.fillRect(k * bw + gap, PAD_TOP + hh - bh, Math.max(1, bw - 2 * gap), bh);
     }
     // the outline of the distribution, in a colour that stands out from the panel and every bar
     g.strokeStyle = OUTLINE; g.lineWidth = 1.5; g.beginPath();
     for (let k = 0; k < K; k++) {
-      const y = PAD_TOP + hh * (1 - levels[k] / FULL);
+      const y = PAD_TOP + hh * (1 - levels[k] / top);
       if (k === 0) g.moveTo(0, y); else g.lineTo(k * bw, y);
       g.lineTo((k + 1) * bw, y);
     }
@@ -139,7 +141,7 @@ export function drawEditors(only = null) {
       for (let k = 0; k < K; k++) { const y = PAD_TOP + hh * (1 - (S.dists[3][0][k] + S.dists[3][1][k]) / FULL); g.lineTo(k * bw, y); g.lineTo((k + 1) * bw, y); }
       g.stroke(); g.setLineDash([]);
     }
-    labels(g, w, h, hh);
+    labels(g, w, h, hh, top);
     const active = i < names.length && S.active[S.setting] === i;
     ed.classList.toggle("active", active && names.length > 1);
     if (i >= names.length) return;

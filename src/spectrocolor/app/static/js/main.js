@@ -38,7 +38,8 @@ function succeeded(kind) { if (errorKind === kind) dismissError(); }
 function requestBody() {
   const e = evalSpec();
   const body = {step_nm: S.step, observer: S.observer, display: S.display, normalise: S.normalise,
-    gamut: S.gamut, spectra: e.spectra, pairs: e.pairs};
+    gamut: S.gamut, spectra: e.request ? e.request.spectra : e.spectra, pairs: e.pairs};
+  if (e.request && e.request.additive) body.additive = e.request.additive;  // setting 5's spotlights
   if (S.adaptation) body.adaptation = S.adaptation;
   if (e.illuminant) body.illuminant = e.illuminant;
   return body;
@@ -180,9 +181,33 @@ function undoButtons() {
 }
 
 function doUndo(back) {
+  const mode = S.mode5;
   if (!(back ? undo() : redo())) { say(back ? "nothing to undo in this setting" : "nothing to redo"); return; }
-  update();
+  if (S.mode5 !== mode) selectSetting(S.setting, false);  // setting 5's mode came back: its view too
+  else update();
 }
+
+// ---- issue 28 item 7: setting 5 as filters in series (subtractive) or two spotlights (additive)
+function showMode5() {
+  $("mode5").hidden = S.setting !== 5;
+  for (const r of document.querySelectorAll("#mode5 input")) r.checked = r.value === S.mode5;
+}
+/** Switch setting 5's mode (one undo step); the two filters stay as they are. */
+function setMode5(mode) {
+  if (S.setting !== 5 || mode === S.mode5) return;
+  remember();
+  S.mode5 = mode;
+  selectSetting(5, false);
+  say(mode === "additive"
+    ? "two spotlights, one filter each, on a white screen: where they overlap the lights add (on the diagram, on the dashed line)"
+    : "one light through both filters: the transmittances multiply");
+}
+function setupMode5() {
+  document.querySelectorAll("#mode5 input").forEach((r) => r.addEventListener("change", () => {
+    if (r.checked) { setMode5(r.value); focusBars(); }  // the keys go back to the bars, as after an option
+  }));
+}
+// ---- end of item 7's part
 
 // ---------------------------------------------------------------- settings and options
 function selectSetting(n, push = true) {
@@ -197,6 +222,7 @@ function selectSetting(n, push = true) {
   const count = evalSpec().spectra.length;
   buildEditors(update); buildPatches(); buildCards(count); buildPoints(count);
   presetButtons(update, say); actionButtons(); say("");
+  showMode5();
   $("emitted-box").hidden = true;
   refreshPhoto();
   if (push) history.pushState({setting: n}, "", stateURL());
@@ -369,6 +395,7 @@ function onKey(ev) {
     case "s": case "S": saveSlot(); break;
     case "0": recall(S.setting); break;
     case "9": COMMANDS.pair(); break;
+    case "m": case "M": if (S.setting === 5) setMode5(S.mode5 === "additive" ? "series" : "additive"); else handled = false; break;
     default:
       if (/^[1-8]$/.test(ev.key)) applyPreset(ev.key, update, say); else handled = false;
   }
@@ -525,6 +552,7 @@ function loadState(search) {
   return onPopState();
 }
 function showURLState(setting) {
+  if (setting === 5) S.mode5 = readURLOptions(location.search).mode5;  // &m=add: two spotlights
   const d = readURLDistributions(location.search, setting, S.wl.length);
   if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }
   syncControls();
@@ -583,6 +611,7 @@ async function init() {
   });
   window.addEventListener("resize", () => drawEditors());
   window.addEventListener("popstate", onPopState);
+  setupMode5();  // setting 5's mode switch (issue 28 item 7)
   setupProjector();  // key P, the Projector button (issue 28 item 4)
   setupSnapshot({say, fail});  // Picture SVG / PNG (issue 28 item 5)
   mountDemos({explorer: true, where: () => `setting${S.setting}`, title: () => `Demos · setting ${S.setting}`,

@@ -5,6 +5,8 @@ import {S, remember} from "./state.js";
 import {setLevel} from "./editors.js";
 
 const copy = (a) => a.slice();
+/** Setting 5's defaults: filters in series, or (issue 28 item 7) two spotlights. */
+const setting5List = (p) => (S.mode5 === "additive" ? p.setting5_additive : p.setting5);
 
 /** Key `key` in the current setting: load that default (one undo step). */
 export function applyPreset(key, update, say) {
@@ -30,7 +32,7 @@ export function applyPreset(key, update, say) {
     if (qs) { load(1, qs.left, `${qs.name} 1`); load(2, qs.right, `${qs.name} 2`); }
     if (!qi && !qs) return;
   } else {
-    const q = find(n === 3 ? p.setting3 : p.setting5); if (!q) return;
+    const q = find(n === 3 ? p.setting3 : setting5List(p)); if (!q) return;
     const parts = q.name.split(":")[0].split(n === 3 ? " / " : " and ");
     load(0, q.left, parts[0].trim()); load(1, q.right, (parts[1] || parts[0]).trim());
   }
@@ -49,7 +51,7 @@ export function presetButtons(update, say) {
   if (n === 2) items = [group("left"), ...p.setting2.left.map((q) => btn("left", q)), group("right"), ...p.setting2.right.map((q) => btn("right", q))];
   if (n === 3) items = p.setting3.map((q) => btn("pair", q));
   if (n === 4) items = [group("illuminant"), ...p.setting4.illuminants.map((q) => btn("ill", q)), group("samples"), ...p.setting4.samples.map((q) => btn("pair", q))];
-  if (n === 5) items = p.setting5.map((q) => btn("pair", q));
+  if (n === 5) items = setting5List(p).map((q) => btn("pair", q));
   fill($("presets"), items);
   $("presets").querySelectorAll("button").forEach((b) => b.addEventListener("click", () => {
     if (n === 2) S.active[2] = b.dataset.group === "left" ? 0 : 1;

@@ -10,7 +10,7 @@
 
 import {$} from "./dom.js";
 import {S, EDITORS, FULL, SETTING_NAMES} from "./state.js";
-import {displayName, product} from "./view.js";
+import {displayName, product, additive, sum} from "./view.js";
 
 const NS = "http://www.w3.org/2000/svg";
 const INK = "#1b1d22", MUTED = "#4d5463", GRID = "#d5d8de", FONT = "system-ui, -apple-system, 'Segoe UI', Roboto, Arial, sans-serif";
@@ -162,7 +162,10 @@ export function buildSVG() {
   const afterPatches = patchRow(body, 70);
   // graphs (left) and the diagram (right)
   const roles = EDITORS[S.setting], lists = S.dists[S.setting].map((d, i) => [d, `${roles[i]}: ${displayName(S.setting, i)}`, quantity(S.setting, i)]);
-  if (S.setting === 5) lists.push([product(), "through both filters (product)", "transmittance (level 0–30 = 0–100 %)"]);
+  if (S.setting === 5) {
+    lists.push(additive() ? [sum(), "both lights (sum, the spotlights' overlap)", "level 0–60 (two full spotlights)"]
+      : [product(), "through both filters (product)", "transmittance (level 0–30 = 0–100 %)"]);
+  }
   const gw = 700, gh = 250;
   let y = afterPatches + 16;
   lists.forEach(([levels, title, yl]) => { body.append(graph(20, y, gw, gh, levels, title, yl)); y += gh + 10; });

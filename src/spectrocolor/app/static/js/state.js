@@ -12,6 +12,7 @@ const perSetting = (f) => Object.fromEntries(SETTINGS.map((n) => [n, f(n)]));
 export const S = {
   setting: 1, step: 10, observer: "1931", display: "sRGB", gamut: "flag", normalise: "fixed",
   adaptation: null, filledLocus: false,
+  mode5: "series",  // setting 5: "series" (filters in series, subtractive) or "additive" (two spotlights)
   presets: null, model: null, wl: [], options: null,
   dists: {}, names: {}, edited: {}, cursor: {}, active: perSetting(() => 0),
   undo: perSetting(() => []), redo: perSetting(() => []),
@@ -24,8 +25,11 @@ export const S = {
 // ---------------------------------------------------------------- undo / redo
 const UNDO_DEPTH = 200;
 const snapshot = (n) => ({dists: S.dists[n].map((d) => d.slice()), names: S.names[n].slice(),
-  edited: S.edited[n].slice()});
-function restore(n, snap) { S.dists[n] = snap.dists; S.names[n] = snap.names; S.edited[n] = snap.edited; }
+  edited: S.edited[n].slice(), mode5: n === 5 ? S.mode5 : undefined});
+function restore(n, snap) {
+  S.dists[n] = snap.dists; S.names[n] = snap.names; S.edited[n] = snap.edited;
+  if (n === 5 && snap.mode5) S.mode5 = snap.mode5;  // setting 5's mode switch is one undo step too
+}
 
 /** Call before an action changes setting n's distributions: it becomes one undo step. */
 export function remember(n = S.setting) {
@@ -75,6 +79,7 @@ export function resampleAll(fromWl, toWl, step) {
 
 // ---------------------------------------------------------------- the URL
 // ?s=setting&b=step&o=observer&d=display&g=gamut&n=normalisation&a=adaptation&l0=…&t0=name&e=edited flags
+// &m=add: setting 5 as two spotlights (additive mixing); absent: filters in series
 // Levels: "i" + one base-36 digit per bin (whole levels), "t" + two digits per bin (tenths),
 // or "f" + comma-separated numbers (anything else, e.g. a CIE illuminant scaled to 30).
 const DIGITS = "0123456789abcdefghijklmnopqrstuvwxyz";
@@ -103,6 +108,7 @@ export function stateURL() {
   const q = new URLSearchParams({s: S.setting, b: S.step, o: S.observer, d: S.display, g: S.gamut,
     n: S.normalise});
   if (S.adaptation) q.set("a", S.adaptation);
+  if (S.setting === 5 && S.mode5 === "additive") q.set("m", "add");
   S.dists[S.setting].forEach((d, i) => {
     q.set(`l${i}`, encodeLevels(d));
     q.set(`t${i}`, S.names[S.setting][i] || "");
@@ -119,7 +125,7 @@ export function readURLOptions(search) {
     setting: SETTINGS.includes(setting) ? setting : null,
     step: q.has("b") ? Number(q.get("b")) : null,
     observer: q.get("o"), display: q.get("d"), gamut: q.get("g"), adaptation: q.get("a"),
-    normalise: q.get("n"),
+    normalise: q.get("n"), mode5: q.get("m") === "add" ? "additive" : "series",
   };
 }
 
@@ -141,7 +147,7 @@ export function readURLDistributions(search, n, bins) {
 const WORK_KEY = "spectrocolor:work";
 export function persist() {
   try {
-    localStorage.setItem(WORK_KEY, JSON.stringify({step: S.step, dists: S.dists, names: S.names, edited: S.edited}));
+    localStorage.setItem(WORK_KEY, JSON.stringify({step: S.step, dists: S.dists, names: S.names, edited: S.edited, mode5: S.mode5}));
   } catch { /* storage full or disabled: the URL still holds the current setting */ }
 }
 /** The 400–700 nm grid of a bin width (nm). */
@@ -159,6 +165,7 @@ export function readPersisted(step) {
       && w.dists[n].every((d) => Array.isArray(d) && d.length === bins && d.every((v) => Number.isFinite(v) && v >= 0 && v <= FULL)));
     if (!ok) return false;
     S.dists = w.dists; S.names = w.names; S.edited = w.edited;
+    S.mode5 = w.mode5 === "additive" ? "additive" : "series";
     if (w.step !== step) resampleAll(gridOf(w.step), gridOf(step), step);
     return true;
   } catch { return false; }

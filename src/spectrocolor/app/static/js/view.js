@@ -20,11 +20,23 @@ export function evalSpec() {
     case 2: case 3: return {spectra: [d[0], d[1]], labels: [name(0), name(1)], pairs: [[0, 1]]};
     case 4: return {spectra: [Array(S.wl.length).fill(FULL), d[1], d[2]], illuminant: d[0],
       labels: [`illuminant ${name(0)} (perfect white)`, name(1), name(2)], pairs: [[1, 2]]};
-    case 5: return {spectra: [Array(S.wl.length).fill(FULL), d[0], d[1], product()],
-      labels: ["initial light (E)", name(0), name(1), "through both filters"], pairs: []};
+    case 5: {
+      const E = Array(S.wl.length).fill(FULL);
+      if (additive()) {  // issue 28 item 7: the server adds the two lights (mixing.additive_mix)
+        return {spectra: [E, d[0], d[1], sum()], request: {spectra: [E, d[0], d[1]], additive: [[1, 2]]},
+          labels: ["one spotlight, no filter (E)", `light 1: ${name(0)}`, `light 2: ${name(1)}`, "both lights (overlap)"], pairs: []};
+      }
+      return {spectra: [E, d[0], d[1], product()],
+        labels: ["initial light (E)", name(0), name(1), "through both filters"], pairs: []};
+    }
   }
 }
 export function product() { const [a, b] = S.dists[5]; return a.map((v, k) => v * b[k] / FULL); }
+// ---- issue 28 item 7: setting 5 as two spotlights (additive mixing)
+/** Setting 5 shows two spotlights, each through its filter, overlapping on a white screen. */
+export const additive = () => S.setting === 5 && S.mode5 === "additive";
+/** The overlap of the two spotlights: the sum of the lights, wavelength by wavelength (0–60). */
+export function sum() { const [a, b] = S.dists[5]; return a.map((v, k) => v + b[k]); }
 
 /** A distribution's name, "(edited)" once its bars were changed by hand. */
 export function displayName(n, i) {
@@ -47,8 +59,10 @@ export function buildPatches() {
     case 2: case 3: boxes = [patchbox("split", "", patch(0), patch(1))]; break;
     case 4: boxes = [patchbox("", "", patch(0, {inner: [patch(1, {cls: "inner", style: "left:14%"}),
       patch(2, {cls: "inner", style: "left:60%"})]}))]; break;
-    case 5: boxes = [patchbox("", "", patch(0, {inner: patch(3, {cls: "inner", style: "left:37%"})})),
-      patchbox("filters", "", patch(1), patch(2))]; break;
+    case 5: boxes = additive()
+      ? [patchbox("spots", "", patch(1), patch(3, {cls: "overlap"}), patch(2)), patchbox("filters", "", patch(0))]
+      : [patchbox("", "", patch(0, {inner: patch(3, {cls: "inner", style: "left:37%"})})),
+        patchbox("filters", "", patch(1), patch(2))]; break;
   }
   fill($("patches"), boxes);
 }
