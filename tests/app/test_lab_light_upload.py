@@ -89,7 +89,7 @@ def test_fl2_through_a_file_is_fl2():
 @pytest.mark.parametrize(("name", "content", "message"), [
     ("argyll.sp", (DATA / "argyll.sp").read_bytes(), "argyll.sp: covers 380-730 nm; the light lab needs 380-780 nm"),
     ("notes.txt", b"hello, world\n", "notes.txt"),
-    ("dark.csv", "wavelength_nm,x\n".encode() + b"".join(f"{w},0\n".encode() for w in range(380, 781, 5)),
+    ("dark.csv", b"wavelength_nm,x\n" + b"".join(f"{w},0\n".encode() for w in range(380, 781, 5)),
      "dark.csv: its light has no power in 380-780 nm"),
     ("binary.csv", bytes(range(256)) * 8, "binary.csv"),
 ])

@@ -40,7 +40,7 @@ def _router_routes(module: str) -> list[tuple[str, str]]:
 
 ROUTES = [("GET", "/"), ("GET", "/api/options"), ("GET", "/api/presets"), ("GET", "/api/demos"),
           ("POST", "/api/model"), ("POST", "/api/evaluate"), ("POST", "/api/metamer"),
-          ("POST", "/api/import"), ("POST", "/api/export"),
+          ("POST", "/api/import"), ("POST", "/api/export"), ("POST", "/api/lab/light/upload"),
           *_router_routes("spectrocolor.app.lab_routes"),
           *_router_routes("spectrocolor.app.relight_routes")]
 
