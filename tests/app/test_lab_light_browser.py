@@ -134,6 +134,13 @@ def test_an_uploaded_measurement_file_shows_the_librarys_tm30_and_survives_a_rel
     heights = page.eval_on_selector_all("#chart-rcs rect.bar", "bars => bars.map(b => b.getBBox().height)")
     assert max(heights) > 20  # FL2 loses ~10-20 % chroma in the reds: visible bars, not hairlines
     page.screenshot(path=str(artifacts_dir / "lab_light_upload.png"), full_page=True)
+    page.keyboard.press("Control+z")  # back to the first upload, then to the named light
+    page.wait_for_function("document.querySelector('#numbers dd').textContent.startsWith('sekonic_c800.csv')")
+    page.keyboard.press("Control+z")
+    page.wait_for_function("document.querySelector('#numbers dd').textContent === 'FL2'")
+    assert not page.is_disabled("#kind option[value=file]")  # the latest upload is one choice away
+    page.select_option("#kind", "file")
+    page.wait_for_function("document.querySelector('#numbers dd').textContent === 'fl2.csv — FL2'")
     page.reload()  # the upload is kept in the tab's sessionStorage
     page.wait_for_selector("body[data-ready=true]")
     assert shown_numbers(page)["light"] == "fl2.csv — FL2"

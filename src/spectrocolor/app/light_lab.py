@@ -217,7 +217,7 @@ def read_light_file(folder: str, content: str | bytes, suffix: str) -> dict:
     """Upload-worker side: write the file into the server's temporary ``folder`` and read its light.
 
     Bytes are written as they came, so the reader decodes them as it decodes any file; text as
-    UTF-8. Whatever a hostile file makes a reader raise becomes one :class:`SpectrumError`
+    UTF-8. Whatever a hostile file makes a reader raise becomes one :class:`~spectrocolor.errors.SpectrumError`
     naming :data:`FILE_NAME` (the route puts the user's file name in), never a traceback.
 
     Examples

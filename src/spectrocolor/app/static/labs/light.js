@@ -90,10 +90,14 @@ function commit(change, replace = false) {
   render();
 }
 
+/** A state from the undo history, still holding the latest upload when it had none (undoing an upload
+ * goes back to the light before it; the uploaded light stays one choice away under Light). */
+const keepingUpload = (restored) => ({ ...restored, file: restored.file || storedUpload() });
+
 function undo() {
   if (!undoStack.length) return;
   redoStack.push(structuredClone(state));
-  state = undoStack.pop();
+  state = keepingUpload(undoStack.pop());
   history.replaceState(null, "", encode(state));
   render();
 }
@@ -101,7 +105,7 @@ function undo() {
 function redo() {
   if (!redoStack.length) return;
   undoStack.push(structuredClone(state));
-  state = redoStack.pop();
+  state = keepingUpload(redoStack.pop());
   history.replaceState(null, "", encode(state));
   render();
 }
