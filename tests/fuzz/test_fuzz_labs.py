@@ -6,6 +6,9 @@ Bodies are drawn by hypothesis from the fields each route knows, with values of 
 
 from __future__ import annotations
 
+import base64
+from pathlib import Path
+
 import pytest
 
 pytest.importorskip("fastapi")
@@ -72,3 +75,43 @@ def test_any_colour_for_the_reflectance_lab(client, x, y, Y):
 def test_mismatch_refuses_bad_requests_clearly(client, body):
     response = client.post("/api/lab/solid/mismatch", json=body)
     assert response.status_code == 422 and isinstance(response.json()["error"], str)
+
+
+# ---- the light lab's uploaded SPD (issue 28 item 6): the upload route and the "spd" source ----------
+
+LAMPS = [(Path(__file__).parents[1] / "data" / "io" / name).read_bytes()
+         for name in ("sekonic_c800.csv", "cl500a_memory.csv", "argyll.sp")]
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(values=st.lists(st.floats(-1, 1e6) | st.integers(-5, 10**30) | st.text(max_size=4) | st.none(),
+                       min_size=0, max_size=90) | st.lists(st.just(0.0), min_size=81, max_size=81),
+       label=st.text(max_size=250) | st.none() | st.integers())
+def test_an_spd_light_of_any_shape(client, values, label):
+    body = {"kind": "spd", "values": values, **({"label": label} if label is not None else {})}
+    response = client.post("/api/lab/light", json={"source": body})
+    check(response)
+    if response.status_code == 200:
+        assert response.json()["label"] == label and len(values) == 81
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.binary(max_size=3000) | st.sampled_from(LAMPS).flatmap(
+           lambda lamp: st.integers(0, len(lamp)).map(lambda n: lamp[:n])),  # cut anywhere
+       filename=st.text(min_size=0, max_size=220) | st.sampled_from(["lamp.csv", "lamp.json", "a.sp"]),
+       raw=st.none() | st.text(max_size=40) | st.integers(),
+       extra=st.dictionaries(st.sampled_from(["content", "step_nm", "scale", "observer", "unknown"]), SCALARS,
+                             max_size=2))
+def test_hostile_light_uploads_get_a_light_or_one_clear_error(client, data, filename, raw, extra):
+    body = {"filename": filename, "content_base64": base64.b64encode(data).decode() if raw is None else raw,
+            **extra}
+    response = client.post("/api/lab/light/upload", json=body)
+    assert response.status_code in (200, 422, 429), response.text[:300]
+    answer = response.json()
+    if response.status_code == 200:
+        # exact: x / max(x) at the maximum is 1.0 (IEEE division of a number by itself), rounded to 6 decimals
+        assert len(answer["spd"]) == 81 and max(answer["spd"]) == 1.0 and min(answer["spd"]) >= 0
+        assert "\0" not in answer["label"] and answer["label"].startswith(filename)
+    else:
+        error = answer["error"]
+        assert isinstance(error, str) and 0 < len(error) < 2000 and "\n" not in error and "\0light" not in error

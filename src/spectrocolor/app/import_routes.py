@@ -8,6 +8,11 @@ byte-order mark, UTF-8, else cp1252 where unambiguous) or its text. The body (up
 hostile file never holds the event loop and other clients are answered meanwhile; at most
 :data:`MAX_PARSERS` files are read at a time, a request waits up to :data:`PARSER_WAIT_S` for a
 turn, then gets 429. Every error has the server's one shape, ``{"error": "..."}``.
+
+``POST /api/lab/light/upload`` is the light-source lab's upload: the same body, decoding, pool
+and budgets, the file read by the same reader (:func:`spectrocolor.read_spectra`), but its first
+spectrum resampled to the lab's 380-780 nm grid (:func:`spectrocolor.app.light_lab.read_light_file`)
+instead of the explorer's 400-700 nm levels.
 """
 
 from __future__ import annotations
@@ -15,6 +20,7 @@ from __future__ import annotations
 import base64
 import binascii
 import json
+import tempfile
 from typing import Annotated
 
 from fastapi import APIRouter, Request
@@ -24,7 +30,7 @@ from starlette.concurrency import run_in_threadpool
 
 from ..errors import SpectrumError
 from ..interpolation import METHODS as INTERPOLATION_METHODS
-from . import compute
+from . import compute, light_lab
 from .choices import Observer, Step, choice
 from .guards import MAX_JSON_DEPTH, client_key, json_depth
 from .request_models import StrictRequest, validation_message
@@ -131,3 +137,43 @@ def _import(decoded: tuple[ImportRequest, bytes | str], parsers: UploadParser, c
     return FiniteJSONResponse(parsers.parse(req.filename, content, suffix, float(req.step_nm),
                                             req.method, req.scale, MAX_IMPORT_SPECTRA,
                                             client=client, observer=req.observer))
+
+
+@router.post("/api/lab/light/upload")
+async def light_upload(request: Request):
+    """The light in an uploaded file (an :class:`ImportRequest`; only ``filename`` and the content
+    matter) for the light-source lab: ``label``, ``spd`` (81 values at 380-780 nm, peak 1) and
+    ``note``. Decoded, validated and read in the upload pool's workers, as ``POST /api/import``."""
+    parsers: UploadParser = request.app.state.parsers
+    client = client_key(request)
+    try:
+        decoded = await run_in_threadpool(parsers.pool.run, _decoded_import,
+                                          await request.body(), client=client)
+        if isinstance(decoded, str):
+            return JSONResponse({"error": decoded}, status_code=422)
+        return await run_in_threadpool(_light, decoded, parsers, client)
+    except Busy:
+        return JSONResponse({"error": "the server is busy reading other files; try again"},
+                            status_code=429)
+    except (WorkerTimeout, WorkerDied):
+        raise SpectrumError("the upload could not be read (too large or too slow to decode); "
+                            "upload a smaller file") from None
+
+
+def _light(decoded: tuple[ImportRequest, bytes | str], parsers: UploadParser, client) -> Response:
+    """The light-lab upload's answer, read in an upload worker (a private temporary folder)."""
+    req, content = decoded
+    suffix = ".json" if req.filename.lower().endswith(".json") else ".csv"  # as the Load: formats are sniffed
+    with tempfile.TemporaryDirectory(prefix="spectrocolor-upload-") as folder:
+        try:
+            answer = parsers.pool.run(light_lab.read_light_file, folder, content, suffix, client=client)
+        except SpectrumError as exc:
+            raise SpectrumError(str(exc).replace(light_lab.FILE_NAME, req.filename)) from None
+        except WorkerTimeout:
+            raise SpectrumError(f"{req.filename}: reading it took more than {parsers.pool.timeout_s:g} s "
+                                "and was stopped; upload a smaller file") from None
+        except WorkerDied:
+            raise SpectrumError(f"{req.filename}: the reader stopped on this file (out of memory?); "
+                                "upload a smaller file") from None
+    label = answer["label"].replace(light_lab.FILE_NAME, req.filename)[:light_lab.MAX_LABEL_CHARS]
+    return FiniteJSONResponse({**answer, "label": label})

@@ -130,12 +130,24 @@ class TemperatureLight(BaseModel):
     temperature_K: Annotated[float, Field(ge=MIN_TEMPERATURE_K, le=MAX_TEMPERATURE_K)]
 
 
-class LightRequest(BaseModel):
-    """One light (named, of a kind at a temperature, or a mixture of Gaussian primaries) and the
-    display for the samples."""
+class SpdLight(BaseModel):
+    """A measured light as the lab's upload answered it (``POST /api/lab/light/upload``): its
+    label and its powers at 380, 385, …, 780 nm (not negative; not all zero, checked by
+    :func:`~spectrocolor.app.light_lab.measured_spd`)."""
 
     model_config = ConfigDict(extra="forbid")
-    source: Annotated[NamedLight | TemperatureLight | LedLight, Field(discriminator="kind")]
+    kind: Literal["spd"]
+    label: Annotated[str, Field(min_length=1, max_length=light_lab.MAX_LABEL_CHARS)]
+    values: Annotated[list[Annotated[float, Field(ge=0.0, allow_inf_nan=False)]],
+                      Field(min_length=light_lab.WAVELENGTHS_NM.size, max_length=light_lab.WAVELENGTHS_NM.size)]
+
+
+class LightRequest(BaseModel):
+    """One light (named, of a kind at a temperature, a mixture of Gaussian primaries, or a
+    measured SPD) and the display for the samples."""
+
+    model_config = ConfigDict(extra="forbid")
+    source: Annotated[NamedLight | TemperatureLight | LedLight | SpdLight, Field(discriminator="kind")]
     display: Annotated[str, Field(max_length=40)] = "sRGB"
 
 

@@ -1,8 +1,10 @@
 """The explorer's light-source lab: a light's colour rendering, every number from the library.
 
-A light is a CIE illuminant, a Planckian radiator or CIE daylight of any temperature, or a
+A light is a CIE illuminant, a Planckian radiator or CIE daylight of any temperature, a
 mixture of up to four LED-like primaries (Gaussian in wavelength, each with a peak, a full width
-at half maximum and a power). For it the page shows what :mod:`spectrocolor.lighting` computes:
+at half maximum and a power), or a measured SPD from an uploaded file (read by
+:func:`spectrocolor.read_spectra`, the explorer's Load reader, in the upload workers:
+:func:`read_light_file`). For it the page shows what :mod:`spectrocolor.lighting` computes:
 CCT and Duv, CIE 13.3 Ra and R1-R14, CIE 224 / TM-30 Rf and Rg with the 16 hue bins and the colour
 vector graphic, the luminous efficacy of radiation and the melanopic daylight efficacy ratio, and
 the 14 CIE test-colour samples rendered under the light beside the same samples under the CRI's
@@ -16,14 +18,21 @@ CIE 13.3-1995, CIE 224:2017, ANSI/IES TM-30-20, CIE S 026:2018; see :mod:`spectr
 
 from __future__ import annotations
 
+import csv
+from pathlib import Path
+
 import numpy as np
 
-from ..errors import ColorimetryError
+from ..errors import ColorimetryError, SpectrumError
 from ..illuminants import resolve_illuminant, temperature_light
 from .choices import light_kind_options
 
 WAVELENGTHS_NM = np.arange(380.0, 781.0, 5.0)
 MAX_PRIMARIES = 4
+#: Longest label of an uploaded light (its file's name and the spectrum's), characters.
+MAX_LABEL_CHARS = 200
+#: Stands for the uploaded file's name in messages made in a worker (the route puts the name in).
+FILE_NAME = "\0light file\0"
 TCS_NAMES = ("TCS01 light greyish red", "TCS02 dark greyish yellow", "TCS03 strong yellow green",
              "TCS04 moderate yellowish green", "TCS05 light bluish green", "TCS06 light blue",
              "TCS07 light violet", "TCS08 light reddish purple", "TCS09 strong red", "TCS10 strong yellow",
@@ -92,12 +101,151 @@ def light_spd(source: dict):
             raise ColorimetryError("name: the lab takes a named light, e.g. 'FL2', 'blackbody:3000' or 'D:5000'")
         values = light.spd(WAVELENGTHS_NM).values
         return values / values.max(), light.label
+    if kind == "spd":
+        return measured_spd(source.get("values")), str(source.get("label", "uploaded light"))[:MAX_LABEL_CHARS]
     if kind == "leds":
         spd = led_mixture(source.get("peaks_nm", ()), source.get("widths_nm", ()), source.get("powers", ()))
         peaks = ", ".join(f"{p:g}" for p in np.asarray(source["peaks_nm"], dtype=float).reshape(-1))
         return spd, f"LED mixture ({peaks} nm)"
     raise ColorimetryError("source: expected {'kind': 'named', 'name': …}, {'kind': 'temperature', 'light': …, "
-                           "'temperature_K': …} or {'kind': 'leds', 'peaks_nm': …, …}")
+                           "'temperature_K': …}, {'kind': 'leds', 'peaks_nm': …, …} or {'kind': 'spd', "
+                           "'label': …, 'values': […]}")
+
+
+def measured_spd(values) -> np.ndarray:
+    """A measured SPD on :data:`WAVELENGTHS_NM` (as :func:`light_from_file` gives it), peak 1.
+
+    Parameters
+    ----------
+    values : sequence of float, length ``len(WAVELENGTHS_NM)`` (81)
+        Relative spectral power at 380, 385, …, 780 nm: finite, not negative, not all zero.
+
+    Returns
+    -------
+    numpy.ndarray, shape (81,)
+        The values scaled to peak 1.
+
+    Raises
+    ------
+    ColorimetryError
+        For another length, a non-finite or negative value, or a light without power.
+
+    Examples
+    --------
+    >>> spd = measured_spd([2.0] * 81)
+    >>> float(spd.min()), float(spd.max())
+    (1.0, 1.0)
+    """
+    try:
+        spd = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        spd = np.empty(0)
+    if spd.shape != WAVELENGTHS_NM.shape or not np.all(np.isfinite(spd)) or spd.min() < 0 or spd.max() <= 0:
+        raise ColorimetryError(f"values: give {WAVELENGTHS_NM.size} finite, non-negative powers at 380, 385, …, "
+                               "780 nm, not all zero")
+    return spd / spd.max()
+
+
+def light_from_file(path, filename: str | None = None, method: str = "linear") -> dict:
+    """The light in a measurement file, on :data:`WAVELENGTHS_NM`: what the lab's upload answers.
+
+    The file is read by :func:`spectrocolor.read_spectra` (every format the explorer's Load
+    reads: CSV, light-meter exports, spectrometer text, CGATS, TM-27, …). Its first spectrum is
+    the light; it must cover 380-780 nm (CIE 224 and TM-30 use those samples; nothing is
+    extrapolated) and is resampled there at 5 nm (``method``). Negative samples (a
+    spectrometer's dark noise) are set to zero, and the note says how many.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    filename : str, optional
+        The name shown in the label (default: the path's name).
+    method : str, default "linear"
+        Interpolation onto the lab's grid (:meth:`spectrocolor.Spectrum.resample`).
+
+    Returns
+    -------
+    dict
+        ``label`` (file name and spectrum name), ``spd`` (81 values, peak 1, 6 decimals) and
+        ``note`` (what was read and how it was resampled).
+
+    Raises
+    ------
+    SpectrumError
+        A file that cannot be read, that does not cover 380-780 nm or has no power there.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> rows = "\\n".join(f"{w},{1 + w / 1000}" for w in range(360, 831, 10))
+    >>> _ = (folder / "lamp.csv").write_text("wavelength_nm,lamp\\n" + rows + "\\n")
+    >>> light = light_from_file(folder / "lamp.csv")
+    >>> light["label"], len(light["spd"]), light["spd"][-1]
+    ('lamp.csv — lamp', 81, 1.0)
+    """
+    from ..io import read_spectra
+
+    path = Path(path)
+    name = filename or path.name
+    s = read_spectra(path)
+    values = np.asarray(s.values, dtype=float)
+    count = 1 if values.ndim == 1 else int(np.prod(values.shape[:-1]))
+    lo, hi = float(s.wavelengths_nm[0]), float(s.wavelengths_nm[-1])
+    if lo > WAVELENGTHS_NM[0] or hi < WAVELENGTHS_NM[-1]:
+        raise SpectrumError(f"{name}: covers {lo:g}-{hi:g} nm; the light lab needs 380-780 nm (CIE 224 and "
+                            "TM-30 use those samples) and never extrapolates")
+    first = s.resample(WAVELENGTHS_NM, method).values.reshape(-1, WAVELENGTHS_NM.size)[0]
+    if not np.all(np.isfinite(first)):
+        raise SpectrumError(f"{name}: its values are not all finite numbers")
+    negative = int(np.count_nonzero(first < 0))
+    first = np.clip(first, 0.0, None)
+    if first.max() <= 0:
+        raise SpectrumError(f"{name}: its light has no power in 380-780 nm")
+    spectrum = s.names[0] if s.names else ""
+    label = (f"{name} — {spectrum}" if spectrum and spectrum != name else name)[:MAX_LABEL_CHARS]
+    said = [f"read {count} spectr{'um' if count == 1 else 'a'} on {lo:g}-{hi:g} nm"
+            + (" and took the first" if count > 1 else ""),
+            f"resampled to 380-780 nm at 5 nm by {method} interpolation, scaled to peak 1"]
+    if negative:
+        said.append(f"{negative} negative sample{'s' if negative > 1 else ''} (noise) set to 0")
+    return {"label": label, "spd": np.round(first / first.max(), 6).tolist(), "note": "; ".join(said)}
+
+
+def read_light_file(folder: str, content: str | bytes, suffix: str) -> dict:
+    """Upload-worker side: write the file into the server's temporary ``folder`` and read its light.
+
+    Bytes are written as they came, so the reader decodes them as it decodes any file; text as
+    UTF-8. Whatever a hostile file makes a reader raise becomes one :class:`~spectrocolor.errors.SpectrumError`
+    naming :data:`FILE_NAME` (the route puts the user's file name in), never a traceback.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> try:
+    ...     read_light_file(folder, "wavelength_nm,x\\n400,1\\n500,2\\n", ".csv")
+    ... except SpectrumError as exc:
+    ...     print(str(exc).replace(FILE_NAME, "lamp.csv")[:42])
+    lamp.csv: covers 400-500 nm; the light lab
+    """
+    path = Path(folder) / f"upload{suffix}"
+    if isinstance(content, bytes):
+        path.write_bytes(content)
+    else:
+        path.write_text(content, encoding="utf-8")
+    try:
+        return light_from_file(path, FILE_NAME)
+    except (ValueError, csv.Error, RecursionError, UnicodeError, MemoryError) as exc:
+        # as the explorer's Load (spectrocolor.app.uploads): the file's fault, one line, never a 500
+        message = (str(exc) or exc.__class__.__name__).replace(str(path), FILE_NAME)
+        message = (message.splitlines() or [exc.__class__.__name__])[0][:300]
+        if isinstance(exc, MemoryError):
+            message = f"{FILE_NAME}: too large to read in the memory available"
+        elif not message.startswith(FILE_NAME):
+            message = f"{FILE_NAME}: cannot be read as a light ({message})"
+        raise SpectrumError(message) from None
 
 
 def _samples_rgb8(spd: np.ndarray, display: str) -> tuple[np.ndarray | None, str]:

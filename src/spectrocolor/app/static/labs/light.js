@@ -1,11 +1,22 @@
-// The light-source lab. The page describes a light (a named one, or Gaussian primaries) and shows
-// what the library computes for it (POST /api/lab/light): CCT, Duv, Ra, R1-R14, Rf, Rg, the TM-30
-// vector graphic, LER, melanopic DER and the test samples under the light and the reference.
+// The light-source lab. The page describes a light (a named one, Gaussian primaries, or a measured SPD
+// uploaded from a file) and shows what the library computes for it (POST /api/lab/light): CCT, Duv,
+// Ra, R1-R14, Rf, Rg, the TM-30 vector graphic and hue-bin charts (Rcs,hj, Rhs,hj, Rf,hj), LER,
+// melanopic DER and the test samples under the light and the reference.
+//
+// An uploaded file is read by the server (POST /api/lab/light/upload: the explorer's Load reader,
+// workers and budgets), which answers its SPD at the lab's 81 wavelengths (380-780 nm, 5 nm). The
+// page keeps that SPD in the tab's sessionStorage (one light, about 1 kB), so a reload of the tab
+// shows it again; the URL says only "kind=file", so a link opened elsewhere asks for the file.
 
 import { $, api, context, css, fmt, showError, wireCommon } from "./common.js";
 
 const DEFAULT_LEDS = [[450, 20, 1.0], [540, 60, 0.7], [620, 20, 0.8]];
-const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB" };
+const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB", file: null };
+// the uploaded light in this tab's sessionStorage: {label, spd (81 values), note}
+const STORED = "spectrocolor.lightLab.upload";
+const GRID_SIZE = 81;  // 380-780 nm at 5 nm, the lab's grid (light_lab.WAVELENGTHS_NM)
+const MAX_UPLOAD_BYTES = 1_000_000;  // the server's import_routes.MAX_IMPORT_BYTES
+let notKept = "";  // said when the URL names an uploaded light this tab no longer holds
 
 let state = structuredClone(DEFAULTS);
 // the kinds of light named by a temperature, from the server's registry: name -> {label, min_K, max_K}
@@ -25,10 +36,26 @@ function encode(s) {
   return "#" + params.toString();
 }
 
+function storedUpload() {
+  try {
+    const light = JSON.parse(sessionStorage.getItem(STORED));
+    const good = light && typeof light.label === "string" && Array.isArray(light.spd) && light.spd.length === GRID_SIZE
+      && light.spd.every((v) => Number.isFinite(v) && v >= 0) && light.spd.some((v) => v > 0);
+    return good ? { label: light.label, spd: light.spd, note: String(light.note || "") } : null;
+  } catch { return null; }  // storage refused (privacy mode) or not JSON
+}
+
 function decode(hash) {
   const params = new URLSearchParams(hash.slice(1));
   const next = structuredClone(DEFAULTS);
+  next.file = storedUpload();
+  notKept = "";
   if (params.get("kind") === "leds" || params.get("kind") === "named") next.kind = params.get("kind");
+  if (params.get("kind") === "file") {
+    if (next.file) next.kind = "file";
+    else notKept = "The link names an uploaded light that this tab does not hold (an upload is kept only in the tab "
+      + "that read it): upload the file again. Showing a named light meanwhile.";
+  }
   if (params.has("name")) next.name = params.get("name");
   if (params.has("display")) next.display = params.get("display");
   const T = Number(params.get("T"));
@@ -41,6 +68,7 @@ function decode(hash) {
 }
 
 function source(s) {
+  if (s.kind === "file" && s.file) return { kind: "spd", label: s.file.label, values: s.file.spd };
   if (s.kind === "leds") {
     return { kind: "leds", peaks_nm: s.leds.map((p) => p[0]), widths_nm: s.leds.map((p) => p[1]),
       powers: s.leds.map((p) => p[2]) };
@@ -62,10 +90,14 @@ function commit(change, replace = false) {
   render();
 }
 
+/** A state from the undo history, still holding the latest upload when it had none (undoing an upload
+ * goes back to the light before it; the uploaded light stays one choice away under Light). */
+const keepingUpload = (restored) => ({ ...restored, file: restored.file || storedUpload() });
+
 function undo() {
   if (!undoStack.length) return;
   redoStack.push(structuredClone(state));
-  state = undoStack.pop();
+  state = keepingUpload(undoStack.pop());
   history.replaceState(null, "", encode(state));
   render();
 }
@@ -73,7 +105,7 @@ function undo() {
 function redo() {
   if (!redoStack.length) return;
   undoStack.push(structuredClone(state));
-  state = redoStack.pop();
+  state = keepingUpload(redoStack.pop());
   history.replaceState(null, "", encode(state));
   render();
 }
@@ -120,6 +152,7 @@ function buildPrimaries() {
 let lastCommitted = structuredClone(state);
 
 function syncControls() {
+  $("kind").querySelector("option[value=file]").disabled = !state.file;  // before the value: it may be "file"
   $("kind").value = state.kind;
   $("name").value = state.name;
   $("display").value = state.display;
@@ -127,6 +160,11 @@ function syncControls() {
   $("temperature-out").textContent = `${state.temperature} K`;
   $("named-box").hidden = state.kind !== "named";
   $("leds-box").hidden = state.kind !== "leds";
+  if (notKept) $("file-note").textContent = notKept;
+  else if (state.file) {
+    $("file-note").textContent = `${state.kind === "file" ? "Showing" : "Uploaded"}: ${state.file.label} (${state.file.note}). `
+      + "Kept in this tab until it closes; drop another file to replace it.";
+  }
   $("temperature-box").hidden = !kinds.has(state.name);
   buildPrimaries();
   $("undo").disabled = !undoStack.length;
@@ -156,6 +194,55 @@ async function request() {
     if (dirty || JSON.stringify(source(state)) !== asked) request();
     else document.body.dataset.ready = "true";
   }
+}
+
+// ---- upload ----------------------------------------------------------------------------
+/** A file's bytes as base64 (the server decodes the text as the library's reader does). */
+async function fileBase64(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  let binary = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary);
+}
+
+async function upload(file) {
+  if (!file) return;
+  if (file.size === 0 || file.size > MAX_UPLOAD_BYTES) {
+    showError(`${file.name}: the file must be 1 to ${MAX_UPLOAD_BYTES} bytes, got ${file.size}`);
+    return;
+  }
+  $("file-note").textContent = `Reading ${file.name}…`;
+  try {
+    const light = await api("/api/lab/light/upload", { filename: file.name, content_base64: await fileBase64(file) });
+    try { sessionStorage.setItem(STORED, JSON.stringify(light)); } catch { /* not kept: said below */ }
+    notKept = "";
+    $("error").hidden = true;
+    commit({ kind: "file", file: light });
+  } catch (error) {
+    showError(error.message);
+    notKept = "";
+    syncControls();
+    if (!state.file) $("file-note").textContent = "Or drop a measurement file on the page. It must cover 380–780 nm.";
+  } finally {
+    $("file").value = "";
+  }
+}
+
+function wireUpload() {
+  $("file").addEventListener("change", (e) => upload(e.target.files[0]));
+  const files = (e) => e.dataTransfer && [...e.dataTransfer.types].includes("Files");
+  document.addEventListener("dragover", (e) => {
+    if (!files(e)) return;
+    e.preventDefault();
+    document.body.classList.add("dropping");
+  });
+  document.addEventListener("dragleave", (e) => { if (!e.relatedTarget) document.body.classList.remove("dropping"); });
+  document.addEventListener("drop", (e) => {
+    if (!files(e)) return;
+    e.preventDefault();
+    document.body.classList.remove("dropping");
+    upload(e.dataTransfer.files[0]);
+  });
 }
 
 // ---- drawing ----------------------------------------------------------------------------
@@ -260,12 +347,92 @@ function samples() {
   }));
 }
 
+// ---- TM-30 hue bins ------------------------------------------------------------------------
+const SVG = "http://www.w3.org/2000/svg";
+
+function svgNode(name, attributes, text) {
+  const node = document.createElementNS(SVG, name);
+  for (const [k, v] of Object.entries(attributes)) node.setAttribute(k, String(v));
+  if (text !== undefined) node.textContent = text;
+  return node;
+}
+
+/** The smallest symmetric range ±k·step holding every value, at least ±least. */
+const symmetric = (values, least, step) =>
+  Math.max(least, Math.ceil(Math.max(0, ...values.filter((v) => v !== null).map(Math.abs)) / step - 1e-9) * step);
+
+/** A 16-bar chart in an SVG: bars from 0 (or the range's bottom) in the bins' colours, ticks with
+ * units, each bar titled with its value; `values` may hold null (a bin without samples). */
+function barChart(svg, values, { lo, hi, ticks, tick, axis, show }) {
+  const W = 420, H = 230, box = { x: 52, y: 10, w: W - 62, h: H - 58 };
+  svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
+  const Y = (v) => box.y + box.h - ((v - lo) / (hi - lo)) * box.h;
+  const slot = box.w / 16;
+  const nodes = [];
+  for (const t of ticks) {
+    nodes.push(svgNode("line", { class: t === 0 ? "zero" : "grid", x1: box.x, x2: box.x + box.w, y1: Y(t), y2: Y(t) }));
+    nodes.push(svgNode("text", { x: box.x - 6, y: Y(t) + 4, "text-anchor": "end" }, tick(t)));
+  }
+  const base = Y(Math.max(lo, Math.min(hi, 0)));
+  values.forEach((v, j) => {
+    const x = box.x + j * slot;
+    nodes.push(svgNode("text", { x: x + slot / 2, y: box.y + box.h + 14, "text-anchor": "middle" }, String(j + 1)));
+    if (v === null) {
+      nodes.push(svgNode("text", { x: x + slot / 2, y: base - 4, "text-anchor": "middle" }, "–"));
+      return;
+    }
+    const top = Y(Math.max(lo, Math.min(hi, v)));
+    const bar = svgNode("rect", { class: "bar", x: x + slot * 0.12, width: slot * 0.76, y: Math.min(top, base),
+      height: Math.max(0.5, Math.abs(base - top)), fill: css(result.bin_rgb8[j]) });
+    bar.append(svgNode("title", {}, `bin ${j + 1}: ${show(v)}`));
+    nodes.push(bar);
+  });
+  nodes.push(svgNode("rect", { class: "axis", x: box.x, y: box.y, width: box.w, height: box.h }));
+  nodes.push(svgNode("text", { x: box.x + box.w / 2, y: H - 14, "text-anchor": "middle" }, "hue bin j (1 = red, 22.5° each)"));
+  nodes.push(svgNode("text", { x: 12, y: box.y + box.h / 2, "text-anchor": "middle",
+    transform: `rotate(-90 12 ${box.y + box.h / 2})` }, axis));
+  svg.replaceChildren(...nodes);
+}
+
+function drawBins() {
+  const { Rf_h: rf, Rcs_h: rcs, Rhs_h: rhs } = result.hue_bins;
+  const percent = rcs.map((v) => (v === null ? null : v * 100));
+  const cs = symmetric(percent, 40, 10);
+  barChart($("chart-rcs"), percent, { lo: -cs, hi: cs, ticks: [-cs, -cs / 2, 0, cs / 2, cs],
+    tick: (t) => `${t > 0 ? "+" : ""}${t.toFixed(0)}%`, axis: "Rcs,hj (%)", show: (v) => `Rcs ${v.toFixed(1)}%` });
+  const hs = symmetric(rhs, 0.5, 0.1);
+  barChart($("chart-rhs"), rhs, { lo: -hs, hi: hs, ticks: [-hs, -hs / 2, 0, hs / 2, hs],
+    tick: (t) => t.toFixed(2), axis: "Rhs,hj (no unit)", show: (v) => `Rhs ${v.toFixed(3)}` });
+  barChart($("chart-rf"), rf, { lo: 0, hi: 100, ticks: [0, 20, 40, 60, 80, 100],
+    tick: (t) => t.toFixed(0), axis: "Rf,hj", show: (v) => `Rf ${v.toFixed(1)}` });
+  const missing = rf.map((v, j) => (v === null ? j + 1 : null)).filter((j) => j !== null);
+  $("bins-note").textContent = missing.length
+    ? `Bin${missing.length > 1 ? "s" : ""} ${missing.join(", ")} hold no sample this light shows with a hue: no value (–).` : "";
+  const cell = (v, digits) => (v === null ? "—" : v.toFixed(digits));
+  $("bin-table").tBodies[0].replaceChildren(...rf.map((_, j) => {
+    const row = document.createElement("tr");
+    const head = document.createElement("th");
+    head.scope = "row"; head.textContent = String(j + 1);
+    row.append(head, ...[`${(j * 22.5).toFixed(1)}–${((j + 1) * 22.5).toFixed(1)}`, cell(percent[j], 1),
+      cell(rhs[j], 3), cell(rf[j], 1)].map((text) => Object.assign(document.createElement("td"), { textContent: text })));
+    return row;
+  }));
+  const range = (values, digits, unit = "") => {
+    const known = values.filter((v) => v !== null);
+    return known.length ? `${Math.min(...known).toFixed(digits)}${unit} to ${Math.max(...known).toFixed(digits)}${unit}` : "none";
+  };
+  $("chart-rcs").setAttribute("aria-description", `16 bars, from ${range(percent, 1, "%")}; the values are in the table below.`);
+  $("chart-rhs").setAttribute("aria-description", `16 bars, from ${range(rhs, 3)}; the values are in the table below.`);
+  $("chart-rf").setAttribute("aria-description", `16 bars, from ${range(rf, 1)}; the values are in the table below.`);
+}
+
 function paint() {
   if (!result) return;
   numbers();
   drawSpd();
   drawGraphic();
   samples();
+  drawBins();
 }
 
 async function start() {
@@ -295,6 +462,7 @@ async function start() {
   $("remove").addEventListener("click", () => commit({ leds: state.leds.slice(0, -1) }));
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
+  wireUpload();
   wireCommon(undo, redo);
   window.addEventListener("popstate", () => { state = decode(location.hash); render(); });
   window.addEventListener("resize", paint);
