@@ -40,6 +40,9 @@ LAB_WORKERS = 2
 #: Longest wait for a free worker, s (then 429), and longest computation, s.
 LAB_WAIT_S, LAB_TIMEOUT_S = 10.0, 60.0
 
+#: The header of a busy answer: the pages try the same request again after this many seconds.
+BUSY_HEADERS = {"Retry-After": "1"}
+
 _workers = WorkerPool(LAB_WORKERS, LAB_WAIT_S, LAB_TIMEOUT_S)
 router.on_shutdown.append(_workers.close)
 
@@ -56,7 +59,7 @@ def _computed(request: Request, function, *args):
         answer, used_numpy_path = _workers.run(call_noting_numpy_path, function, *args, client=client)
     except Busy:
         return JSONResponse({"error": "the server is busy computing for other pages; try again"},
-                            status_code=429)
+                            status_code=429, headers=BUSY_HEADERS)
     except WorkerTimeout:
         raise ColorimetryError(f"this computation took more than {LAB_TIMEOUT_S:g} s and was "
                                "stopped; choose other settings") from None
