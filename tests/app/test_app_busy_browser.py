@@ -11,6 +11,8 @@ from spectrocolor.app import reflectance_lab as lab
 
 pytestmark = pytest.mark.browser
 
+REFLECTANCE = "labs/reflectance#light=D65&step=5&x=0.3&y=0.33&Y=20"
+
 # Records every text the note shows (a poll every 10 ms: the note may come and go quickly).
 WATCH = """() => { window.__busySeen = new Set();
     setInterval(() => { const n = document.getElementById('busy-status');
@@ -35,7 +37,7 @@ def busy_then_answer(page, pattern, refusals, retry_after="0.4"):
 
 
 def test_a_busy_lab_request_is_queued_retried_and_answered(browser, base_url, artifacts_dir):
-    page, errors = open_lab(browser, base_url + "labs/reflectance#light=D65&step=5&x=0.3&y=0.33&Y=20", timeout_ms=120000)
+    page, errors = open_lab(browser, base_url + REFLECTANCE, timeout_ms=120000)
     page.evaluate(WATCH)
     seen = busy_then_answer(page, "**/api/lab/reflectance", refusals=2)
     page.fill("#x", "0.6")
@@ -56,7 +58,7 @@ def test_a_busy_lab_request_is_queued_retried_and_answered(browser, base_url, ar
 
 
 def test_a_slow_lab_request_shows_computing(browser, base_url):
-    page, errors = open_lab(browser, base_url + "labs/reflectance#light=D65&step=5&x=0.3&y=0.33&Y=20", timeout_ms=120000)
+    page, errors = open_lab(browser, base_url + REFLECTANCE, timeout_ms=120000)
     page.evaluate(WATCH)
 
     def slow(route):
