@@ -114,8 +114,13 @@ def test_the_labs_tab_bar_links_the_settings_and_labs(browser, base_url, artifac
         assert not errors, errors
 
 
-def test_the_explorer_with_the_hand_off_buttons_has_no_serious_violations(browser, base_url):
-    with open_page(browser, base_url + "?s=4") as page:
+@pytest.mark.parametrize("size", [DESKTOP, PHONE], ids=["desktop", "phone"])
+def test_the_explorer_with_the_hand_off_buttons_has_no_serious_violations(browser, base_url, artifacts_dir, size):
+    with open_page(browser, base_url + "?s=4", size) as page:
+        if page.is_visible("#menu") and not page.is_visible("#handoff-solid"):
+            page.click("#menu")  # the phone's Options panel
+        page.locator("#handoff").scroll_into_view_if_needed()
+        page.screenshot(path=str(artifacts_dir / f"handoff_buttons_{size[0]}.png"))
         page.add_script_tag(path=str(AXE))
         result = json.loads(page.evaluate("async () => JSON.stringify(await axe.run(document))"))
         violations = [v for v in result["violations"] if v["impact"] in ("serious", "critical")]
