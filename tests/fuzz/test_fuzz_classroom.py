@@ -9,6 +9,7 @@ event of the Server-Sent Events stream is always one event, whatever text it car
 from __future__ import annotations
 
 import json
+import urllib.parse
 
 import pytest
 from fastapi.testclient import TestClient
@@ -121,7 +122,20 @@ def test_an_event_is_always_one_event_whatever_text_it_carries(name, data):
 def test_valid_state_refuses_anything_but_a_path_of_this_server(state):
     if cm.valid_state(state):
         assert state.startswith("/") and not state.startswith(("//", "/\\"))
-        assert len(state) <= cm.MAX_STATE_CHARS and "\n" not in state and ":" not in state.split("?")[0]
+        assert len(state) <= cm.MAX_STATE_CHARS and "\n" not in state
+        assert ":" not in state.split("?")[0].split("#")[0]  # no scheme, in the path or before it
+
+
+@FUZZ
+@given(path=st.sampled_from(["/", "/labs/solid", "/labs/light", "/?s=2"]),
+       fragment=st.text(max_size=200))
+def test_a_lab_states_fragment_never_makes_it_another_origin(path, fragment):
+    """A lab page keeps its state in the fragment (issue 30: lab pages in the class)."""
+    state = f"{path}#{fragment}"
+    if cm.valid_state(state):
+        parts = urllib.parse.urlsplit(state)
+        assert parts.scheme == "" and parts.netloc == "" and parts.path == path.split("?")[0]
+        assert not any(ch in fragment for ch in "#<>\"\\ \n\r\t")
 
 
 @FUZZ

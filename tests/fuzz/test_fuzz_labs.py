@@ -115,3 +115,39 @@ def test_hostile_light_uploads_get_a_light_or_one_clear_error(client, data, file
     else:
         error = answer["error"]
         assert isinstance(error, str) and 0 < len(error) < 2000 and "\n" not in error and "\0light" not in error
+
+# ---- issue 28 item 6: a sample handed over by the explorer (levels 0-30 on 400-700 nm) ----
+
+LEVEL_VALUES = st.one_of(st.floats(-5, 40), st.integers(-5, 40), st.none(), st.text(max_size=4))
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(levels=st.lists(LEVEL_VALUES, min_size=0, max_size=320) | VALUES,
+       step=st.one_of(st.sampled_from([10, 5, 2, 1, 3, 0, -1, 10.5]), SCALARS))
+def test_handed_levels_of_any_shape_get_an_answer_or_one_clear_error(client, levels, step):
+    check(client.post("/api/lab/solid/mismatch", json={"levels": levels, "levels_step_nm": step}))
+
+
+@settings(max_examples=200, deadline=None)
+@given(levels=st.lists(st.floats(allow_nan=True, allow_infinity=True, width=32), max_size=320),
+       step=st.sampled_from([10.0, 5.0, 2.0, 1.0, 3.0, 0.0, float("nan")]))
+def test_explorer_reflectance_is_a_reflectance_or_one_clear_error(levels, step):
+    import numpy as np
+
+    from spectrocolor.app import solid_lab
+    from spectrocolor.errors import ColorimetryError
+
+    try:
+        r = solid_lab.explorer_reflectance(levels, step)
+    except ColorimetryError as exc:
+        assert str(exc).split(":")[0] in ("levels", "levels_step_nm")
+        return
+    assert r.shape == (41,) and np.all((r >= 0.0) & (r <= 1.0))
+
+
+@pytest.mark.parametrize("body", [{"levels": [15.0] * 30}, {"levels": [15.0] * 31, "levels_step_nm": 5},
+                                  {"levels": [31.0] * 31}, {"levels": [-1.0] * 31}, {"levels": "15,15"},
+                                  {"levels": [15.0] * 302}, {"levels": [15.0] * 31, "levels_step_nm": 3}])
+def test_bad_handed_levels_are_refused_clearly(client, body):
+    response = client.post("/api/lab/solid/mismatch", json=body)
+    assert response.status_code == 422 and "levels" in response.json()["error"]

@@ -97,9 +97,11 @@ EXPOSURE = ("Class mode serves this explorer to the devices of this local networ
             "stops. Students see what the teacher pushes; the teacher sees only what students "
             "send. Renewing the code disconnects everyone.")
 
-# A URL state the page made: a path on this server, then its query. No scheme, no host, no
+# A URL state the page made: a path on this server, then its query, then its fragment (where the
+# lab pages keep their state). No scheme, no host, no
 # "//" at the start (which a browser reads as another host), no backslash, no space.
-_STATE_RE = re.compile(r"^/(?![/\\])[A-Za-z0-9/._~%-]*(\?[A-Za-z0-9._~%!$&'()*+,;=:@/?-]*)?$")
+_STATE_RE = re.compile(r"^/(?![/\\])[A-Za-z0-9/._~%-]*(\?[A-Za-z0-9._~%!$&'()*+,;=:@/?-]*)?"
+                       r"(#[A-Za-z0-9._~%!$&'()*+,;=:@/?-]*)?$")
 _NAME_RE = re.compile(r"^[^\x00-\x1f\x7f-\x9f\u2028\u2029<>]*$")
 
 
@@ -120,7 +122,7 @@ def valid_state(state: str) -> bool:
 
     Examples
     --------
-    >>> valid_state("/?s=2&b=10&l0=i0123"), valid_state("/static/labs/light.html?k=D65")
+    >>> valid_state("/?s=2&b=10&l0=i0123"), valid_state("/labs/solid#light=D65&sample=9&mismatch=1")
     (True, True)
     >>> valid_state("//evil.example/"), valid_state("javascript:alert(1)"), valid_state("/" * 9000)
     (False, False, False)

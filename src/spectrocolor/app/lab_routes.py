@@ -41,6 +41,9 @@ LAB_WORKERS = 2
 #: Longest wait for a free worker, s (then 429), and longest computation, s.
 LAB_WAIT_S, LAB_TIMEOUT_S = 10.0, 60.0
 
+#: The header of a busy answer: the pages try the same request again after this many seconds.
+BUSY_HEADERS = {"Retry-After": "1"}
+
 _workers = WorkerPool(LAB_WORKERS, LAB_WAIT_S, LAB_TIMEOUT_S, niceness=HEAVY_NICENESS)
 router.on_shutdown.append(_workers.close)
 
@@ -71,7 +74,7 @@ def _computed(request: Request, function, *args):
                                                client=client)
     except Busy:
         return JSONResponse({"error": "the server is busy computing for other pages; try again"},
-                            status_code=429)
+                            status_code=429, headers=BUSY_HEADERS)
     except WorkerTimeout:
         raise ColorimetryError(f"this computation took more than {LAB_TIMEOUT_S:g} s and was "
                                "stopped; choose other settings") from None
@@ -249,6 +252,11 @@ class SolidRequest(BaseModel):
     Y: Annotated[float, Field(gt=0.0, lt=100.0)] = 50.0
     sample: Annotated[int, Field(ge=1, le=14, strict=True)] = 1
     second_illuminant: Annotated[str, Field(max_length=40)] = "A"
+    #: A sample handed over by the explorer (issue 28 item 6): its levels, 0-30 on 400-700 nm at
+    #: ``levels_step_nm``; given, it replaces ``sample`` in the mismatch region.
+    levels: Annotated[list[Annotated[float, Field(ge=0.0, le=30.0, allow_inf_nan=False)]],
+                      Field(min_length=31, max_length=301)] | None = None
+    levels_step_nm: Literal[10, 5, 2, 1] = 10
 
 
 @router.get("/labs/solid", include_in_schema=False)
@@ -274,5 +282,8 @@ def solid_section(req: SolidRequest, request: Request):
 
 @router.post("/api/lab/solid/mismatch")
 def solid_mismatch(req: SolidRequest, request: Request):
+    if req.levels is not None:
+        return _computed(request, solid_lab.mismatch_of_levels, tuple(req.levels), float(req.levels_step_nm),
+                         req.illuminant, req.second_illuminant, req.display)
     return _computed(request, solid_lab.mismatch, req.sample, req.illuminant, req.second_illuminant,
                      req.display)

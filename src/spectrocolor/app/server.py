@@ -70,6 +70,7 @@ from .guards import MAX_JSON_DEPTH, BodyLimit, LocalOnly, allowed_hosts, client_
 from .import_routes import MAX_PARSERS, PARSER_TIMEOUT_S, PARSER_WAIT_S
 from .import_routes import router as import_router
 from .kernels import KernelStatusHeader
+from .lab_routes import BUSY_HEADERS
 from .lab_routes import _workers as lab_workers
 from .lab_routes import router as lab_router
 from .relight_routes import _workers as relight_workers
@@ -477,7 +478,8 @@ async def _pooled(request: Request, route: str, body: bytes | None = None) -> Re
             client=client_key(request))
     except Busy:
         return JSONResponse({"error": "the server is busy answering this page's or other "
-                             "pages' requests; try again"}, status_code=429)
+                             "pages' requests; try again"}, status_code=429,
+                            headers=BUSY_HEADERS)
     except WorkerTimeout:
         raise ColorimetryError(f"this computation took more than {INTERACTIVE_TIMEOUT_S:g} s "
                                "and was stopped; choose other settings") from None

@@ -153,6 +153,63 @@ def section(Y: float, illuminant="D65", display: str = "sRGB") -> dict:
     }
 
 
+#: The explorer's grids (400-700 nm at these steps, nm) that a hand-off's levels may be on.
+EXPLORER_STEPS_NM = (10.0, 5.0, 2.0, 1.0)
+#: The explorer's full level (a reflectance of 1).
+EXPLORER_FULL_LEVEL = 30.0
+
+
+def explorer_reflectance(levels, step_nm: float) -> np.ndarray:
+    """A reflectance on the lab's grid from the explorer's levels (0-30 on 400-700 nm at ``step_nm``).
+
+    Level 30 is a reflectance of 1. The lab's grid (380-780 nm, 10 nm) is filled by linear
+    interpolation inside 400-700 nm and by the end values outside it (the explorer has no
+    levels there; the eye's weights beyond 700 nm and below 400 nm are small).
+
+    Raises
+    ------
+    ColorimetryError
+        ``step_nm`` not one of :data:`EXPLORER_STEPS_NM`, a level count other than the grid's,
+        or a level outside 0-30 or not finite.
+
+    Examples
+    --------
+    >>> r = explorer_reflectance([15.0] * 31, 10.0)
+    >>> r.shape, float(r.min()), float(r.max())
+    ((41,), 0.5, 0.5)
+    """
+    from ..spectrum import wavelength_grid
+
+    if step_nm not in EXPLORER_STEPS_NM:
+        raise ColorimetryError(f"levels_step_nm: expected one of {EXPLORER_STEPS_NM} nm, got {step_nm!r}")
+    bins = int(round(300.0 / step_nm)) + 1
+    values = np.asarray(levels, dtype=float)
+    if values.ndim != 1 or values.size != bins:
+        raise ColorimetryError(f"levels: expected {bins} levels (400-700 nm at {step_nm:g} nm), "
+                               f"got {values.size}")
+    if not np.all(np.isfinite(values)) or values.min() < 0.0 or values.max() > EXPLORER_FULL_LEVEL:
+        raise ColorimetryError("levels: expected finite levels from 0 to 30")
+    own = np.linspace(400.0, 700.0, bins)
+    return np.interp(wavelength_grid(*GRID), own, values / EXPLORER_FULL_LEVEL)
+
+
+@lru_cache(maxsize=16)
+def mismatch_of_levels(levels: tuple, step_nm: float, illuminant="D65", second_illuminant="A",
+                       display: str = "sRGB") -> dict:
+    """:func:`mismatch` of a sample handed over by the explorer: its levels (0-30, 400-700 nm at
+    ``step_nm``; see :func:`explorer_reflectance`). ``sample`` in the answer is the text
+    ``"from the explorer"``.
+
+    Examples
+    --------
+    >>> region = mismatch_of_levels((15.0,) * 31, 10.0, "D65", "A")
+    >>> region["sample"], len(region["region_lab"])
+    ('from the explorer', 100)
+    """
+    return _mismatch_of(explorer_reflectance(levels, step_nm), "from the explorer", illuminant,
+                        second_illuminant, display)
+
+
 @lru_cache(maxsize=64)
 def mismatch(sample: int, illuminant="D65", second_illuminant="A", display: str = "sRGB") -> dict:
     """Metamer mismatch region of CIE test-colour sample ``sample`` (1-14) for a change of light.
@@ -170,24 +227,31 @@ def mismatch(sample: int, illuminant="D65", second_illuminant="A", display: str 
     >>> len(region["region_lab"]), region["second_illuminant"]
     (100, 'A')
     """
-    from ..colorimetry import weights
-    from ..coordinates import lab, xy
     from ..lighting.spectra import tcs_reflectances
-    from ..recovery.metamers import metamer_mismatch_region
     from ..spectrum import wavelength_grid
 
     if isinstance(sample, bool) or not isinstance(sample, int | np.integer) or not 1 <= sample <= 14:
         raise ColorimetryError(f"sample: expected a CIE test-colour sample number 1-14, got {sample!r}")
+    reflectance = tcs_reflectances(wavelength_grid(*GRID))[sample - 1]
+    return _mismatch_of(reflectance, int(sample), illuminant, second_illuminant, display)
+
+
+def _mismatch_of(reflectance: np.ndarray, sample, illuminant, second_illuminant, display) -> dict:
+    """The answer of :func:`mismatch` for a reflectance on the lab's grid."""
+    from ..colorimetry import weights
+    from ..coordinates import lab, xy
+    from ..recovery.metamers import metamer_mismatch_region
+    from ..spectrum import wavelength_grid
+
     first, second = _light(illuminant), _light(second_illuminant, "second_illuminant")
     grid = wavelength_grid(*GRID)
     W1, W2 = weights(grid, illuminant=first), weights(grid, illuminant=second)
-    reflectance = tcs_reflectances(grid)[sample - 1]
     XYZ1, XYZ2 = reflectance @ W1, reflectance @ W2
     region = metamer_mismatch_region(XYZ1, illuminant=first, second_illuminant=second, observer="1931",
                                      wavelengths=GRID, directions=100)
     white2 = W2.sum(axis=0)
     return {
-        "sample": int(sample), "illuminant": illuminant_label(first), "second_illuminant": illuminant_label(second),
+        "sample": sample, "illuminant": illuminant_label(first), "second_illuminant": illuminant_label(second),
         "sample_xy": np.round(xy(XYZ2), 5).tolist(), "sample_lab": np.round(lab(XYZ2, white2), 3).tolist(),
         "region_xy": np.round(xy(region.boundary_XYZ100), 5).tolist(),
         "region_lab": np.round(lab(region.boundary_XYZ100, white2), 3).tolist(),

@@ -2,6 +2,7 @@
 
 import {clientHeaders} from "./client.js";
 import {showKernelStatus} from "./kernels.js";
+import {busyFetch} from "./busy.js";
 
 export class ApiError extends Error {}
 
@@ -10,7 +11,7 @@ export async function api(path, body) {
     headers: {"Content-Type": "application/json", ...clientHeaders()}, body: JSON.stringify(body)};
   let res;
   try {
-    res = await fetch(path, opts);
+    res = await busyFetch(path, opts);  // the "computing…" note; a busy server's 429 tried again
   } catch (err) {
     throw new ApiError(`the explorer's server did not answer (${err.message}); is it still running?`);
   }

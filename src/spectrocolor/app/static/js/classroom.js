@@ -10,8 +10,9 @@ import {$, el, fill} from "./dom.js";
 const role = (document.cookie.match(/(?:^|;\s*)spectrocolor-role=(teacher|student)/) || [])[1];
 const FOLLOW_KEY = "spectrocolor-follow";
 
-/** This page's URL state: what a link to it holds (main.js keeps the URL up to date). */
-const currentState = () => location.pathname + location.search;
+/** This page's URL state: what a link to it holds (main.js keeps the URL up to date; a lab page
+ * keeps its state in the fragment, so that goes too). */
+const currentState = () => location.pathname + location.search + location.hash;
 
 /** Whether `state` is a path of this server (never another origin, never a script URL). */
 function sameOrigin(state) {
@@ -19,13 +20,16 @@ function sameOrigin(state) {
   try { return new URL(state, location.origin).origin === location.origin; } catch { return false; }
 }
 
-/** Show a URL state on this page: the main page reads it as it reads Back/Forward. */
+/** Show a URL state: another page (the explorer, a lab) is opened, and its own class panel keeps
+ * the student in the class; on this page it is read as Back/Forward is (main.js and the labs
+ * read the URL on popstate). */
 function openState(state) {
   if (!sameOrigin(state)) return;
   const url = new URL(state, location.origin);
-  if (url.pathname !== location.pathname) { location.assign(url.pathname + url.search); return; }
-  if (url.search === location.search) return;
-  history.pushState({}, "", url.pathname + url.search);
+  const target = url.pathname + url.search + url.hash;
+  if (url.pathname !== location.pathname) { location.assign(target); return; }
+  if (url.search === location.search && url.hash === location.hash) return;
+  history.pushState({}, "", target);
   window.dispatchEvent(new PopStateEvent("popstate", {state: {}}));
 }
 

@@ -3,6 +3,7 @@
 
 import { clientHeaders } from "../js/client.js";
 import { showKernelStatus } from "../js/kernels.js";
+import { busyFetch, Superseded } from "../js/busy.js";
 
 export const $ = (id) => document.getElementById(id);
 
@@ -12,12 +13,20 @@ export function showError(message) {
   $("error").hidden = false;
 }
 
-/** GET (no body) or POST JSON; a non-2xx answer throws the server's error text. */
+/** GET (no body) or POST JSON; a non-2xx answer throws the server's error text. The "computing…"
+ * note shows while it runs; a busy server's 429 is tried again (js/busy.js). A request that a newer
+ * one to the same path replaced while it waited never settles: the newer one's answer is shown. */
 export async function api(path, body) {
   const init = body === undefined ? { headers: clientHeaders() } : {
     method: "POST", headers: { "Content-Type": "application/json", ...clientHeaders() }, body: JSON.stringify(body),
   };
-  const response = await fetch(path, init);
+  let response;
+  try {
+    response = await busyFetch(path, init, path);
+  } catch (error) {
+    if (error instanceof Superseded) return new Promise(() => {});
+    throw error;
+  }
   const data = await response.json();
   if (!response.ok) throw new Error(data.error || `request failed (${response.status})`);
   showKernelStatus(response);

@@ -8,7 +8,35 @@
 
 import { $, api, context, css, showError, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
 
-const DEFAULTS = { light: "D65", display: "sRGB", Y: 50, sample: 1, second: "A", yaw: 35, pitch: 20, mismatch: 0 };
+const DEFAULTS = { light: "D65", display: "sRGB", Y: 50, sample: 1, second: "A", yaw: 35, pitch: 20, mismatch: 0, r: "" };
+// A sample handed over by the explorer (issue 28 item 6): r = "<step nm>:<level>,<level>,…", levels 0–30 on
+// 400–700 nm (js/handoff.js writes it); sample 0 is that sample.
+const HANDED_STEPS = [10, 5, 2, 1];
+function handedSample(r) {
+  const m = /^(10|5|2|1):([0-9.,]+)$/.exec(r || "");
+  if (!m) return null;
+  const step = Number(m[1]), levels = m[2].split(",").map(Number);
+  if (!HANDED_STEPS.includes(step) || levels.length !== Math.round(300 / step) + 1) return null;
+  if (!levels.every((v) => Number.isFinite(v) && v >= 0 && v <= 30)) return null;
+  return { step, levels };
+}
+const HANDED_MESSAGE = "The sample in this address (r=…) is not levels 0–30 on 400–700 nm at 10, 5, 2 or 1 nm; "
+  + "the CIE test-colour sample is shown instead.";
+
+/** The state of an address, its hand-off checked: a bad one is said once and dropped. */
+function checked(next) {
+  if (next.r && !handedSample(next.r)) { showError(HANDED_MESSAGE); next.r = ""; }
+  if (!next.r && next.sample === 0) next.sample = 1;
+  if (next.r && !(next.sample >= 0 && next.sample <= 14)) next.sample = 0;
+  return next;
+}
+
+function sampleOptions() {
+  const values = Array.from({ length: 14 }, (_, i) => i + 1), labels = values.map((i) => `TCS${String(i).padStart(2, "0")}`);
+  if (state.r) { values.unshift(0); labels.unshift("from the explorer"); }
+  $("sample").replaceChildren(...values.map((v, i) =>
+    Object.assign(document.createElement("option"), { value: String(v), textContent: labels[i] })));
+}
 
 let state = { ...DEFAULTS };
 let solid = null;
@@ -33,7 +61,11 @@ function decode(hash) {
 }
 
 const encode = (s) => "#" + new URLSearchParams(Object.entries(s).map(([k, v]) => [k, String(v)])).toString();
-const request = (s) => ({ illuminant: s.light, display: s.display, Y: s.Y, sample: s.sample, second_illuminant: s.second });
+function request(s) {
+  const handed = s.sample === 0 ? handedSample(s.r) : null;
+  const body = { illuminant: s.light, display: s.display, Y: s.Y, sample: handed ? 1 : s.sample, second_illuminant: s.second };
+  return handed ? { ...body, levels: handed.levels, levels_step_nm: handed.step } : body;
+}
 
 function commit(change) {
   const before = { ...state };
@@ -73,7 +105,7 @@ async function load(before = null) {
       fillPickLevels();
     }
     if (!section || changed(["light", "display", "Y"])) section = await api("/api/lab/solid/section", request(state));
-    if (state.mismatch && (!region || changed(["light", "display", "sample", "second", "mismatch"]))) {
+    if (state.mismatch && (!region || changed(["light", "display", "sample", "second", "mismatch", "r"]))) {
       $("status").textContent = "Computing the metamer mismatch region (a few seconds)…";
       region = await api("/api/lab/solid/mismatch", request(state));
     }
@@ -335,8 +367,8 @@ async function start() {
   fill($("light"), options.illuminants);
   fill($("second"), options.illuminants);
   fill($("display"), options.displays);
-  fill($("sample"), Array.from({ length: 14 }, (_, i) => i + 1), Array.from({ length: 14 }, (_, i) => `TCS${String(i + 1).padStart(2, "0")}`));
-  state = decode(location.hash);
+  state = checked(decode(location.hash));
+  sampleOptions();
   for (const [id, key] of [["light", "light"], ["display", "display"], ["second", "second"]]) {
     $(id).addEventListener("change", (e) => commit({ [key]: e.target.value }));
   }
@@ -361,7 +393,7 @@ async function start() {
   $("undo").addEventListener("click", undo);
   $("redo").addEventListener("click", redo);
   wireCommon(undo, redo);
-  window.addEventListener("popstate", () => restore(decode(location.hash)));
+  window.addEventListener("popstate", () => { restore(checked(decode(location.hash))); sampleOptions(); syncControls(); });
   window.addEventListener("resize", paint);
   history.replaceState(null, "", encode(state));
   await load();
