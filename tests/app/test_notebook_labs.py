@@ -104,6 +104,8 @@ def test_each_lab_widget_module_parses_with_one_default_export(lab, tmp_path):
     markup, css, _ = front.lab_page(lab)
     assert "<script" not in markup and 'id="error-text"' in markup
     assert ":root" not in css and not re.search(r"(?<![\w.#-])body\b", css)
+    # the narrow layouts follow the widget's width, not the window's
+    assert "@container (max-width: 760px)" in css and not re.search(r"@media\s*\(\s*max-width", css)
 
 
 @pytest.mark.parametrize("lab", nl.LABS)

@@ -249,11 +249,24 @@ _STYLESHEET = re.compile(r"<link\b[^>]*\brel=[\"']stylesheet[\"'][^>]*>", re.I)
 _ATTR = re.compile(r"""\b(src|href|type)=["']([^"']*)["']""", re.I)
 
 #: The lab page in a widget: as tall as its content; the links to the server's other pages (the
-#: explorer and the other labs) are hidden, as the explorer widget hides its links to the labs.
+#: explorer and the other labs) are hidden, as the explorer widget hides its links to the labs; the
+#: page is a size container, so that the labs' narrow layouts follow the widget's width (a notebook's
+#: output area), not the window's (see :func:`container_css`).
 _LAB_WIDGET_CSS = """
-.sc-body { min-height: 0; border-radius: 8px; }
+.sc-body { min-height: 0; border-radius: 8px; container-type: inline-size; }
 header nav { display: none; }
 """
+
+
+def container_css(css: str) -> str:
+    """``@media`` width queries as ``@container`` queries of the widget's page (``.sc-body``).
+
+    Examples
+    --------
+    >>> container_css("@media (max-width: 760px) { main { display: block; } }")
+    '@container (max-width: 760px) { main { display: block; } }'
+    """
+    return re.sub(r"@media\s*\(\s*(max|min)-width\s*:\s*([\d.]+(?:px|em|rem))\s*\)", r"@container (\1-width: \2)", css)
 
 
 def static_sources() -> dict[str, str]:
@@ -311,7 +324,7 @@ def lab_page(name: str) -> tuple[str, str, list[str]]:
     body = re.search(r"<body[^>]*>(.*)</body>", html, re.S)
     if body is None:
         raise AssemblyError(f"{page} has no <body>")
-    return _SCRIPT.sub("", body.group(1)), "\n".join(styles) + _LAB_WIDGET_CSS, entries
+    return _SCRIPT.sub("", body.group(1)), container_css("\n".join(styles)) + _LAB_WIDGET_CSS, entries
 
 
 @functools.cache
