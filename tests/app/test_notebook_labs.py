@@ -158,7 +158,8 @@ def test_lab_requests_are_answered_as_the_server_answers_them():
             theirs = client.request(method, path, json=payload)
             assert mine["kind"] == "response" and mine["id"] == 4
             assert mine["status"] == theirs.status_code, (path, payload, mine["body"][:200], theirs.text[:200])
-            assert json.loads(mine["body"]) == theirs.json(), (path, payload)  # exact: the same functions, the same JSON
+            # exact: the same functions, the same JSON
+            assert json.loads(mine["body"]) == theirs.json(), (path, payload)
 
 
 @pytest.mark.parametrize("message, status, says", [
@@ -224,7 +225,7 @@ def test_the_labs_state_and_result_flow_back_to_python(thinfilm):
     thinfilm.send = sent.append
     assert thinfilm.state == {"film": "soap", "d": "420"} and thinfilm.lab == "thinfilm"
     with pytest.raises(SpectrumError, match="has not shown a result yet"):
-        thinfilm.spectrum
+        _ = thinfilm.spectrum
     # the page asks for its table and moves the thickness slider: both reach the kernel
     thinfilm._on_message(thinfilm, {"kind": "request", "id": 1, "method": "POST", "path": "/api/lab/thinfilm",
                                     "body": json.dumps({"film": "soap", "model": "airy"})}, [])

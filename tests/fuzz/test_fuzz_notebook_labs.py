@@ -34,7 +34,8 @@ SOURCES = st.fixed_dictionaries({}, optional={
     "widths_nm": st.lists(FINITE, max_size=6) | VALUES, "powers": st.lists(FINITE, max_size=6) | VALUES})
 BODY_FIELDS = {"film": st.sampled_from(["soap", "oil", "tar"]) | VALUES,
                "model": st.sampled_from(["airy", "two-beam", "x"]) | VALUES,
-               "angle_deg": st.floats(-100, 100) | VALUES, "illuminant": st.sampled_from(["D65", "A", "F11", "?"]) | VALUES,
+               "angle_deg": st.floats(-100, 100) | VALUES,
+               "illuminant": st.sampled_from(["D65", "A", "F11", "?"]) | VALUES,
                "observer": st.sampled_from(["1931", "1964", "x"]) | VALUES, "display": st.sampled_from(["sRGB", "?"]),
                "x": st.floats(-1, 2) | VALUES, "y": st.floats(-1, 2) | VALUES, "Y": st.floats(-10, 200) | VALUES,
                "step_nm": st.sampled_from(["5", "10", "1", 5]) | VALUES, "sample": st.integers(-3, 20) | VALUES,

@@ -244,7 +244,8 @@ def test_a_thin_film_lab_edited_in_jupyterlab_comes_back_to_python(browser, tmp_
             slider = lab.locator("#thickness")
             slider.scroll_into_view_if_needed()
             slider.focus()
-            shown = "() => document.querySelector('.spectrocolor-lab').shadowRoot.getElementById('thickness-out').textContent"
+            shown = ("() => document.querySelector('.spectrocolor-lab').shadowRoot"
+                     ".getElementById('thickness-out').textContent")
             for d in range(421, 426):  # one step each, seen on the page before the next (none lost to a busy page)
                 pg.keyboard.press("ArrowRight")
                 pg.wait_for_function(f"() => ({shown})() === '{d} nm'", timeout=15000)

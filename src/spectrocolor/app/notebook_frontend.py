@@ -29,8 +29,8 @@ from importlib import resources
 #: The explorer's entry module; it and every module it imports make the widget's front end.
 ENTRY = "main.js"
 
-_IMPORT = re.compile(r'^import\s*\{([^}]*)\}\s*from\s*["\']((?:\.\.?/)+[A-Za-z0-9_./-]*\.js)["\']\s*;?[ \t]*(//[^\n]*)?$',
-                     re.M)
+_IMPORT = re.compile(
+    r'^import\s*\{([^}]*)\}\s*from\s*["\']((?:\.\.?/)+[A-Za-z0-9_./-]*\.js)["\']\s*;?[ \t]*(//[^\n]*)?$', re.M)
 _EXPORT_LIST = re.compile(r"^export\s*\{([^}]*)\}\s*;?[ \t]*(//[^\n]*)?$", re.M)
 _EXPORT = re.compile(r"^export\s+(?=(?:async\s+function\*?|function\*?|const|class)\s+([A-Za-z_$][\w$]*))", re.M)
 _IDENT = re.compile(r"^[A-Za-z_$][\w$]*$")

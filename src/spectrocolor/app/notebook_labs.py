@@ -72,6 +72,14 @@ def _lab_name(lab: Any) -> str:
 
 
 # ---------------------------------------------------------------------------- the lab routes
+def _light(q) -> dict:
+    """The light route's answer: the SPD resolved (as the route does), then its numbers."""
+    from . import light_lab
+
+    spd, label = light_lab.light_spd(q.source.model_dump())
+    return light_lab.light_lab_of(spd, label, q.display)
+
+
 @functools.cache
 def _routes() -> tuple[dict, dict]:
     """The lab routes: GET path to its answer, POST path to (request model, answer of a request)."""
@@ -83,8 +91,7 @@ def _routes() -> tuple[dict, dict]:
             "/api/lab/reflectance/options": reflectance_lab.reflectance_lab_options,
             "/api/lab/solid/options": solid_lab.solid_lab_options}
     posts = {
-        "/api/lab/light": (r.LightRequest, lambda q: light_lab.light_lab_of(
-            *light_lab.light_spd(q.source.model_dump()), q.display)),
+        "/api/lab/light": (r.LightRequest, _light),
         "/api/lab/thinfilm": (r.ThinFilmRequest, lambda q: r._table(
             q.film, q.model, round(q.angle_deg, 3), q.illuminant, q.observer, q.display)),
         "/api/lab/reflectance": (r.ReflectanceRequest, lambda q: reflectance_lab.reflectance_lab(
@@ -220,7 +227,8 @@ def initial_address(lab: str, spectrum: Spectrum | None = None, **address: Any) 
                                 f"the {lab} lab takes {', '.join(ADDRESS_KEYS[lab])}")
         if {"x", "y", "Y"} & set(address):
             raise SpectrumError("spectrum: give either a spectrum or x, y, Y, not both")
-        state.update({k: f"{v:.6g}" for k, v in zip(("x", "y", "Y"), reflectance_xyY(spectrum, state.get("light", "D65")))})
+        xyY = reflectance_xyY(spectrum, state.get("light", "D65"))
+        state.update({k: f"{v:.6g}" for k, v in zip(("x", "y", "Y"), xyY, strict=True)})
     text = urlencode(state)
     check_address(text)
     return text
