@@ -391,7 +391,7 @@ def explore_lab(lab: str, spectrum: Spectrum | None = None, **settings: Any):
     spectrum : Spectrum, optional
         Reflectance lab only: one reflectance (0-1) whose colour, CIE 1931 xyY under the lab's
         light (``light=``, default D65), the lab starts from.
-    **settings
+    **settings : str or float
         The lab's starting state, as its address names it (:data:`ADDRESS_KEYS`): light lab
         ``kind`` ("named" or "leds"), ``name`` (a light such as "FL2", or a light kind such as
         "blackbody" with ``T`` in K), ``display``, ``leds`` ("peak:width:power,..."); reflectance
