@@ -285,3 +285,43 @@ def test_a_thin_film_lab_edited_in_jupyterlab_comes_back_to_python(browser, tmp_
             assert not errors, errors
         finally:
             context.close()
+
+
+OTHER_LABS = ["light", "reflectance", "solid"]
+
+
+def test_the_other_labs_open_and_draw_in_jupyterlab(browser, tmp_path, artifacts_dir):
+    cells = ["import spectrocolor as sc\nsc.explore_lab('light', name='FL2')",
+             "sc.explore_lab('reflectance', x=0.45, y=0.4, Y=30, step=10)",
+             "sc.explore_lab('solid', light='D65', Y=50)"]
+    (tmp_path / "labs.ipynb").write_text(json.dumps(notebook(cells)), encoding="utf-8")
+    shots = Path("/tmp/nbwidget")
+    shots.mkdir(exist_ok=True)
+    with jupyterlab(tmp_path) as (url, token):
+        context = browser.new_context(viewport={"width": DESKTOP[0], "height": DESKTOP[1]})
+        pg = context.new_page()
+        errors = []
+        pg.on("pageerror", lambda e: errors.append(str(e)))
+        try:
+            pg.goto(f"{url}lab/tree/labs.ipynb?token={token}")
+            pg.wait_for_function("() => { const w = window.jupyterapp && window.jupyterapp.shell.currentWidget; "
+                                 "return Boolean(w && w.sessionContext && w.sessionContext.session "
+                                 "&& w.sessionContext.session.kernel); }", timeout=90000)
+            for i, name in enumerate(OTHER_LABS):
+                run_cell(pg, i)
+                ready = (f"() => {{ const h = document.querySelector('.spectrocolor-lab-{name}'); "
+                         "return h && h.__spectrocolor.body.dataset.ready === 'true'; }")
+                try:
+                    pg.wait_for_function(ready, timeout=120000)
+                except Exception:
+                    pg.screenshot(path=str(shots / f"lab_{name}_not_shown.png"))
+                    text = pg.locator(f".spectrocolor-lab-{name} #error-text").all_inner_texts()
+                    raise AssertionError(f"the {name} lab did not draw; banner {text}, page errors: {errors}") from None
+                lab = pg.locator(f".spectrocolor-lab-{name}")
+                assert lab.locator("#error").is_hidden(), lab.locator("#error-text").inner_text()
+                lab.scroll_into_view_if_needed()
+                pg.screenshot(path=str(shots / f"lab_{name}_desktop.png"))
+            assert pg.locator(".spectrocolor-lab-light #name").input_value() == "FL2"  # the state given in Python
+            assert not errors, errors
+        finally:
+            context.close()
