@@ -142,8 +142,15 @@ LAB_BODIES = [
 ]
 
 
-def test_every_lab_route_is_in_the_parity_list():
-    assert set(nl.lab_routes()) == {(m, p) for m, p, _ in LAB_BODIES if p.startswith("/api/lab/")}
+def test_every_lab_route_is_answered_and_in_the_parity_list():
+    from fastapi.routing import APIRoute
+
+    from spectrocolor.app.lab_routes import router
+
+    served = {(m, r.path) for r in router.routes if isinstance(r, APIRoute) and r.path.startswith("/api/")
+              for m in r.methods}
+    assert set(nl.lab_routes()) == served
+    assert served == {(m, p) for m, p, _ in LAB_BODIES if p.startswith("/api/lab/")}
 
 
 def test_lab_requests_are_answered_as_the_server_answers_them():

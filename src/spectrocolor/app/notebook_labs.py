@@ -6,9 +6,9 @@ does for the explorer, it runs the lab's own page (``static/labs/<name>.html``, 
 and ES modules (``static/labs/<name>.js``, ``labs/common.js`` and the ``js/*.js`` modules they
 import, joined into one module by :func:`spectrocolor.app.notebook_frontend.lab_widget_esm`) in a
 shadow root, and the lab's requests travel to the kernel as widget messages instead of HTTP; the
-kernel answers them with the functions behind the server's lab routes
-(:mod:`spectrocolor.app.lab_routes`: the same request models, the same computations, the same JSON),
-in the kernel's own process rather than a worker.
+kernel answers them with the server's lab routes themselves (:mod:`spectrocolor.app.lab_routes`:
+the same request models, the route functions, the same JSON), computing in the kernel's own
+process rather than in a worker.
 
 Edits flow back. A lab keeps its state in its address (the hash: ``#film=soap&d=350``); in the
 widget each change of it reaches the kernel as ``widget.state`` (a dict of the address's
@@ -38,6 +38,7 @@ import functools
 import json
 import math
 import re
+import typing
 from collections.abc import Mapping
 from numbers import Real
 from typing import Any
@@ -45,7 +46,7 @@ from urllib.parse import parse_qsl, urlencode, urlsplit
 
 import numpy as np
 
-from ..errors import SpectrumError
+from ..errors import ColorimetryError, SpectrumError
 from ..spectrum import Spectrum
 from .notebook_frontend import LABS, lab_widget_esm
 from .notebook_widget import EXTRA_HINT, _json, _refusal, _request, answer_request
@@ -72,17 +73,18 @@ def _lab_name(lab: Any) -> str:
 
 
 # ---------------------------------------------------------------------------- the lab routes
-def _light(q) -> dict:
-    """The light route's answer: the SPD resolved (as the route does), then its numbers."""
-    from . import light_lab
-
-    spd, label = light_lab.light_spd(q.source.model_dump())
-    return light_lab.light_lab_of(spd, label, q.display)
-
-
 @functools.cache
 def _routes() -> tuple[dict, dict]:
-    """The lab routes: GET path to its answer, POST path to (request model, answer of a request)."""
+    """The lab routes: GET path to its answer, POST path to (request model, the route's function).
+
+    The POST routes are read from the lab routes' router, so a route added there is answered here
+    too, by the route's own function (called without a request: it computes in this process, not
+    in a worker). The GET routes (options) are the functions they return, as calling those routes
+    would start a worker process in the kernel.
+    """
+    from fastapi.routing import APIRoute
+    from pydantic import BaseModel
+
     from . import lab_routes as r
     from . import light_lab, reflectance_lab, solid_lab, thinfilm_lab
 
@@ -90,20 +92,13 @@ def _routes() -> tuple[dict, dict]:
             "/api/lab/thinfilm/options": thinfilm_lab.lab_options,
             "/api/lab/reflectance/options": reflectance_lab.reflectance_lab_options,
             "/api/lab/solid/options": solid_lab.solid_lab_options}
-    posts = {
-        "/api/lab/light": (r.LightRequest, _light),
-        "/api/lab/thinfilm": (r.ThinFilmRequest, lambda q: r._table(
-            q.film, q.model, round(q.angle_deg, 3), q.illuminant, q.observer, q.display)),
-        "/api/lab/reflectance": (r.ReflectanceRequest, lambda q: reflectance_lab.reflectance_lab(
-            q.x, q.y, q.Y, q.illuminant, q.observer, q.step_nm)),
-        "/api/lab/reflectance/macadam": (r.ReflectanceRequest, lambda q: r._macadam(
-            q.Y, q.illuminant, q.observer, q.step_nm)),
-        "/api/lab/solid": (r.SolidRequest, lambda q: solid_lab.solid(q.illuminant, q.display)),
-        "/api/lab/solid/section": (r.SolidRequest, lambda q: solid_lab.section(
-            round(q.Y, 1), q.illuminant, q.display)),
-        "/api/lab/solid/mismatch": (r.SolidRequest, lambda q: solid_lab.mismatch(
-            q.sample, q.illuminant, q.second_illuminant, q.display)),
-    }
+    posts = {}
+    for route in r.router.routes:
+        if isinstance(route, APIRoute) and "POST" in (route.methods or ()):
+            hints = typing.get_type_hints(route.endpoint)
+            models = [h for h in hints.values() if isinstance(h, type) and issubclass(h, BaseModel)]
+            if len(models) == 1:
+                posts[route.path] = (models[0], route.endpoint)
     return gets, posts
 
 
@@ -152,7 +147,12 @@ def answer_lab_request(method: str, path: str, body: str | None) -> dict:
             request = model.model_validate(data)
         except ValidationError as exc:
             return _refusal(422, validation_message(exc.errors()))
-        return _json(200, answer(request))
+        try:
+            response = answer(request, None)  # the route itself, computing in this process
+        except (SpectrumError, ColorimetryError) as exc:  # as the server's handler of the library's refusals
+            return _refusal(422, str(exc))
+        return {"status": response.status_code, "body": bytes(response.body).decode("utf-8"),
+                "media": "application/json", "headers": {}}
     if route in gets or route in posts:
         return _refusal(405, "Method Not Allowed")
     return answer_request(method, path, body)
