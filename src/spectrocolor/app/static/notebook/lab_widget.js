@@ -86,6 +86,8 @@ function render({model, el}) {
     get body() { return body; },
     get title() { return ""; },
     set title(_) { /* the notebook keeps its own title */ },
+    get cookie() { return ""; },  // no class role (js/classroom.js): a notebook is not in a class
+    set cookie(_) { /* the notebook's cookies are not the lab's */ },
   };
   const popstate = new EventTarget();
   const win = {
@@ -103,7 +105,9 @@ function render({model, el}) {
     },
   };
   const hashOf = (address) => (address ? `#${String(address).replace(/^#/, "")}` : "");
-  const loc = {pathname: `/labs/${LAB}`, search: "", hash: hashOf(model.get("address"))};
+  const loc = {origin: "http://widget.invalid", pathname: `/labs/${LAB}`, search: "", hash: hashOf(model.get("address")),
+    get href() { return `${this.origin}${this.pathname}${this.search}${this.hash}`; },
+    assign() { /* another page of the server: there is none in a notebook */ }};
   const moved = (url) => {
     const u = new URL(String(url), `http://widget.invalid/labs/${LAB}${loc.hash}`);
     loc.search = u.search;
