@@ -181,6 +181,7 @@ _PUBLIC: dict[str, str] = {
     "write_light_report": "lighting.report",
     # the SPECTRA explorer as a notebook widget (anywidget and FastAPI imported only when called)
     "explore": "app.notebook_widget",
+    "explore_lab": "app.notebook_labs",  # a lab of the explorer, likewise
 }
 
 

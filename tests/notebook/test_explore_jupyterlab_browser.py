@@ -197,3 +197,131 @@ def test_a_bar_edited_in_jupyterlab_comes_back_to_python(browser, tmp_path, arti
             assert not errors, errors
         finally:
             context.close()
+
+
+# ---------------------------------------------------------------------------- a lab (sc.explore_lab)
+LAB_CELLS = [
+    "import spectrocolor as sc\n"
+    "lab = sc.explore_lab('thinfilm', film='soap', d=420)\n"
+    "lab",
+    "print('STATE', json.dumps(lab.state))\n"
+    "print('SPECTRUM', json.dumps(lab.spectrum.names), json.dumps(lab.result['film']))",
+    "lab.state = {**lab.state, 'd': 0}\n"
+    "print('SET')",
+]
+LAB = "() => { const h = document.querySelector('.spectrocolor-lab'); return h && h.__spectrocolor; }"
+
+
+def test_a_thin_film_lab_edited_in_jupyterlab_comes_back_to_python(browser, tmp_path, artifacts_dir):
+    (tmp_path / "lab.ipynb").write_text(json.dumps(notebook(LAB_CELLS)), encoding="utf-8")
+    shots = Path("/tmp/nbwidget")
+    shots.mkdir(exist_ok=True)
+    with jupyterlab(tmp_path) as (url, token):
+        context = browser.new_context(viewport={"width": DESKTOP[0], "height": DESKTOP[1]})
+        pg = context.new_page()
+        errors = []
+        pg.on("pageerror", lambda e: errors.append(str(e)))
+        try:
+            pg.goto(f"{url}lab/tree/lab.ipynb?token={token}")
+            pg.wait_for_function("() => { const w = window.jupyterapp && window.jupyterapp.shell.currentWidget; "
+                                 "return Boolean(w && w.sessionContext && w.sessionContext.session "
+                                 "&& w.sessionContext.session.kernel); }", timeout=90000)
+            run_cell(pg, 0)
+            try:  # the lab's page says it is ready once the kernel's table has been drawn
+                pg.wait_for_function("() => { const h = document.querySelector('.spectrocolor-lab'); "
+                                     "return h && h.__spectrocolor.body.dataset.ready === 'true'; }", timeout=120000)
+            except Exception:
+                pg.screenshot(path=str(shots / "lab_not_shown.png"))
+                raise AssertionError(f"the lab did not draw; page errors: {errors}") from None
+            lab = pg.locator(".spectrocolor-lab")
+            assert lab.locator("#thickness-out").inner_text() == "420 nm"  # the state given in Python
+            assert lab.locator("#film").input_value() == "soap"
+            assert lab.locator("#error").is_hidden()
+            patch = lab.locator("#patch").evaluate("(e) => getComputedStyle(e).backgroundColor")
+            assert patch.startswith("rgb("), patch  # the film's colour from the kernel's table
+
+            # five steps of the thickness slider with the keyboard: 420 -> 425 nm, in the page's address
+            slider = lab.locator("#thickness")
+            slider.scroll_into_view_if_needed()
+            slider.focus()
+            shown = ("() => document.querySelector('.spectrocolor-lab').shadowRoot"
+                     ".getElementById('thickness-out').textContent")
+            for d in range(421, 426):  # one step each, seen on the page before the next (none lost to a busy page)
+                pg.keyboard.press("ArrowRight")
+                pg.wait_for_function(f"() => ({shown})() === '{d} nm'", timeout=15000)
+            try:
+                pg.wait_for_function(f"() => ({LAB})().location.hash.includes('d=425')", timeout=30000)
+            except Exception:
+                pg.screenshot(path=str(shots / "lab_not_moved.png"))
+                where = pg.evaluate(f"() => [({LAB})().location.hash, "
+                                    "document.activeElement && document.activeElement.className]")
+                raise AssertionError(f"the slider shows {lab.locator('#thickness-out').inner_text()!r}, the "
+                                     f"address and focus are {where}; page errors: {errors}") from None
+            assert lab.locator("#thickness-out").inner_text() == "425 nm"
+            pg.screenshot(path=str(shots / "lab_desktop.png"), full_page=True)
+            pg.screenshot(path=str(artifacts_dir / "lab_jupyterlab_desktop.png"), full_page=True)
+
+            run_cell(pg, 1)
+            text = output_text(pg, 1, "SPECTRUM")
+            state = json.loads(text.split("STATE", 1)[1].split("\n", 1)[0])
+            assert state["d"] == "425" and state["film"] == "soap"  # the slider's value, in Python
+            assert '["soap 425 nm"] "soap"' in text  # the reflectance at that thickness, from the kernel's table
+
+            # and back: a state assigned in Python moves the page
+            run_cell(pg, 2)
+            output_text(pg, 2, "SET")
+            pg.wait_for_function(f"() => ({shown})() === '0 nm'", timeout=30000)
+            assert lab.locator("#thickness").input_value() == "0"
+
+            pg.set_viewport_size({"width": TABLET[0], "height": TABLET[1]})
+            pg.wait_for_timeout(500)
+            lab.scroll_into_view_if_needed()
+            # the lab takes its narrow layout from the widget's width (a container query), not the window's:
+            # nothing sticks out of the output area
+            fits = pg.evaluate(f"() => {{ const b = ({LAB})().body; return [b.scrollWidth, b.clientWidth]; }}")
+            assert fits[0] <= fits[1] + 1, fits
+            pg.screenshot(path=str(shots / "lab_tablet.png"), full_page=True)
+            pg.screenshot(path=str(artifacts_dir / "lab_jupyterlab_tablet.png"), full_page=True)
+            assert not errors, errors
+        finally:
+            context.close()
+
+
+OTHER_LABS = ["light", "reflectance", "solid"]
+
+
+def test_the_other_labs_open_and_draw_in_jupyterlab(browser, tmp_path, artifacts_dir):
+    cells = ["import spectrocolor as sc\nsc.explore_lab('light', name='FL2')",
+             "sc.explore_lab('reflectance', x=0.45, y=0.4, Y=30, step=10)",
+             "sc.explore_lab('solid', light='D65', Y=50)"]
+    (tmp_path / "labs.ipynb").write_text(json.dumps(notebook(cells)), encoding="utf-8")
+    shots = Path("/tmp/nbwidget")
+    shots.mkdir(exist_ok=True)
+    with jupyterlab(tmp_path) as (url, token):
+        context = browser.new_context(viewport={"width": DESKTOP[0], "height": DESKTOP[1]})
+        pg = context.new_page()
+        errors = []
+        pg.on("pageerror", lambda e: errors.append(str(e)))
+        try:
+            pg.goto(f"{url}lab/tree/labs.ipynb?token={token}")
+            pg.wait_for_function("() => { const w = window.jupyterapp && window.jupyterapp.shell.currentWidget; "
+                                 "return Boolean(w && w.sessionContext && w.sessionContext.session "
+                                 "&& w.sessionContext.session.kernel); }", timeout=90000)
+            for i, name in enumerate(OTHER_LABS):
+                run_cell(pg, i)
+                ready = (f"() => {{ const h = document.querySelector('.spectrocolor-lab-{name}'); "
+                         "return h && h.__spectrocolor.body.dataset.ready === 'true'; }")
+                try:
+                    pg.wait_for_function(ready, timeout=120000)
+                except Exception:
+                    pg.screenshot(path=str(shots / f"lab_{name}_not_shown.png"))
+                    text = pg.locator(f".spectrocolor-lab-{name} #error-text").all_inner_texts()
+                    raise AssertionError(f"the {name} lab did not draw; banner {text}, page errors: {errors}") from None
+                lab = pg.locator(f".spectrocolor-lab-{name}")
+                assert lab.locator("#error").is_hidden(), lab.locator("#error-text").inner_text()
+                lab.scroll_into_view_if_needed()
+                pg.screenshot(path=str(shots / f"lab_{name}_desktop.png"))
+            assert pg.locator(".spectrocolor-lab-light #name").input_value() == "FL2"  # the state given in Python
+            assert not errors, errors
+        finally:
+            context.close()

@@ -66,8 +66,12 @@ def _rendered(function, *args) -> bytes:
     return answer if isinstance(answer, bytes) else bytes(FiniteJSONResponse(answer).body)
 
 
-def _computed(request: Request, function, *args):
-    """``function(*args)`` in a lab worker, with the server's answers for a busy or stuck one."""
+def _computed(request: Request | None, function, *args):
+    """``function(*args)`` in a lab worker, with the server's answers for a busy or stuck one.
+    With no request (a notebook widget calling the route: :mod:`spectrocolor.app.notebook_labs`),
+    in this process."""
+    if request is None:
+        return Response(_rendered(function, *args), media_type="application/json")
     client = client_key(request)  # (address, the tab's token)
     try:  # the worker says whether it used the NumPy path (kernels still compiling)
         answer, used_numpy_path = _workers.run(call_noting_numpy_path, _rendered, function, *args,

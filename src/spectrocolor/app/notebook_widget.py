@@ -49,7 +49,7 @@ from __future__ import annotations
 import functools
 import json
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from numbers import Real
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
@@ -215,7 +215,9 @@ def answer_request(method: str, path: str, body: str | None) -> dict:
     return _refusal(404, f"{route.path[:80]} is not available in the notebook widget")
 
 
-def _request(message: Mapping) -> dict:
+def _request(message: Mapping, answer: Callable[[str, str, str | None], dict] | None = None) -> dict:
+    """A request message's reply: checked as :func:`handle_message` says, then answered by
+    ``answer(method, path, body)`` (default :func:`answer_request`)."""
     rid, method, path, body = (message.get(k) for k in ("id", "method", "path", "body"))
     if isinstance(rid, bool) or not isinstance(rid, int) or not 0 <= rid < 2**53:
         return {"kind": "error", "message": "request: 'id' must be a whole number 0 to 2**53"}
@@ -231,7 +233,7 @@ def _request(message: Mapping) -> dict:
     if body is not None and len(body) > limit:
         return {**reply, **_refusal(413, f"request: the body has {len(body)} characters; at most {limit}")}
     try:
-        return {**reply, **answer_request(method, path, body)}
+        return {**reply, **(answer or answer_request)(method, path, body)}
     except (SpectrumError, ValueError) as exc:  # the library's refusal (ColorimetryError is a ValueError)
         return {**reply, **_refusal(422, str(exc).splitlines()[0][:300] if str(exc) else type(exc).__name__)}
     except Exception as exc:  # a bug: still the page's one error shape, as the server's
