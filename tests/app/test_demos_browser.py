@@ -131,6 +131,9 @@ def lab_values(pg, lab):
         return {"Ra": number(rows["Ra (CIE 13.3)"]), "R9": number(rows["R9 (strong red)"]),
                 "Rf": number(rows["Rf (TM-30 / CIE 224)"]), "Rg": number(rows["Rg (gamut)"]),
                 "cct_K": number(rows["CCT"].split()[0])}
+    if lab == "solid":  # the status line: "… fill the purple region, up to ΔE*ab 34.2 from …"
+        m = re.search(r"up to ΔE\*ab ([\d.]+)", pg.locator("#status").inner_text())
+        return {"mismatch_dEab_max": float(m[1]) if m else None}
     ranges = {}
     for label, key in (("unconstrained", "unconstrained"), ("0 ≤ ρ ≤ 1", "unit")):
         m = re.search(r"ρ from (-?[\d.]+) to (-?[\d.]+)", rows[label])
@@ -176,6 +179,14 @@ def wait_lab_state(pg, lab, st):
                              ".find((e) => e.textContent === 'light'); return dt &&"
                              " dt.nextElementSibling.textContent === w; }", arg=st["name"])
         assert pg.locator("#name").input_value() == st["name"]
+    elif lab == "solid":
+        pg.wait_for_function("(s) => { const st = window.__solid && window.__solid.state;"
+                             " const r = window.__solid && window.__solid.region; return st && r &&"
+                             " st.second === s.second && st.light === s.light && st.sample === s.sample"
+                             " && document.querySelector('#status').textContent.includes('ΔE*ab')"
+                             " && r.second_illuminant.includes(s.second); }", arg=st, timeout=120_000)
+        assert pg.locator("#second").input_value() == st["second"]
+        assert pg.locator("#sample").input_value() == str(st["sample"])
     else:
         want = f"x {st['x']:.4f}, y {st['y']:.4f}, Y {st['Y']:.1f} under {st['light']}"
         pg.wait_for_function("(w) => { const dt = [...document.querySelectorAll('#numbers dt')]"

@@ -47,14 +47,16 @@ LAB_KEYS: dict[str, dict[str, tuple[float, float] | None]] = {
                  "angle": (0.0, 80.0), "d": (0.0, 1500.0)},
     "reflectance": {"light": None, "step": None, "x": (0.0, 1.0), "y": (0.001, 1.0),
                     "Y": (0.5, 100.0)},
-    "solid": {}, "light": {"kind": None, "name": None, "T": (1000.0, 25000.0), "display": None},
+    "solid": {"light": None, "display": None, "second": None, "Y": (1.0, 99.0),
+              "sample": (1.0, 14.0), "mismatch": (0.0, 1.0)},
+    "light": {"kind": None, "name": None, "T": (1000.0, 25000.0), "display": None},
 }
 #: What ``expect`` may bound: per patch in the explorer, page-wide for ΔE00 and the labs.
 PATCH_QUANTITIES = ("lambda_d", "purity", "L", "chroma", "Y", "x", "y")
 PAGE_QUANTITIES = {"explorer": ("dE00",),
                    "thinfilm": ("Y", "thickness_nm"),
                    "reflectance": ("unconstrained_min", "unit_min", "unit_max", "max_Y"),
-                   "solid": (), "light": ("Ra", "R9", "Rf", "Rg", "cct_K")}
+                   "solid": ("mismatch_dEab_max",), "light": ("Ra", "R9", "Rf", "Rg", "cct_K")}
 _ID = re.compile(r"[a-z0-9][a-z0-9-]{0,47}")
 _TEXT_KEYS = ("title", "look", "question", "answer")
 _KEYS = {"id", "title", "where", "seed", "state", "then", "look", "question", "answer", "expect"}

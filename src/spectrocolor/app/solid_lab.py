@@ -255,6 +255,9 @@ def _mismatch_of(reflectance: np.ndarray, sample, illuminant, second_illuminant,
         "sample_xy": np.round(xy(XYZ2), 5).tolist(), "sample_lab": np.round(lab(XYZ2, white2), 3).tolist(),
         "region_xy": np.round(xy(region.boundary_XYZ100), 5).tolist(),
         "region_lab": np.round(lab(region.boundary_XYZ100, white2), 3).tolist(),
+        # how far the region reaches from the sample's own colour under the second light
+        "region_dEab_max": round(float(np.max(np.linalg.norm(
+            lab(region.boundary_XYZ100, white2) - lab(XYZ2, white2), axis=-1))), 2),
         "rgb8_first": _shown(XYZ1[None], W1.sum(axis=0), display)[0].tolist(),
         "rgb8_second": _shown(XYZ2[None], white2, display)[0].tolist(),
     }

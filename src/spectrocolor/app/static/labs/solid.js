@@ -111,7 +111,7 @@ async function load(before = null) {
     }
     if (!state.mismatch) region = null;
     $("status").textContent = region
-      ? `Sample ${region.sample}: matched under ${region.illuminant}, its metamers under ${region.second_illuminant} fill the purple region.`
+      ? `Sample ${region.sample}: matched under ${region.illuminant}, its metamers under ${region.second_illuminant} fill the purple region, up to ΔE*ab ${region.region_dEab_max.toFixed(1)} from the sample's own colour.`
       : "";
     $("error").hidden = true;
     if (picked && !pointData(picked)) picked = null;
