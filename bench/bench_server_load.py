@@ -26,8 +26,10 @@ Phases (each bounded by a request count, so the script stops by itself):
     address and holding the class's event stream, edit at human speed for CLASS_SECONDS; four in
     five drag in the explorer (POST /api/evaluate every CLASS_EDIT_S, /api/model every
     CLASS_MODEL_S), one in five works in a lab (/api/lab/light or /api/lab/thinfilm every
-    CLASS_LAB_S); the teacher pushes every CLASS_PUSH_S. Prints p95 of evaluate/model and of
-    the labs, pushes received, and memory before and after;
+    CLASS_LAB_S); the teacher pushes every CLASS_PUSH_S. Students start at random moments within
+    one pause and vary their pauses by +-25 % (``CLASS_LOCKSTEP=1``: all at the same instants,
+    the worst case). Prints p95 of evaluate/model and of the labs, pushes received, and memory
+    before and after;
 
 and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
 memory (VmRSS) before and after, with its peak (VmHWM).
@@ -360,6 +362,7 @@ def fairness(port: int) -> None:
 
 
 CLASS_STUDENTS, CLASS_SECONDS = 40, 45.0
+LOCKSTEP = os.environ.get("CLASS_LOCKSTEP") == "1"
 CLASS_EDIT_S, CLASS_MODEL_S, CLASS_LAB_S, CLASS_PUSH_S = 0.5, 5.0, 1.0, 10.0
 
 
@@ -419,6 +422,11 @@ def classroom() -> None:
         in_lab = i % 5 == 4
         levels = list(rng.integers(0, 31, 31).astype(float))
         next_model = time.perf_counter()
+        # students do not edit in step: each starts at its own moment within one pause and
+        # varies its pauses by +-25 % (CLASS_LOCKSTEP=1 keeps the worst case: all at once)
+        jitter = np.random.default_rng(1000 + i)
+        if not LOCKSTEP:
+            stop.wait(jitter.uniform(0.0, CLASS_LAB_S if in_lab else CLASS_EDIT_S))
         while not stop.is_set():
             start = time.perf_counter()
             if in_lab:
@@ -444,6 +452,7 @@ def classroom() -> None:
             latencies["labs" if in_lab else "evaluate/model"].append(seconds)
             latencies[route].append(seconds)
             statuses[status] += 1
+            pause *= 1.0 if LOCKSTEP else jitter.uniform(0.75, 1.25)
             stop.wait(max(0.0, pause - (time.perf_counter() - start)))
         conn.close()
 
@@ -466,7 +475,8 @@ def classroom() -> None:
         for t in threads[CLASS_STUDENTS:]:
             t.join()
         wall = time.perf_counter() - t0
-        print(f"classroom: {CLASS_STUDENTS} students ({CLASS_STUDENTS // 5} in a lab) for "
+        print(f"classroom: {CLASS_STUDENTS} students ({CLASS_STUDENTS // 5} in a lab), "
+              f"{'in lockstep' if LOCKSTEP else 'each at its own moment'}, for "
               f"{wall:.0f} s; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
         for name in ("evaluate/model", "labs", "evaluate", "model", "light", "thinfilm"):
             if latencies[name]:
