@@ -28,8 +28,9 @@ Phases (each bounded by a request count, so the script stops by itself):
     CLASS_MODEL_S), one in five works in a lab (/api/lab/light or /api/lab/thinfilm every
     CLASS_LAB_S); the teacher pushes every CLASS_PUSH_S. Students start at random moments within
     one pause and vary their pauses by +-25 % (``CLASS_LOCKSTEP=1``: all at the same instants,
-    the worst case). Prints p95 of evaluate/model and of the labs, pushes received, and memory
-    before and after;
+    the worst case; ``CLASS_HOSTILE=1``: a 41st student floods /api/evaluate with the heaviest
+    accepted evaluation and 30 000-deep bodies, its answers counted apart). Prints p95 of
+    evaluate/model and of the labs, pushes received, and memory before and after;
 
 and prints requests/s, p50/p95/p99 latency (ms), the status counts, and the server's resident
 memory (VmRSS) before and after, with its peak (VmHWM).
@@ -363,6 +364,7 @@ def fairness(port: int) -> None:
 
 CLASS_STUDENTS, CLASS_SECONDS = 40, 45.0
 LOCKSTEP = os.environ.get("CLASS_LOCKSTEP") == "1"
+HOSTILE = os.environ.get("CLASS_HOSTILE") == "1"
 CLASS_EDIT_S, CLASS_MODEL_S, CLASS_LAB_S, CLASS_PUSH_S = 0.5, 5.0, 1.0, 10.0
 
 
@@ -456,9 +458,34 @@ def classroom() -> None:
             stop.wait(max(0.0, pause - (time.perf_counter() - start)))
         conn.close()
 
+    hostile_statuses: collections.Counter = collections.Counter()
+
+    def hostile() -> None:
+        """CLASS_HOSTILE=1: one more student sends, without pause, the heaviest evaluation the
+        server accepts (4 spectra at 1 nm) and a body of 30 000 nested brackets, in turn."""
+        address = f"127.0.0.{10 + CLASS_STUDENTS}"
+        headers = {"Cookie": f"spectrocolor-class={code}", "Content-Type": "application/json",
+                   "X-Spectrocolor-Client": "hostile-tab"}
+        heavy = json.dumps({"step_nm": 1, "spectra": [[15.0] * 301] * 4,
+                            "pairs": [[0, 1], [2, 3]]}).encode()
+        nested = b"[" * 30_000 + b"]" * 30_000
+        conn = http.client.HTTPConnection("127.0.0.2", port, timeout=60,
+                                          source_address=(address, 0))
+        k = 0
+        while not stop.is_set():
+            body, k = (heavy if k % 2 == 0 else nested), k + 1
+            try:
+                hostile_statuses[request(conn, "POST", "/api/evaluate", body, headers)[1]] += 1
+            except (OSError, http.client.HTTPException):
+                hostile_statuses["error"] += 1
+                conn = http.client.HTTPConnection("127.0.0.2", port, timeout=60,
+                                                  source_address=(address, 0))
+
     threads = [threading.Thread(target=listen, args=(i, f"127.0.0.{10 + i}"), daemon=True)
                for i in range(CLASS_STUDENTS)]
     threads += [threading.Thread(target=student, args=(i,)) for i in range(CLASS_STUDENTS)]
+    if HOSTILE:
+        threads.append(threading.Thread(target=hostile))
     t0 = time.perf_counter()
     for t in threads:
         t.start()
@@ -481,6 +508,8 @@ def classroom() -> None:
         for name in ("evaluate/model", "labs", "evaluate", "model", "light", "thinfilm"):
             if latencies[name]:
                 report(f"  {name}", latencies[name], {}, wall)
+        if HOSTILE:
+            print(f"  the hostile student's statuses {dict(hostile_statuses)}")
         print(f"  statuses {dict(statuses)}; pushes sent {pushed}, received per student "
               f"min {min(pushes.values(), default=0)} max {max(pushes.values(), default=0)}")
         after = memory_mib(proc.pid)
