@@ -106,4 +106,5 @@ def test_the_explorer_and_every_lab_link_to_each_other():
     for page in ["/", *labs]:
         html = client.get(page).text
         assert all(f'href="{lab}"' in html for lab in labs), page
-        assert 'href="/"' in html or page == "/"
+        # each lab's tab bar links to the explorer's settings 1-5 (issue 28 item 6)
+        assert page == "/" or all(f'href="/?s={n}"' in html for n in range(1, 6)), page
