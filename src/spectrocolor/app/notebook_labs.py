@@ -392,7 +392,7 @@ def explore_lab(lab: str, spectrum: Spectrum | None = None, **settings: Any):
         Reflectance lab only: one reflectance (0-1) whose colour, CIE 1931 xyY under the lab's
         light (``light=``, default D65), the lab starts from.
     **settings : str or float
-        The lab's starting state, as its address names it (:data:`ADDRESS_KEYS`): light lab
+        The lab's starting state, as its address names it (``spectrocolor.app.notebook_labs.ADDRESS_KEYS``): light lab
         ``kind`` ("named" or "leds"), ``name`` (a light such as "FL2", or a light kind such as
         "blackbody" with ``T`` in K), ``display``, ``leds`` ("peak:width:power,..."); reflectance
         lab ``light``, ``step`` (nm), ``x``, ``y``, ``Y`` (%); solid lab ``light``, ``display``,
