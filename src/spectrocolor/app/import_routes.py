@@ -98,6 +98,13 @@ async def import_(request: Request):
     """The spectra of an uploaded file (an :class:`ImportRequest`), parsed in a worker process
     (429 when all stay busy). Its body, up to 2 MB, is decoded and validated in the upload
     pool's workers too (:func:`_decoded_import`): decoding it here would hold the event loop."""
+    return await _uploaded(request, _import, "import")
+
+
+async def _uploaded(request: Request, answer, verb: str) -> Response:
+    """An upload route's answer: ``request``'s body decoded and validated in an upload worker
+    (:func:`_decoded_import`), then ``answer(decoded, parsers, client)`` in a thread; the pool's
+    refusals worded alike for both routes (``verb``: what the user should do again)."""
     parsers: UploadParser = request.app.state.parsers
     client = client_key(request)
     try:
@@ -105,13 +112,13 @@ async def import_(request: Request):
                                           await request.body(), client=client)
         if isinstance(decoded, str):
             return JSONResponse({"error": decoded}, status_code=422)
-        return await run_in_threadpool(_import, decoded, parsers, client)
+        return await run_in_threadpool(answer, decoded, parsers, client)
     except Busy:
         return JSONResponse({"error": "the server is busy reading other files; try again"},
                             status_code=429)
     except (WorkerTimeout, WorkerDied):
         raise SpectrumError("the upload could not be read (too large or too slow to decode); "
-                            "import a smaller file") from None
+                            f"{verb} a smaller file") from None
 
 
 def _decoded_import(body: bytes) -> tuple[ImportRequest, bytes | str] | str:
@@ -144,20 +151,7 @@ async def light_upload(request: Request):
     """The light in an uploaded file (an :class:`ImportRequest`; only ``filename`` and the content
     matter) for the light-source lab: ``label``, ``spd`` (81 values at 380-780 nm, peak 1) and
     ``note``. Decoded, validated and read in the upload pool's workers, as ``POST /api/import``."""
-    parsers: UploadParser = request.app.state.parsers
-    client = client_key(request)
-    try:
-        decoded = await run_in_threadpool(parsers.pool.run, _decoded_import,
-                                          await request.body(), client=client)
-        if isinstance(decoded, str):
-            return JSONResponse({"error": decoded}, status_code=422)
-        return await run_in_threadpool(_light, decoded, parsers, client)
-    except Busy:
-        return JSONResponse({"error": "the server is busy reading other files; try again"},
-                            status_code=429)
-    except (WorkerTimeout, WorkerDied):
-        raise SpectrumError("the upload could not be read (too large or too slow to decode); "
-                            "upload a smaller file") from None
+    return await _uploaded(request, _light, "upload")
 
 
 def _light(decoded: tuple[ImportRequest, bytes | str], parsers: UploadParser, client) -> Response:
