@@ -88,7 +88,7 @@ def edge_set(grid, depth, seed=0):
 
 PLURAL = {"vertex": "vertices", "edge": "edges"}
 #: Narrow-band reflectances (Gaussian): centre nm and full width at half maximum nm.
-NARROW_BANDS = ((450.0, 5.0), (520.0, 10.0), (560.0, 5.0), (600.0, 15.0), (650.0, 10.0))
+NARROW_BANDS = ((450.0, 5.0), (520.0, 10.0), (560.0, 5.0), (600.0, 15.0), (650.0, 10.0), (700.0, 5.0))
 
 
 def narrow_band_seconds(observer: str) -> tuple[float, float]:

@@ -85,6 +85,12 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
     kkt[:F.size, :F.size] = Q[np.ix_(F, F)]
     kkt[:F.size, F.size:] = -W[F]
     kkt[F.size:, :F.size] = W[F].T
+    # with free weights of full rank and a tridiagonal Q the KKT matrix is nonsingular, and
+    # its banded solve (O(K m)) is the least-squares step; else the dense least squares (O(K³))
+    sv = np.linalg.svd(W[F], compute_uv=False) if F.size >= m else np.zeros(1)
+    banded = (F.size < len(Q) and sv.size == m and sv[m - 1] > 1e-12 * sv[0]
+              and _is_tridiagonal(Q))
+    diag, off = np.diagonal(Q)[F], np.where(np.diff(F) == 1, np.diagonal(Q, 1)[F[:-1]], 0.0)
     def ratio(rho, mu):
         return float(certificate.certify(W, 2.0 / Q[0, 0], b[None], rho[None], mu[None], lower,
                                          upper, [True]).rounding_ratio[0])
@@ -96,7 +102,10 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
         stationarity = (Ql[F] @ r_l - Wl[F] @ m_l)
         colour = bl - r_l @ Wl
         rhs = np.concatenate([-stationarity, colour]).astype(float)
-        step = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
+        step = (_banded_kkt_solve(diag, off, W[F], rhs[:F.size], rhs[F.size:]) if banded
+                else None)
+        if step is None:
+            step = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
         new = rho[F] + step[:F.size]
         if np.any(new <= lower) or np.any(new >= upper):
             break
@@ -106,11 +115,17 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
     return best[1], best[2]
 
 
-def _equality_qp(Q, W, b, rho, active):
+def _equality_qp(Q, W, b, rho, active, tridiagonal=None):
     """Minimiser of ``rho Q rho / 2`` with ``W.T rho = b`` and ``rho[active]`` held fixed.
 
-    Dense KKT solve on the free indices; returns (rho, mu) or None where the free weights
-    cannot reproduce ``b`` reliably (rank below m to within 1e-12 relative).
+    KKT solve on the free indices; returns (rho, mu) or None where the free weights cannot
+    reproduce ``b`` reliably (rank below m to within 1e-12 relative). Where ``Q`` is
+    tridiagonal (the roughness Hessian, as every caller's is) its free block is too, and
+    positive definite unless every sample is free: the solve then goes through the block's
+    banded Cholesky factor and the ``m × m`` Schur complement (:func:`_banded_kkt_solve`,
+    O(K m) a step instead of the dense LU's O(K³), which made a face at 1 nm take seconds),
+    and falls back to the dense LU where that does not reach rounding level. ``tridiagonal``
+    says whether ``Q`` is (tested here when None; a caller solving many steps tests once).
     """
     F = np.flatnonzero(~active)
     m = W.shape[1]
@@ -120,12 +135,91 @@ def _equality_qp(Q, W, b, rho, active):
     if sv[m - 1] <= 1e-12 * sv[0]:
         return None
     n = F.size
-    kkt = np.zeros((n + m, n + m))
-    kkt[:n, :n] = Q[np.ix_(F, F)]
-    kkt[:n, n:] = -W[F]
-    kkt[n:, :n] = W[F].T
     fixed = np.where(active, rho, 0.0)
-    rhs = np.concatenate([-Q[F] @ fixed, b - fixed @ W])
+    sol = None
+    if tridiagonal is None:
+        tridiagonal = _is_tridiagonal(Q)
+    if n < Q.shape[0] and tridiagonal:
+        diag, off = np.diagonal(Q), np.diagonal(Q, 1)
+        Q_fixed = diag * fixed
+        Q_fixed[:-1] += off * fixed[1:]
+        Q_fixed[1:] += off * fixed[:-1]
+        # the free block's bands: neighbours in F that are neighbours on the grid couple
+        sol = _banded_kkt_solve(diag[F], np.where(np.diff(F) == 1, off[F[:-1]], 0.0), W[F],
+                                -Q_fixed[F], b - fixed @ W)
+    if sol is None:
+        kkt = np.zeros((n + m, n + m))
+        kkt[:n, :n] = Q[np.ix_(F, F)]
+        kkt[:n, n:] = -W[F]
+        kkt[n:, :n] = W[F].T
+        sol = _dense_kkt_solve(kkt, np.concatenate([-Q[F] @ fixed, b - fixed @ W]))
+    if sol is None or not np.all(np.isfinite(sol)):
+        return None
+    out = fixed.copy()
+    out[F] = sol[:n]
+    return out, sol[n:]
+
+
+def _is_tridiagonal(Q):
+    """Whether the square matrix ``Q`` has nothing off its three central diagonals."""
+    return not np.any(np.triu(Q, 2)) and not np.any(np.tril(Q, -2))
+
+
+#: A structured KKT solve is taken when every residual is within this many ulps of its terms
+#: (``|kkt| |x| + |rhs|``, row by row); the dense LU with refinement reaches a few.
+_BANDED_ACCEPT_ULPS = 1024
+
+
+def _banded_kkt_solve(diag, off, WF, r_free, r_colour):
+    """The KKT system ``[[T, −W_F], [W_F.T, 0]] [x; μ] = [r_free; r_colour]`` for the
+    tridiagonal positive definite ``T`` (``diag`` (n,), ``off`` (n − 1,)): ``x = T⁻¹ (r_free
+    + W_F μ)`` with μ from the Schur complement ``W_F.T T⁻¹ W_F``, then refinement with
+    residuals of the whole system. Returns ``[x; μ]``, or None where the factorisation fails
+    or the residual stays above rounding level (the caller then takes the dense LU)."""
+    from scipy.linalg import cho_solve_banded, cholesky_banded
+
+    n = len(diag)
+    bands = np.zeros((2, n))
+    bands[0, 1:] = off
+    bands[1] = diag
+    try:
+        factor = cholesky_banded(bands, check_finite=False)
+        Y = cho_solve_banded((factor, False), WF, check_finite=False)
+        schur_inverse = np.linalg.inv(WF.T @ Y)
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+
+    def solve(r1, r2):
+        y0 = cho_solve_banded((factor, False), r1, check_finite=False)
+        mu = schur_inverse @ (r2 - WF.T @ y0)
+        return y0 + Y @ mu, mu
+
+    def tri(v):  # (T v, |T| |v|)
+        tv, av = diag * v, np.abs(diag) * np.abs(v)
+        tv[:-1] += off * v[1:]
+        tv[1:] += off * v[:-1]
+        av[:-1] += np.abs(off) * np.abs(v[1:])
+        av[1:] += np.abs(off) * np.abs(v[:-1])
+        return tv, av
+
+    x, mu = solve(r_free, r_colour)
+    limit = _BANDED_ACCEPT_ULPS * np.finfo(float).eps
+    for step in range(_REFINE_STEPS + 2):
+        tx, atx = tri(x)
+        res1 = r_free - (tx - WF @ mu)
+        res2 = r_colour - x @ WF
+        if (np.all(np.abs(res1) <= limit * (atx + np.abs(WF) @ np.abs(mu) + np.abs(r_free)))
+                and np.all(np.abs(res2) <= limit * (np.abs(x) @ np.abs(WF) + np.abs(r_colour)))):
+            return np.concatenate([x, mu])
+        if step == _REFINE_STEPS + 1:
+            return None
+        dx, dmu = solve(res1, res2)
+        x, mu = x + dx, mu + dmu
+    return None
+
+
+def _dense_kkt_solve(kkt, rhs):
+    """``kkt @ x = rhs`` by LU with partial pivoting and refinement; None if singular."""
     try:
         with warnings.catch_warnings():  # an exactly singular matrix is answered just below
             warnings.simplefilter("ignore", LinAlgWarning)
@@ -140,11 +234,7 @@ def _equality_qp(Q, W, b, rho, active):
     # (residuals in working precision) restores a componentwise small residual
     for _ in range(_REFINE_STEPS):
         sol = sol + lu_solve(lu, rhs - kkt @ sol, check_finite=False)
-    if not np.all(np.isfinite(sol)):
-        return None
-    out = fixed.copy()
-    out[F] = sol[:n]
-    return out, sol[n:]
+    return sol
 
 
 def _feasible_start(prob, Q, b, lower, upper, rho_ip, ratio, at_upper):
@@ -272,8 +362,9 @@ def primal_active_set(Q, W, b, lower, upper, rho, active, pinned=None, max_iter=
     pinned = np.zeros(K, dtype=bool) if pinned is None else pinned
     rho, active = rho.copy(), active | pinned
     max_iter = 10 * K if max_iter is None else max_iter
+    tridiagonal = _is_tridiagonal(Q)
     for it in range(1, max_iter + 1):
-        sol = _equality_qp(Q, W, b, rho, active)
+        sol = _equality_qp(Q, W, b, rho, active, tridiagonal)
         if sol is None:  # the working set keeps W[free] of rank m, up to rounding
             return (*nan, it, False)
         target, mu = sol

@@ -285,3 +285,90 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
     lam = Q @ rho - W @ mu
     lam[free & (rho > lower) & (rho < upper)] = 0.0
     return rho, mu, lam, True
+
+
+#: A colour component is lifted (:func:`lift_component`) when it is at most this fraction of the
+#: colour's largest component: below what a face solution of the whole colour resolves.
+LIFT_FRACTION = 1e-10
+
+
+def liftable_components(W: np.ndarray, b: np.ndarray, lower: float) -> list[int]:
+    """The components ``c`` of ``b`` that :func:`lift_component` can restore: ``b_c`` zero or
+    positive and at most ``LIFT_FRACTION`` of ``max |b|``, its weights ``W[:, c]`` non-negative
+    with exact zeros somewhere (the 1931 z̄ beyond 650 nm, the 1964 z̄ beyond 559 nm), and the
+    lower bound 0. (With ``b_c = 0`` the colour is on the face ``ρ_S = 0`` exactly, and the
+    lift only chooses ``μ_c``.)"""
+    top = float(np.abs(b).max())
+    if lower != 0.0 or top == 0.0:
+        return []
+    return [c for c in range(W.shape[1])
+            if 0.0 <= b[c] <= LIFT_FRACTION * top and np.all(W[:, c] >= 0) and np.any(W[:, c] == 0)]
+
+
+def zero_component_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int, lower: float,
+                            upper: float):
+    """The smoothest ρ for ``b`` with component ``c`` taken as 0: every sample where
+    ``W[:, c] > 0`` held at 0 (the face ``ρ_S = 0``, known here without a facet search), the
+    others solved for the remaining components by the primal active-set method from a vertex.
+    Returns ``(rho, mu)`` (``mu[c] = 0``) or None where no start or no solution is found."""
+    S = W[:, c] > 0
+    others = [i for i in range(W.shape[1]) if i != c]
+    Wo = W[:, others]
+    start = qp._vertex_start(Wo[~S], b[others], lower, upper)
+    if start is None:
+        return None
+    rho = np.zeros(len(W))
+    rho[~S] = start[0]
+    working = np.ones(len(W), dtype=bool)
+    working[~S] = start[1]
+    rho, mu_o, _, _, ok = qp.primal_active_set(Q, Wo, b[others], lower, upper, rho, working,
+                                               pinned=S)
+    if not ok:
+        return None
+    rho, mu_o = qp.polish(Wo, Q, b[others], rho, mu_o, lower, upper, steps=4)
+    mu = np.zeros(W.shape[1])
+    mu[others] = mu_o
+    return rho, mu
+
+
+def lift_component(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int, rho0: np.ndarray,
+                   mu0: np.ndarray, upper: float):
+    """A solution for ``b`` from one for ``b`` with component ``c`` set to 0, or None.
+
+    Such a colour (a narrow red band under the 1964 observer: ``Z = 8e-105`` beside
+    ``X = 2``) lies on the face ``ρ_S = 0`` of the samples ``S`` where ``W[:, c] > 0`` to far
+    below rounding of its other components, but its ``c`` component is a number like any
+    other, and the certificate holds the colour to it relative to its own size. With ``ρ⁰``,
+    ``μ⁰`` the certified solution of the zeroed colour (every sample of ``S`` at 0), the
+    solution of ``b`` differs only at the scale of ``b_c``: one sample ``j`` of ``S`` leaves
+    the bound with ``ρ_j = b_c / W[j, c]``, and the multiplier ``μ_c`` is the largest that
+    keeps every other bound of ``S`` correctly signed, ``μ_c = min_k g_k / W[k, c]`` over
+    ``k`` in ``S`` with ``g = (Q ρ⁰ − W μ⁰)`` without its ``c`` term; ``j`` attains the minimum,
+    so its stationarity holds to the ``b_c``-sized terms left out. Samples outside ``S``
+    (``W[:, c] = 0``) do not see ``μ_c``. The caller certifies the result: this is a candidate.
+    ``upper`` is the upper bound (1, or ∞ for the cone). Returns ``(rho, mu)`` or None where
+    ``ρ⁰`` is not 0 on ``S``.
+    """
+    S = np.flatnonzero(W[:, c] > 0)
+    if S.size == 0 or np.any(rho0[S] != 0.0):
+        return None
+    others = [i for i in range(W.shape[1]) if i != c]
+    g = (Q[S] @ rho0) - W[np.ix_(S, np.array(others))] @ mu0[others]
+    ratio = g / W[S, c]
+    j = int(np.argmin(ratio))
+    rho, mu = rho0.copy(), mu0.copy()
+    mu[c] = ratio[j]
+    rho[S[j]] = b[c] / W[S[j], c]
+    # where b_c is not far below rounding of the rest, the left-out terms are not: the free
+    # samples (j among them) are refined against the whole colour
+    return qp.polish(W, Q, b, rho, mu, 0.0, upper, steps=4)
+
+
+def lifted_candidates(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upper: float):
+    """For each of :func:`liftable_components`, the candidate ``(rho, mu)`` of
+    :func:`zero_component_solution` lifted by :func:`lift_component` (the caller certifies)."""
+    for c in liftable_components(W, b, lower):
+        base = zero_component_solution(W, Q, b, c, lower, upper)
+        lifted = None if base is None else lift_component(W, Q, b, c, base[0], base[1], upper)
+        if lifted is not None:
+            yield lifted

@@ -135,33 +135,56 @@ def _face_or_flag(W, Q, b, lower, upper, facet_tolerance, facets=None):
     the K³ products of forming the first level's candidates: seconds at 1 nm; then on the
     candidates formed from the weights); failing that, the dense primal active-set method from an
     exact feasible start (a colour within rounding of the boundary whose face the facet test
-    could not pin down); failing that too, the solution in exact rational arithmetic
-    (:mod:`.exact`, slow but certain). A numerical breakdown on one degenerate colour is that
-    colour's failure (flagged, NaN), never the batch's. Returns rho, mu, lam, settled, method.
+    could not pin down); failing that, a component far below the others' rounding (``Z = 1e-104``
+    beside ``X = 2``) solved at its own scale (:func:`.face.lift_component`); failing that too,
+    the solution in exact rational arithmetic (:mod:`.exact`, slow but certain). A numerical
+    breakdown on one degenerate colour is that colour's failure (flagged, NaN), never the
+    batch's. Returns rho, mu, lam, settled, method.
     """
-    K, m = W.shape
     step_nm = 2.0 / Q[0, 0]
-    failed = np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False
-    def certified(got):
-        return got[3] and certify(W, step_nm, b[None], got[0][None], got[1][None], lower,
+
+    def certified(got, colour=b):
+        return got[3] and certify(W, step_nm, colour[None], got[0][None], got[1][None], lower,
                                   upper, [True]).converged[0]
 
+    # a component far below the others' rounding is solved at its own scale first (cheap: its
+    # face is known), then the setup's facets, then facets formed from the weights (K³ products)
+    for rho, mu in face.lifted_candidates(W, Q, b, lower, upper):
+        got = rho, mu, Q @ rho - W @ mu, True
+        if certified(got):
+            return (*got, FACE_METHOD)
+    got, best = _float_face(W, Q, b, lower, upper, facet_tolerance, facets, certified)
+    if got is not None:
+        return (*got, FACE_METHOD)
+    # every floating-point route missed rounding level (nearly parallel generators): exactly
+    exact_got = exact.exact_solution(W, step_nm, b, lower, upper)
+    if exact_got is None:
+        return (*best, FACE_METHOD)
+    rho, mu = exact_got
+    return rho, mu, Q @ rho - W @ mu, True, EXACT_METHOD
+
+
+def _float_face(W, Q, b, lower, upper, facet_tolerance, facets, certified):
+    """The floating-point routes of :func:`_face_or_flag`: ``(solution, best)`` with the first
+    solution ``certified`` accepts (rho, mu, lam, True), or None and the best uncertified."""
+    K, m = W.shape
+    failed = np.full(K, np.nan), np.full(m, np.nan), np.full(K, np.nan), False
     best = failed
     try:
         if facets is not None:
             for choice in range(FACET_CHOICES):
                 got = face.face_solution(W, Q, b, lower, upper, facet_tolerance, choice, facets)
                 if certified(got):
-                    return (*got, FACE_METHOD)
+                    return got, got
         best = face.face_solution(W, Q, b, lower, upper, facet_tolerance)
         if certified(best):
-            return (*best, FACE_METHOD)
+            return best, best
         # a colour on an edge lies on several facets, and rounding can rank first one that
         # does not quite hold it: the next ones are tried (the certificate judges each)
         for choice in range(1, FACET_CHOICES):
             other = face.face_solution(W, Q, b, lower, upper, facet_tolerance, choice)
             if certified(other):
-                return (*other, FACE_METHOD)
+                return other, other
         start = qp._vertex_start(W, b, lower, upper)
         if start is not None:
             rho, mu, lam, _, ok = qp.primal_active_set(Q, W, b, lower, upper, *start)
@@ -169,15 +192,10 @@ def _face_or_flag(W, Q, b, lower, upper, facet_tolerance, facets=None):
                 rho, mu = qp.polish(W, Q, b, rho, mu, lower, upper)
                 best = rho, mu, lam, True
                 if certified(best):
-                    return (*best, FACE_METHOD)
+                    return best, best
     except (np.linalg.LinAlgError, ValueError, FloatingPointError):
         best = failed
-    # every floating-point route missed rounding level (nearly parallel generators): exactly
-    got = exact.exact_solution(W, step_nm, b, lower, upper)
-    if got is None:
-        return (*best, FACE_METHOD)
-    rho, mu = got
-    return rho, mu, Q @ rho - W @ mu, True, EXACT_METHOD
+    return None, best
 
 
 def smoothest_reflectance(
