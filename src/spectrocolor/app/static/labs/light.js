@@ -8,7 +8,7 @@
 // page keeps that SPD in the tab's sessionStorage (one light, about 1 kB), so a reload of the tab
 // shows it again; the URL says only "kind=file", so a link opened elsewhere asks for the file.
 
-import { $, api, context, css, fmt, showError, wireCommon } from "./common.js";
+import { $, api, context, css, fmt, showError, theme, wireCommon } from "./common.js";
 
 const DEFAULT_LEDS = [[450, 20, 1.0], [540, 60, 0.7], [620, 20, 0.8]];
 const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB", file: null };
@@ -272,14 +272,15 @@ function drawSpd() {
   const wl = result.wavelengths_nm;
   const X = (w) => box.x + ((w - 380) / 400) * box.w;
   const Y = (v) => box.y + box.h - v * box.h;
-  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.font = "11px system-ui, sans-serif";
+  const t = theme(ctx.canvas);
+  ctx.strokeStyle = t.muted; ctx.fillStyle = t.text; ctx.font = "11px system-ui, sans-serif";
   ctx.strokeRect(box.x, box.y, box.w, box.h);
   ctx.textAlign = "center";
   for (let w = 400; w <= 750; w += 50) ctx.fillText(w, X(w), box.y + box.h + 15);
   ctx.fillText("wavelength (nm)", box.x + box.w / 2, box.y + box.h + 30);
   ctx.textAlign = "right";
   for (const v of [0, 0.5, 1]) ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
-  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 2;
+  ctx.strokeStyle = t.text; ctx.lineWidth = 2;
   ctx.beginPath();
   result.spd.forEach((v, k) => (k ? ctx.lineTo(X(wl[k]), Y(v)) : ctx.moveTo(X(wl[k]), Y(v))));
   ctx.stroke();
@@ -290,25 +291,26 @@ function drawGraphic() {
   const r = Math.min(width, height) / 2 / 1.32;
   const cx = width / 2, cy = height / 2;
   const bins = result.bin_rgb8;
+  const t = theme(ctx.canvas);
   for (let j = 0; j < 16; j++) { // hue sectors in the bins' colours, faint
     ctx.fillStyle = css(bins[j]);
-    ctx.globalAlpha = 0.35;
+    ctx.globalAlpha = 0.45;
     ctx.beginPath(); ctx.moveTo(cx, cy);
     ctx.arc(cx, cy, r * 1.3, -(j + 1) * Math.PI / 8, -j * Math.PI / 8);
     ctx.closePath(); ctx.fill();
   }
   ctx.globalAlpha = 1;
-  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 1.5;
+  ctx.strokeStyle = t.text; ctx.lineWidth = 1.5;
   ctx.beginPath(); ctx.arc(cx, cy, r, 0, 2 * Math.PI); ctx.stroke();
   if (!result.graphic) { // no graphic for this light: say why (the server's note)
-    ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "center";
+    ctx.fillStyle = t.text; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "center";
     ctx.fillText("No vector graphic for this light", cx, cy);
     $("graphic").setAttribute("aria-label", `TM-30 colour vector graphic: ${result.graphic_note || "none"}`);
     return;
   }
   $("graphic").setAttribute("aria-label", "TM-30 colour vector graphic");
   const P = ([a, b]) => [cx + a * r, cy - b * r];
-  ctx.strokeStyle = "#b3261e"; ctx.lineWidth = 2.5;
+  ctx.strokeStyle = t.bad; ctx.lineWidth = 2.5;
   ctx.beginPath();
   result.graphic.test.forEach((p, j) => { const [x, y] = P(p); j ? ctx.lineTo(x, y) : ctx.moveTo(x, y); });
   ctx.closePath(); ctx.stroke();
@@ -317,7 +319,7 @@ function drawGraphic() {
     const [x0, y0] = P(result.graphic.reference[j]); const [x1, y1] = P(p);
     ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke();
   });
-  ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left";
+  ctx.fillStyle = t.text; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left";
   ctx.fillText(`Rf ${fmt(result.summary.Rf, 0)}   Rg ${fmt(result.summary.Rg, 0)}`, 8, 16);
 }
 
