@@ -42,7 +42,8 @@ INKED = """([id, tol]) => {
   const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
   let n = 0;
   for (let k = 0; k < d.length; k += 4)
-    if (d[k + 3] > 200 && Math.abs(d[k] - r) <= tol && Math.abs(d[k + 1] - g) <= tol && Math.abs(d[k + 2] - b) <= tol) n++;
+    if (d[k + 3] > 200 && Math.abs(d[k] - r) <= tol && Math.abs(d[k + 1] - g) <= tol
+        && Math.abs(d[k + 2] - b) <= tol) n++;
   return {n, total: d.length / 4, text: [r, g, b]};
 }"""
 
