@@ -91,6 +91,7 @@ def test_the_explorers_distribution_of_any_shape(client, step, levels, label):
     check(response)
     if response.status_code == 200:
         answer = response.json()
+        # exact: the range is two grid wavelengths (380 + 5 k nm), copied, not computed
         assert answer["range_nm"] == [400.0, 700.0] and answer["summary"]["Ra"] is None
         assert all("380" in r["reason"] for r in answer["reasons"]) and len(answer["reasons"]) == 4
 
