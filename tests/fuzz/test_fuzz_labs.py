@@ -77,6 +77,25 @@ def test_mismatch_refuses_bad_requests_clearly(client, body):
     assert response.status_code == 422 and isinstance(response.json()["error"], str)
 
 
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(step=st.sampled_from([1, 5, 10, 2, 0, -10, 10.5, "10", None]),
+       levels=st.lists(st.floats(-5, 40) | st.integers(-5, 10**30) | st.text(max_size=3) | st.none(),
+                       min_size=0, max_size=320)
+       | st.sampled_from([31, 61, 301]).flatmap(lambda n: st.lists(st.integers(0, 30), min_size=n, max_size=n)),
+       label=st.text(max_size=250) | st.none() | st.integers())
+def test_the_explorers_distribution_of_any_shape(client, step, levels, label):
+    """The explorer's distribution (kind "explorer", issue 28): a light over 400-700 nm whose
+    metrics are None with the library's reasons, or one clear error."""
+    body = {"kind": "explorer", "step_nm": step, "levels": levels, **({"label": label} if label is not None else {})}
+    response = client.post("/api/lab/light", json={"source": body})
+    check(response)
+    if response.status_code == 200:
+        answer = response.json()
+        # exact: the range is two grid wavelengths (380 + 5 k nm), copied, not computed
+        assert answer["range_nm"] == [400.0, 700.0] and answer["summary"]["Ra"] is None
+        assert all("380" in r["reason"] for r in answer["reasons"]) and len(answer["reasons"]) == 4
+
+
 # ---- the light lab's uploaded SPD (issue 28 item 6): the upload route and the "spd" source ----------
 
 LAMPS = [(Path(__file__).parents[1] / "data" / "io" / name).read_bytes()

@@ -149,12 +149,27 @@ class SpdLight(BaseModel):
                       Field(min_length=light_lab.WAVELENGTHS_NM.size, max_length=light_lab.WAVELENGTHS_NM.size)]
 
 
-class LightRequest(BaseModel):
-    """One light (named, of a kind at a temperature, a mixture of Gaussian primaries, or a
-    measured SPD) and the display for the samples."""
+class ExplorerLight(BaseModel):
+    """The explorer's distribution handed to the lab (js/handoff.js): its levels (0-30) at
+    400, 400 + ``step_nm``, …, 700 nm (length and range checked by
+    :func:`~spectrocolor.app.light_lab.explorer_spd`) and its name."""
 
     model_config = ConfigDict(extra="forbid")
-    source: Annotated[NamedLight | TemperatureLight | LedLight | SpdLight, Field(discriminator="kind")]
+    kind: Literal["explorer"]
+    label: Annotated[str, Field(max_length=light_lab.MAX_LABEL_CHARS)] = ""
+    step_nm: Literal[1, 5, 10]
+    levels: Annotated[list[Annotated[float, Field(ge=0.0, le=light_lab.EXPLORER_FULL, allow_inf_nan=False)]],
+                      Field(min_length=31, max_length=301)]
+
+
+class LightRequest(BaseModel):
+    """One light (named, of a kind at a temperature, a mixture of Gaussian primaries, a
+    measured SPD, or the explorer's distribution over 400-700 nm) and the display for the
+    samples."""
+
+    model_config = ConfigDict(extra="forbid")
+    source: Annotated[NamedLight | TemperatureLight | LedLight | SpdLight | ExplorerLight,
+                      Field(discriminator="kind")]
     display: Annotated[str, Field(max_length=40)] = "sRGB"
 
 

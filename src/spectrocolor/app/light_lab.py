@@ -2,14 +2,21 @@
 
 A light is a CIE illuminant, a Planckian radiator or CIE daylight of any temperature, a
 mixture of up to four LED-like primaries (Gaussian in wavelength, each with a peak, a full width
-at half maximum and a power), or a measured SPD from an uploaded file (read by
+at half maximum and a power), a measured SPD from an uploaded file (read by
 :func:`spectrocolor.read_spectra`, the explorer's Load reader, in the upload workers:
-:func:`read_light_file`). For it the page shows what :mod:`spectrocolor.lighting` computes:
+:func:`read_light_file`), or the explorer's own distribution (levels over 400-700 nm:
+:func:`explorer_spd`; the metrics that need 380-780 nm are then not computed, each with the
+library's reason). For it the page shows what :mod:`spectrocolor.lighting` computes:
 CCT and Duv, CIE 13.3 Ra and R1-R14, CIE 224 / TM-30 Rf and Rg with the 16 hue bins and the colour
 vector graphic, the luminous efficacy of radiation and the melanopic daylight efficacy ratio, and
 the 14 CIE test-colour samples rendered under the light beside the same samples under the CRI's
 reference illuminant (each adapted to the display's white, so the difference is the rendering,
 not the white).
+
+Why this file is long: it is the lab's whole server side in one place -- the five kinds of light
+the page describes (each checked, with one clear error), the uploaded file's reader, and the
+answer for a light over the full range and for one known over part of it -- so that the request
+models (``lab_routes``) and the workers call one module.
 
 References
 ----------
@@ -103,13 +110,78 @@ def light_spd(source: dict):
         return values / values.max(), light.label
     if kind == "spd":
         return measured_spd(source.get("values")), str(source.get("label", "uploaded light"))[:MAX_LABEL_CHARS]
+    if kind == "explorer":
+        label = str(source.get("label") or "the explorer's distribution")[:MAX_LABEL_CHARS]
+        return explorer_spd(source.get("levels"), source.get("step_nm")), label
     if kind == "leds":
         spd = led_mixture(source.get("peaks_nm", ()), source.get("widths_nm", ()), source.get("powers", ()))
         peaks = ", ".join(f"{p:g}" for p in np.asarray(source["peaks_nm"], dtype=float).reshape(-1))
         return spd, f"LED mixture ({peaks} nm)"
     raise ColorimetryError("source: expected {'kind': 'named', 'name': …}, {'kind': 'temperature', 'light': …, "
                            "'temperature_K': …}, {'kind': 'leds', 'peaks_nm': …, …} or {'kind': 'spd', "
-                           "'label': …, 'values': […]}")
+                           "'label': …, 'values': […]} or {'kind': 'explorer', 'step_nm': …, 'levels': […]}")
+
+
+#: The explorer's wavelength range (SPECTRA's 400-700 nm) and its levels' top (the full spectrum).
+EXPLORER_RANGE_NM = (400.0, 700.0)
+EXPLORER_FULL = 30.0
+EXPLORER_STEPS_NM = (1.0, 5.0, 10.0)
+
+
+def explorer_spd(levels, step_nm) -> np.ndarray:
+    """The explorer's distribution on :data:`WAVELENGTHS_NM`: NaN outside 400-700 nm, peak 1.
+
+    The explorer's levels (0-30) cover only 400-700 nm; the lab's grid is 380-780 nm. Inside
+    400-700 nm the levels are interpolated linearly onto the 5 nm grid; outside they are NaN: not
+    measured, never invented. The metrics that take samples from 380 to 780 nm (CIE 13.3, CIE 224
+    / TM-30, photometry, CIE S 026) then give NaN with the library's reason
+    (:func:`spectrocolor.lighting.light_report`).
+
+    Parameters
+    ----------
+    levels : sequence of float
+        The explorer's levels at 400, 400 + ``step_nm``, …, 700 nm: finite, 0-30, not all 0.
+    step_nm : float
+        The explorer's grid step: 1, 5 or 10 nm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (81,)
+        Relative power at 380, 385, …, 780 nm, NaN below 400 and above 700 nm, peak 1.
+
+    Raises
+    ------
+    ColorimetryError
+        For another step, a length other than ``300 / step_nm + 1``, a level outside 0-30 or
+        not finite, or levels all 0.
+
+    Examples
+    --------
+    >>> spd = explorer_spd([30] * 31, 10)  # 380-395 nm and 705-780 nm are not known: 4 + 16 samples
+    >>> int(np.isnan(spd).sum()), float(np.nanmax(spd))
+    (20, 1.0)
+    """
+    try:
+        step = float(step_nm)
+    except (TypeError, ValueError):
+        step = float("nan")
+    if not any(step == s for s in EXPLORER_STEPS_NM):  # exact: the explorer's steps are whole nm
+        raise ColorimetryError(f"step_nm: the explorer's step is 1, 5 or 10 nm, got {str(step_nm)[:20]!r}")
+    start, stop = EXPLORER_RANGE_NM
+    count = int(round((stop - start) / step)) + 1
+    try:
+        values = np.asarray(levels, dtype=float)
+    except (TypeError, ValueError):
+        values = np.empty(0)
+    if (values.shape != (count,) or not np.all(np.isfinite(values)) or values.min() < 0
+            or values.max() > EXPLORER_FULL or values.max() <= 0):
+        raise ColorimetryError(f"levels: give {count} levels (400-700 nm at {step:g} nm), each 0-"
+                               f"{EXPLORER_FULL:g}, not all 0")
+    grid = np.linspace(start, stop, count)
+    inside = (WAVELENGTHS_NM >= start) & (WAVELENGTHS_NM <= stop)
+    spd = np.full(WAVELENGTHS_NM.shape, np.nan)
+    spd[inside] = np.interp(WAVELENGTHS_NM[inside], grid, values)
+    return spd / np.nanmax(spd)
 
 
 def measured_spd(values) -> np.ndarray:
@@ -343,6 +415,8 @@ def light_lab_of(spd, label: str, display: str = "sRGB") -> dict:
     from ..spectrum import Spectrum
 
     spd = np.asarray(spd, dtype=float)
+    if not np.all(np.isfinite(spd)):
+        return _part_measured(spd, label)
     light = Spectrum(WAVELENGTHS_NM, spd)
     headline = summary(light)
     cri = colour_rendering_index(light)
@@ -384,6 +458,48 @@ def light_lab_of(spd, label: str, display: str = "sRGB") -> dict:
             "under_reference_note": reference_note,
         },
     }
+
+
+def _part_measured(spd: np.ndarray, label: str) -> dict:
+    """:func:`light_lab_of` of a light known over part of 380-780 nm (NaN elsewhere): every metric
+    the library refuses is None, and ``reasons`` says, per group of numbers, why (the library's
+    own words: :func:`spectrocolor.lighting.light_report` of the light as a batch of one)."""
+    from ..lighting.summary import light_report
+    from ..spectrum import Spectrum
+
+    report = light_report(Spectrum(WAVELENGTHS_NM, spd[None, :]))
+    headline = {key: float(column[0]) for key, column in report.headline().items()}
+    nothing = [None] * 16
+    known = np.flatnonzero(np.isfinite(spd))
+    span = [float(WAVELENGTHS_NM[known[0]]), float(WAVELENGTHS_NM[known[-1]])]
+    groups = [("Ra, R9, R1-R14 (CIE 13.3)", report.cri.reason[0]),
+              ("CCT, Duv, Rf, Rg, hue bins (CIE 224 / TM-30)", report.fidelity.reason[0]),
+              ("LER (photometry)", report.ler_reason[0]),
+              ("melanopic DER (CIE S 026)", report.alpha_opic.reason[0])]
+    samples_note = (f"not shown: the light is known over {span[0]:g}-{span[1]:g} nm only; the samples' colours "
+                    "take 380-780 nm")
+    return {
+        "label": label,
+        "wavelengths_nm": WAVELENGTHS_NM.tolist(),
+        "spd": [None if not np.isfinite(v) else round(float(v), 6) for v in spd],
+        "range_nm": span,
+        "reasons": [{"metrics": metrics, "reason": str(reason)} for metrics, reason in groups if reason],
+        "summary": {**{k: (None if not np.isfinite(v) else round(v, 4)) for k, v in headline.items()},
+                    "cri_meaningful": bool(report.cri.meaningful[0])},
+        "Ri": [None if not np.isfinite(v) else round(float(v), 4) for v in np.asarray(report.cri.Ri).reshape(-1)],
+        "hue_bins": {"Rf_h": nothing, "Rcs_h": nothing, "Rhs_h": nothing},
+        "graphic": None,
+        "graphic_note": "no colour vector graphic: Rf is not defined for this light",
+        "bin_rgb8": _bin_rgb8(),
+        "samples": {"names": list(TCS_NAMES), "under_light": None, "under_reference": None,
+                    "under_light_note": samples_note, "under_reference_note": samples_note},
+    }
+
+
+def _bin_rgb8() -> list:
+    from ..lighting.vector_graphic import bin_colours_rgb8
+
+    return bin_colours_rgb8().tolist()
 
 
 def light_lab_options() -> dict:

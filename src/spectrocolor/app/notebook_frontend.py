@@ -226,9 +226,9 @@ def shadow_css(css: str) -> str:
 
 
 def page_css() -> str:
-    """The explorer's style (``static/style.css``) for a shadow root: ``:root`` and ``body`` are
-    the widget's host and its page element."""
-    return shadow_css(_static("style.css")) + _WIDGET_CSS
+    """The explorer's palette and style (``static/theme.css``, ``static/style.css``) for a shadow
+    root: ``:root`` and ``body`` are the widget's host and its page element."""
+    return shadow_css(_static("theme.css") + _static("style.css")) + _WIDGET_CSS
 
 
 @functools.cache

@@ -5,7 +5,10 @@
 //   setting 4's illuminant when the lab has a light of that name;
 // * setting 4's sample (the active one of the two; its levels 0-30 at the page's step, as
 //   r=<step>:<levels>) to the object-colour-solid lab's metamer mismatch region;
-// * setting 4's illuminant to the light lab, when it is one of the lab's named lights.
+// * to the light lab: setting 4's illuminant by name when it is one of the lab's named lights, else
+//   (and setting 1's distribution always) its levels as kind=explorer&r=<step>:<levels>&label=<name>,
+//   which the lab shows as a light known over 400-700 nm only, saying which metrics that leaves
+//   out and why.
 // Each lab checks what it reads (a bad address gives one message there, never a crash).
 
 import {S} from "./state.js";
@@ -51,12 +54,15 @@ export function solidLink() {
     r: `${S.step}:${S.dists[4][a].map(level).join(",")}`})};
 }
 
-/** The light lab's address for setting 4's illuminant. */
+/** The light lab's address for setting 1's distribution or setting 4's illuminant. */
 export function lightLink() {
-  if (S.setting !== 4) return {why: "choose setting 4 (its illuminant goes to the light lab)"};
-  const name = S.names[4][0];
-  if (!NAMED_LIGHTS.includes(name)) return {why: `the light lab has no light named "${name}"`};
-  return {href: "/labs/light" + hash({kind: "named", name})};
+  if (S.setting !== 1 && S.setting !== 4) return {why: "choose setting 1 (its distribution) or 4 (its illuminant)"};
+  const name = S.names[S.setting][0];
+  if (S.setting === 4 && NAMED_LIGHTS.includes(name)) return {href: "/labs/light" + hash({kind: "named", name})};
+  const levels = S.dists[S.setting][0];
+  if (!levels.some((v) => v > 0)) return {why: "this distribution has no power"};
+  return {href: "/labs/light" + hash({kind: "explorer", r: `${S.step}:${levels.map(level).join(",")}`,
+    label: name || "the explorer's distribution"})};
 }
 
 function button(id, text, title, link) {
@@ -73,7 +79,7 @@ if (group) {
     "Open in lab: ",
     button("handoff-reflectance", "Colour → reflectance", "This colour (x, y, Y) in the smoothest-reflectance lab", reflectanceLink),
     button("handoff-solid", "Sample → solid", "Setting 4's sample: its metamer mismatch region in the object-colour-solid lab", solidLink),
-    button("handoff-light", "Light → light lab", "Setting 4's illuminant in the light lab (a named light)", lightLink),
+    button("handoff-light", "Light → light lab", "Setting 1's distribution or setting 4's illuminant in the light lab (known over 400–700 nm: the lab says which metrics that leaves out)", lightLink),
     el("span", {id: "handoff-status", role: "status", class: "handoff-status"}));
   document.addEventListener("click", (e) => {
     if (!group.contains(e.target)) $("handoff-status").textContent = "";

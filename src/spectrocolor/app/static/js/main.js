@@ -528,8 +528,9 @@ function syncControls() {
   if (S.adaptation) $("adaptation").value = S.adaptation;
 }
 
-/** Back/Forward: the options and distributions of the address, queued like any option change. */
-function onPopState() {
+/** Back/Forward: the options and distributions of the address, queued like any option change
+ * (`demo`: a demonstration's address, whose levels are one undo step of their setting). */
+function onPopState(_event, demo = false) {
   dropSave();
   return queueOption("Could not go back", async () => {
     const keys = ["step", "display", "observer", "adaptation", "normalise"];
@@ -542,16 +543,18 @@ function onPopState() {
     S.presets = presets;
     if (model) setModel(model);
     if (newStep) defaults();
-    showURLState(setting);
+    showURLState(setting, demo);
   });
 }
 /** A demonstration's address (demos.js): pushed, so Back returns to what was there, then shown
  * as Back/Forward show an address (queued like any option change). */
 function loadState(search) {
+  flushSave();  // the entry Back returns to holds the page as it is (a press still queued included)
   history.pushState({}, "", `${location.pathname}${search}`);
-  return onPopState();
+  return onPopState(null, true);
 }
-function showURLState(setting) {
+function showURLState(setting, demo = false) {
+  if (demo) remember(setting);  // Ctrl+Z after a demo gives back the setting as it was
   if (setting === 5) S.mode5 = readURLOptions(location.search).mode5;  // &m=add: two spotlights
   const d = readURLDistributions(location.search, setting, S.wl.length);
   if (d) { S.dists[setting] = d.dists; S.names[setting] = d.names; S.edited[setting] = d.edited; }

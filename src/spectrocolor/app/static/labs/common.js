@@ -45,6 +45,20 @@ export function context(canvas) {
   return { ctx, width, height };
 }
 
+/** The page's palette (../theme.css) for a canvas: text, line, grid, muted, accent, bg, panel, bad,
+ * warn, ok. Read from the element (custom properties inherit), so it also holds inside a notebook
+ * widget's shadow root; a plot's ink then follows the theme, its sample colours stay as computed. */
+export function theme(element = document.documentElement) {
+  const style = getComputedStyle(element);
+  const get = (name, fallback) => style.getPropertyValue(`--${name}`).trim() || fallback;
+  return {
+    text: get("text", "#e6e8ee"), line: get("line", "#4a505e"), grid: get("grid", "#2e333d"),
+    muted: get("muted", "#aab1c0"), accent: get("accent", "#6aa9ff"), bg: get("bg", "#15171c"),
+    panel: get("panel", "#1e2128"), bad: get("bad", "#ff7b7b"), warn: get("warn", "#ffb454"),
+    ok: get("ok", "#7ad69b"),
+  };
+}
+
 export const css = (rgb) => `rgb(${rgb[0]}, ${rgb[1]}, ${rgb[2]})`;
 export const fmt = (v, digits) => (v === null || v === undefined ? "—" : Number(v).toFixed(digits));
 
@@ -68,7 +82,8 @@ export function xyFrame(width, height) {
 
 /** The frame, tick values and axis label of an xy plot. */
 export function drawXyAxes(ctx, { box, X, Y }) {
-  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.lineWidth = 1; ctx.font = "11px system-ui, sans-serif";
+  const t = theme(ctx.canvas);
+  ctx.strokeStyle = t.muted; ctx.fillStyle = t.text; ctx.lineWidth = 1; ctx.font = "11px system-ui, sans-serif";
   ctx.strokeRect(box.x, box.y, box.w, box.h);
   ctx.textAlign = "center";
   for (const v of [0, 0.2, 0.4, 0.6, 0.8]) ctx.fillText(v.toFixed(1), X(v), box.y + box.h + 15);

@@ -7,16 +7,24 @@
 // workers and budgets), which answers its SPD at the lab's 81 wavelengths (380-780 nm, 5 nm). The
 // page keeps that SPD in the tab's sessionStorage (one light, about 1 kB), so a reload of the tab
 // shows it again; the URL says only "kind=file", so a link opened elsewhere asks for the file.
+//
+// The explorer's own distribution (js/handoff.js: "Light → light lab" in setting 1) comes in the
+// URL as kind=explorer&r=<step nm>:<level>,<level>,… (levels 0-30 over 400-700 nm) and &label=.
+// The server answers it with None for every metric that needs 380-780 nm and the library's reason
+// for each, which the page says in plain words (#reasons).
 
-import { $, api, context, css, fmt, showError, wireCommon } from "./common.js";
+import { $, api, context, css, fmt, showError, theme, wireCommon } from "./common.js";
 
 const DEFAULT_LEDS = [[450, 20, 1.0], [540, 60, 0.7], [620, 20, 0.8]];
-const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB", file: null };
+const DEFAULTS = { kind: "named", name: "FL2", temperature: 3000, leds: DEFAULT_LEDS, display: "sRGB", file: null,
+  explorer: null };  // explorer: {step, levels, label}, the explorer's distribution (400-700 nm)
+const EXPLORER_STEPS = [1, 5, 10];
 // the uploaded light in this tab's sessionStorage: {label, spd (81 values), note}
 const STORED = "spectrocolor.lightLab.upload";
 const GRID_SIZE = 81;  // 380-780 nm at 5 nm, the lab's grid (light_lab.WAVELENGTHS_NM)
 const MAX_UPLOAD_BYTES = 1_000_000;  // the server's import_routes.MAX_IMPORT_BYTES
 let notKept = "";  // said when the URL names an uploaded light this tab no longer holds
+let badExplorer = "";  // said when the URL's explorer distribution cannot be read
 
 let state = structuredClone(DEFAULTS);
 // the kinds of light named by a temperature, from the server's registry: name -> {label, min_K, max_K}
@@ -33,7 +41,26 @@ const redoStack = [];
 function encode(s) {
   const params = new URLSearchParams({ kind: s.kind, name: s.name, T: String(s.temperature), display: s.display });
   params.set("leds", s.leds.map((p) => p.join(":")).join(","));
+  if (s.explorer) {
+    params.set("r", `${s.explorer.step}:${s.explorer.levels.join(",")}`);
+    params.set("label", s.explorer.label);
+  }
   return "#" + params.toString();
+}
+
+/** The explorer's distribution from the address (`r=<step>:<levels>`), or null and a reason. */
+function explorerFrom(params) {
+  if (!params.has("r")) return [null, ""];
+  const [stepText, list = ""] = params.get("r").split(":");
+  const step = Number(stepText);
+  const levels = list.split(",").map((v) => (v.trim() === "" ? NaN : Number(v)));
+  const count = EXPLORER_STEPS.includes(step) ? 300 / step + 1 : -1;
+  if (count < 0 || levels.length !== count || !levels.every((v) => Number.isFinite(v) && v >= 0 && v <= 30)
+      || !levels.some((v) => v > 0)) {
+    return [null, "The link's distribution from the explorer could not be read (r= must be a step of 1, 5 or 10 nm, "
+      + "then the levels 0–30 at 400–700 nm, not all 0): showing a named light instead."];
+  }
+  return [{ step, levels, label: (params.get("label") || "the explorer's distribution").slice(0, 200) }, ""];
 }
 
 function storedUpload() {
@@ -56,6 +83,8 @@ function decode(hash) {
     else notKept = "The link names an uploaded light that this tab does not hold (an upload is kept only in the tab "
       + "that read it): upload the file again. Showing a named light meanwhile.";
   }
+  [next.explorer, badExplorer] = explorerFrom(params);
+  if (params.get("kind") === "explorer" && next.explorer) next.kind = "explorer";
   if (params.has("name")) next.name = params.get("name");
   if (params.has("display")) next.display = params.get("display");
   const T = Number(params.get("T"));
@@ -69,6 +98,9 @@ function decode(hash) {
 
 function source(s) {
   if (s.kind === "file" && s.file) return { kind: "spd", label: s.file.label, values: s.file.spd };
+  if (s.kind === "explorer" && s.explorer) {
+    return { kind: "explorer", label: s.explorer.label, step_nm: s.explorer.step, levels: s.explorer.levels };
+  }
   if (s.kind === "leds") {
     return { kind: "leds", peaks_nm: s.leds.map((p) => p[0]), widths_nm: s.leds.map((p) => p[1]),
       powers: s.leds.map((p) => p[2]) };
@@ -153,6 +185,7 @@ let lastCommitted = structuredClone(state);
 
 function syncControls() {
   $("kind").querySelector("option[value=file]").disabled = !state.file;  // before the value: it may be "file"
+  $("kind").querySelector("option[value=explorer]").disabled = !state.explorer;
   $("kind").value = state.kind;
   $("name").value = state.name;
   $("display").value = state.display;
@@ -263,7 +296,27 @@ function numbers() {
     const dd = document.createElement("dd"); dd.textContent = value;
     return [dt, dd];
   }));
-  $("note").textContent = s.cri_meaningful ? "" : "|Duv| > 0.0054: CIE 13.3 says the CRI is not meaningful for this light (it is not white enough).";
+  const reasons = result.reasons || [];
+  $("note").textContent = reasons.length || s.cri_meaningful ? ""
+    : "|Duv| > 0.0054: CIE 13.3 says the CRI is not meaningful for this light (it is not white enough).";
+  // a light known over part of 380-780 nm (the explorer's 400-700 nm): what is not computed, and why
+  const box = $("reasons");
+  box.hidden = !reasons.length;
+  if (reasons.length) {
+    const [lo, hi] = result.range_nm;
+    const head = document.createElement("p");
+    head.textContent = `This light is known over ${lo}–${hi} nm only (the explorer's range); the lab never `
+      + "extrapolates, so these numbers are not computed:";
+    const list = document.createElement("ul");
+    list.replaceChildren(...reasons.map(({ metrics, reason }) => {
+      const li = document.createElement("li");
+      const name = document.createElement("strong");
+      name.textContent = `${metrics}: `;
+      li.append(name, reason.replace(/^measured over less than the range: /, "").replace(/ \(not finite elsewhere\)/, ""));
+      return li;
+    }));
+    box.replaceChildren(head, list);
+  }
 }
 
 function drawSpd() {
@@ -272,16 +325,22 @@ function drawSpd() {
   const wl = result.wavelengths_nm;
   const X = (w) => box.x + ((w - 380) / 400) * box.w;
   const Y = (v) => box.y + box.h - v * box.h;
-  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.font = "11px system-ui, sans-serif";
+  const t = theme(ctx.canvas);
+  ctx.strokeStyle = t.muted; ctx.fillStyle = t.text; ctx.font = "11px system-ui, sans-serif";
   ctx.strokeRect(box.x, box.y, box.w, box.h);
   ctx.textAlign = "center";
   for (let w = 400; w <= 750; w += 50) ctx.fillText(w, X(w), box.y + box.h + 15);
   ctx.fillText("wavelength (nm)", box.x + box.w / 2, box.y + box.h + 30);
   ctx.textAlign = "right";
   for (const v of [0, 0.5, 1]) ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
-  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 2;
+  ctx.strokeStyle = t.text; ctx.lineWidth = 2;
   ctx.beginPath();
-  result.spd.forEach((v, k) => (k ? ctx.lineTo(X(wl[k]), Y(v)) : ctx.moveTo(X(wl[k]), Y(v))));
+  let drawing = false;  // a light known over part of the range (null elsewhere) is drawn where known
+  result.spd.forEach((v, k) => {
+    if (v === null) { drawing = false; return; }
+    if (drawing) ctx.lineTo(X(wl[k]), Y(v)); else ctx.moveTo(X(wl[k]), Y(v));
+    drawing = true;
+  });
   ctx.stroke();
 }
 
@@ -290,25 +349,26 @@ function drawGraphic() {
   const r = Math.min(width, height) / 2 / 1.32;
   const cx = width / 2, cy = height / 2;
   const bins = result.bin_rgb8;
+  const t = theme(ctx.canvas);
   for (let j = 0; j < 16; j++) { // hue sectors in the bins' colours, faint
     ctx.fillStyle = css(bins[j]);
-    ctx.globalAlpha = 0.35;
+    ctx.globalAlpha = 0.45;
     ctx.beginPath(); ctx.moveTo(cx, cy);
     ctx.arc(cx, cy, r * 1.3, -(j + 1) * Math.PI / 8, -j * Math.PI / 8);
     ctx.closePath(); ctx.fill();
   }
   ctx.globalAlpha = 1;
-  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 1.5;
+  ctx.strokeStyle = t.text; ctx.lineWidth = 1.5;
   ctx.beginPath(); ctx.arc(cx, cy, r, 0, 2 * Math.PI); ctx.stroke();
   if (!result.graphic) { // no graphic for this light: say why (the server's note)
-    ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "center";
+    ctx.fillStyle = t.text; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "center";
     ctx.fillText("No vector graphic for this light", cx, cy);
     $("graphic").setAttribute("aria-label", `TM-30 colour vector graphic: ${result.graphic_note || "none"}`);
     return;
   }
   $("graphic").setAttribute("aria-label", "TM-30 colour vector graphic");
   const P = ([a, b]) => [cx + a * r, cy - b * r];
-  ctx.strokeStyle = "#b3261e"; ctx.lineWidth = 2.5;
+  ctx.strokeStyle = t.bad; ctx.lineWidth = 2.5;
   ctx.beginPath();
   result.graphic.test.forEach((p, j) => { const [x, y] = P(p); j ? ctx.lineTo(x, y) : ctx.moveTo(x, y); });
   ctx.closePath(); ctx.stroke();
@@ -317,7 +377,7 @@ function drawGraphic() {
     const [x0, y0] = P(result.graphic.reference[j]); const [x1, y1] = P(p);
     ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke();
   });
-  ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left";
+  ctx.fillStyle = t.text; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left";
   ctx.fillText(`Rf ${fmt(result.summary.Rf, 0)}   Rg ${fmt(result.summary.Rg, 0)}`, 8, 16);
 }
 
@@ -406,8 +466,9 @@ function drawBins() {
   barChart($("chart-rf"), rf, { lo: 0, hi: 100, ticks: [0, 20, 40, 60, 80, 100],
     tick: (t) => t.toFixed(0), axis: "Rf,hj", show: (v) => `Rf ${v.toFixed(1)}` });
   const missing = rf.map((v, j) => (v === null ? j + 1 : null)).filter((j) => j !== null);
-  $("bins-note").textContent = missing.length
-    ? `Bin${missing.length > 1 ? "s" : ""} ${missing.join(", ")} hold no sample this light shows with a hue: no value (–).` : "";
+  $("bins-note").textContent = (result.reasons || []).length
+    ? "Not computed for this light: TM-30 takes 380–780 nm (see above)."
+    : missing.length ? `Bin${missing.length > 1 ? "s" : ""} ${missing.join(", ")} hold no sample this light shows with a hue: no value (–).` : "";
   const cell = (v, digits) => (v === null ? "—" : v.toFixed(digits));
   $("bin-table").tBodies[0].replaceChildren(...rf.map((_, j) => {
     const row = document.createElement("tr");
@@ -445,6 +506,7 @@ async function start() {
     Object.assign(document.createElement("option"), { value, textContent: label, title })));
   $("display").replaceChildren(...options.displays.map((d) => Object.assign(document.createElement("option"), { value: d, textContent: d })));
   state = decode(location.hash);
+  if (badExplorer) showError(badExplorer);
   $("kind").addEventListener("change", (e) => commit({ kind: e.target.value }));
   $("name").addEventListener("change", (e) => commit({ name: e.target.value }));
   $("display").addEventListener("change", (e) => commit({ display: e.target.value }));

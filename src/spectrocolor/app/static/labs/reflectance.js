@@ -3,7 +3,7 @@
 // chromaticity and the domain of validity (POST /api/lab/reflectance), and the MacAdam limit at Y
 // (POST /api/lab/reflectance/macadam). Nothing is computed here but the drawing.
 
-import { $, api, context, css, fmt, showError, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
+import { $, api, context, css, fmt, showError, theme, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
 
 const DEFAULTS = { light: "D65", step: "5", x: 0.45, y: 0.4, Y: 30 };
 
@@ -108,7 +108,8 @@ function drawSpectrum() {
   const low = Math.min(-0.05, ...all), high = Math.max(1.05, ...all);
   const X = (w) => box.x + ((w - 380) / 400) * box.w;
   const Y = (v) => box.y + box.h - ((v - low) / (high - low)) * box.h;
-  ctx.strokeStyle = "#5b5b66"; ctx.fillStyle = "#1b1b1f"; ctx.font = "11px system-ui, sans-serif"; ctx.lineWidth = 1;
+  const t = theme(ctx.canvas);
+  ctx.strokeStyle = t.muted; ctx.fillStyle = t.text; ctx.font = "11px system-ui, sans-serif"; ctx.lineWidth = 1;
   ctx.strokeRect(box.x, box.y, box.w, box.h);
   ctx.textAlign = "center";
   for (let w = 400; w <= 750; w += 50) ctx.fillText(w, X(w), box.y + box.h + 15);
@@ -116,9 +117,9 @@ function drawSpectrum() {
   ctx.textAlign = "right";
   for (const v of [0, 0.5, 1]) {
     ctx.fillText(v.toFixed(1), box.x - 6, Y(v) + 4);
-    ctx.strokeStyle = "#c9c9d1"; ctx.beginPath(); ctx.moveTo(box.x, Y(v)); ctx.lineTo(box.x + box.w, Y(v)); ctx.stroke();
+    ctx.strokeStyle = t.line; ctx.beginPath(); ctx.moveTo(box.x, Y(v)); ctx.lineTo(box.x + box.w, Y(v)); ctx.stroke();
   }
-  const styles = { unconstrained: ["#6b6b76", [6, 4], 1.5], nonnegative: ["#1f5fbf", [], 2], unit: ["#000000", [], 3] };
+  const styles = { unconstrained: [t.muted, [6, 4], 1.5], nonnegative: [t.accent, [], 2], unit: [t.text, [], 3] };
   for (const [name, [colour, dash, width_]] of Object.entries(styles)) {
     const s = result.solutions[name];
     if (!s.feasible) continue;
@@ -137,21 +138,22 @@ function drawDiagram() {
   const { box, X, Y } = frame;
   canvas.dataset.box = JSON.stringify(box);
   const cells = result.valid_cells;
-  ctx.fillStyle = "rgba(46, 160, 67, 0.35)";
+  const t = theme(canvas);
+  ctx.fillStyle = "rgba(46, 160, 67, 0.45)";
   const cw = box.w / cells.size, ch = box.h / cells.size;
   for (const [i, j] of cells.cells) ctx.fillRect(box.x + i * cw, box.y + box.h - (j + 1) * ch, cw + 0.5, ch + 0.5);
   drawXyAxes(ctx, frame);
   const path = (points, close) => xyPath(ctx, frame, points, close);
-  ctx.strokeStyle = "#5b5b66"; ctx.lineWidth = 1.5; path(result.locus_xy, true);
-  ctx.setLineDash([5, 4]); ctx.strokeStyle = "#1b1b1f"; path(result.domain_xy, true); ctx.setLineDash([]);
-  if (macadam && macadam.length) { ctx.strokeStyle = "#c05600"; ctx.lineWidth = 2; path(macadam, true); }
+  ctx.strokeStyle = t.muted; ctx.lineWidth = 1.5; path(result.locus_xy, true);
+  ctx.setLineDash([5, 4]); ctx.strokeStyle = t.text; path(result.domain_xy, true); ctx.setLineDash([]);
+  if (macadam && macadam.length) { ctx.strokeStyle = t.warn; ctx.lineWidth = 2; path(macadam, true); }
   const [wx, wy] = result.white_xy;
-  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 1.5;
+  ctx.strokeStyle = t.text; ctx.lineWidth = 1.5;
   ctx.beginPath(); ctx.moveTo(X(wx) - 5, Y(wy)); ctx.lineTo(X(wx) + 5, Y(wy));
   ctx.moveTo(X(wx), Y(wy) - 5); ctx.lineTo(X(wx), Y(wy) + 5); ctx.stroke();
-  ctx.lineWidth = 3; ctx.strokeStyle = "#ffffff";
+  ctx.lineWidth = 3; ctx.strokeStyle = t.bg;
   ctx.beginPath(); ctx.arc(X(result.x), Y(result.y), 6, 0, 2 * Math.PI); ctx.stroke();
-  ctx.lineWidth = 1.5; ctx.strokeStyle = "#000000";
+  ctx.lineWidth = 1.5; ctx.strokeStyle = t.text;
   ctx.beginPath(); ctx.arc(X(result.x), Y(result.y), 6, 0, 2 * Math.PI); ctx.stroke();
 }
 

@@ -6,7 +6,7 @@
 // click or tap on a point of the solid (a MacAdam limit's point, the display cube's edge, the
 // sample) shows its numbers; the Point controls pick the same points by keyboard.
 
-import { $, api, context, css, showError, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
+import { $, api, context, css, showError, theme, wireCommon, drawXyAxes, xyFrame, xyPath } from "./common.js";
 
 const DEFAULTS = { light: "D65", display: "sRGB", Y: 50, sample: 1, second: "A", yaw: 35, pitch: 20, mismatch: 0, r: "" };
 // A sample handed over by the explorer (issue 28 item 6): r = "<step nm>:<level>,<level>,…", levels 0–30 on
@@ -234,18 +234,22 @@ function choosePoint(p) {
   if (solid) drawSolid();
 }
 
+/** The metamer mismatch region's purple: light enough to stand out on the theme's dark panel. */
+const REGION = "#c58af9", REGION_FILL = "rgba(197, 138, 249, 0.25)";
+
 function drawSolid() {
   const { ctx } = context($("solid"));
   const { P } = view();
+  const t = theme(ctx.canvas);
   ctx.lineWidth = 1;
-  ctx.strokeStyle = "#9a9aa5";
+  ctx.strokeStyle = t.muted;
   for (const [from, to, label] of [[[0, -100, 0], [0, 100, 0], "a*"], [[0, 0, -100], [0, 0, 100], "b*"], [[0, 0, 0], [110, 0, 0], "L*"]]) {
     const p = P(from), q = P(to);
     ctx.beginPath(); ctx.moveTo(...p); ctx.lineTo(...q); ctx.stroke();
-    ctx.fillStyle = "#1b1b1f"; ctx.font = "12px system-ui, sans-serif"; ctx.fillText(label, q[0] + 4, q[1]);
+    ctx.fillStyle = t.text; ctx.font = "12px system-ui, sans-serif"; ctx.fillText(label, q[0] + 4, q[1]);
   }
   const levels = solid.levels;
-  ctx.strokeStyle = "rgba(60, 60, 70, 0.35)";
+  ctx.strokeStyle = t.line;
   for (let h = 0; h < levels[0].lab.length; h += 6) { // meridians
     ctx.beginPath();
     levels.forEach((level, i) => { const p = P(level.lab[h]); i ? ctx.lineTo(...p) : ctx.moveTo(...p); });
@@ -260,7 +264,7 @@ function drawSolid() {
     }
   }
   ctx.lineWidth = 1.5;
-  ctx.strokeStyle = "#000000";
+  ctx.strokeStyle = t.text;
   ctx.setLineDash([4, 3]);
   for (const edge of solid.cube_edges_lab) {
     ctx.beginPath();
@@ -269,17 +273,17 @@ function drawSolid() {
   }
   ctx.setLineDash([]);
   if (region) {
-    ctx.strokeStyle = "#6a1b9a"; ctx.lineWidth = 2; ctx.fillStyle = "rgba(106, 27, 154, 0.25)";
+    ctx.strokeStyle = REGION; ctx.lineWidth = 2; ctx.fillStyle = REGION_FILL;
     ctx.beginPath();
     hull(region.region_lab.map(P)).forEach((p, k) => (k ? ctx.lineTo(...p) : ctx.moveTo(...p)));
     ctx.closePath(); ctx.fill(); ctx.stroke();
     const [sx, sy] = P(region.sample_lab);
-    ctx.fillStyle = "#6a1b9a"; ctx.beginPath(); ctx.arc(sx, sy, 4, 0, 2 * Math.PI); ctx.fill();
+    ctx.fillStyle = REGION; ctx.beginPath(); ctx.arc(sx, sy, 4, 0, 2 * Math.PI); ctx.fill();
   }
   const mark = pointData(picked);
   if (mark) {  // the picked point: a ring, dark inside light, visible on any colour
     const [px, py] = P(mark.lab);
-    for (const [colour, width, r] of [["#ffffff", 5, 8], ["#1b1b1f", 2, 8]]) {
+    for (const [colour, width, r] of [[t.bg, 5, 8], [t.text, 2, 8]]) {
       ctx.strokeStyle = colour; ctx.lineWidth = width; ctx.beginPath(); ctx.arc(px, py, r, 0, 2 * Math.PI); ctx.stroke();
     }
   }
@@ -290,19 +294,20 @@ function drawSection() {
   const frame = xyFrame(width, height);
   const { box, X, Y } = frame;
   drawXyAxes(ctx, frame);
+  const t = theme(ctx.canvas);
   const path = (points, close) => xyPath(ctx, frame, points, close);
-  ctx.strokeStyle = "#5b5b66"; ctx.lineWidth = 1.5; path(section.locus_xy, true);
-  ctx.strokeStyle = "#000000"; path(section.display_xy, true);
-  ctx.strokeStyle = "#c05600"; ctx.lineWidth = 2.5; path(section.macadam_xy, true);
+  ctx.strokeStyle = t.muted; ctx.lineWidth = 1.5; path(section.locus_xy, true);
+  ctx.strokeStyle = t.text; path(section.display_xy, true);
+  ctx.strokeStyle = t.warn; ctx.lineWidth = 2.5; path(section.macadam_xy, true);
   const [wx, wy] = section.white_xy;
-  ctx.strokeStyle = "#1b1b1f"; ctx.lineWidth = 1.5;
+  ctx.strokeStyle = t.text; ctx.lineWidth = 1.5;
   ctx.beginPath(); ctx.moveTo(X(wx) - 5, Y(wy)); ctx.lineTo(X(wx) + 5, Y(wy)); ctx.moveTo(X(wx), Y(wy) - 5);
   ctx.lineTo(X(wx), Y(wy) + 5); ctx.stroke();
   if (region) {
-    ctx.strokeStyle = "#6a1b9a"; ctx.lineWidth = 2; path(hull(region.region_xy), true);
-    ctx.fillStyle = "#6a1b9a"; ctx.beginPath(); ctx.arc(X(region.sample_xy[0]), Y(region.sample_xy[1]), 4, 0, 2 * Math.PI); ctx.fill();
+    ctx.strokeStyle = REGION; ctx.lineWidth = 2; path(hull(region.region_xy), true);
+    ctx.fillStyle = REGION; ctx.beginPath(); ctx.arc(X(region.sample_xy[0]), Y(region.sample_xy[1]), 4, 0, 2 * Math.PI); ctx.fill();
   }
-  ctx.fillStyle = "#1b1b1f"; ctx.textAlign = "left"; ctx.font = "12px system-ui, sans-serif";
+  ctx.fillStyle = t.text; ctx.textAlign = "left"; ctx.font = "12px system-ui, sans-serif";
   ctx.fillText(`Y = ${section.Y}`, box.x + 8, box.y + 16);
 }
 

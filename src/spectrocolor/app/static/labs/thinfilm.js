@@ -3,7 +3,7 @@
 // for thickness 0-1500 nm in 1 nm steps), and the page only looks values up in it, so dragging the
 // thickness or animating a draining film repaints in the same frame.
 
-import { $, api, context, css, showError, wireCommon } from "./common.js";
+import { $, api, context, css, showError, theme, wireCommon } from "./common.js";
 
 const DEFAULTS = { film: "soap", model: "airy", light: "blackbody:6504", display: "sRGB", angle: 0, d: 350 };
 // the library's draining_film(): h(x, t) = 2 sqrt(eta x / (rho g t)), x down from the top (m)
@@ -138,8 +138,9 @@ function drawStatic() {
 }
 
 function axes(ctx, box, xTicks, yTicks, xLabel, yLabel) {
-  ctx.strokeStyle = "#5b5b66";
-  ctx.fillStyle = "#1b1b1f";
+  const t = theme($("spectrum"));
+  ctx.strokeStyle = t.muted;
+  ctx.fillStyle = t.text;
   ctx.lineWidth = 1;
   ctx.font = "11px system-ui, sans-serif";
   ctx.strokeRect(box.x, box.y, box.w, box.h);
@@ -172,7 +173,7 @@ function drawSpectrum(i) {
   for (let v = 0; v <= top + 1e-9; v += step) yTicks.push([Number(v.toPrecision(3)).toString(), Y(v)]);
   axes(ctx, box, [400, 450, 500, 550, 600, 650, 700, 750].map((w) => [w, X(w)]), yTicks,
     "wavelength (nm)", relative ? "relative factor" : "reflectance (%)");
-  ctx.strokeStyle = "#1b1b1f";
+  ctx.strokeStyle = theme(ctx.canvas).text;
   ctx.lineWidth = 2;
   ctx.beginPath();
   table.reflectance[i].forEach((v, k) => (k ? ctx.lineTo(X(wl[k]), Y(v * scale)) : ctx.moveTo(X(wl[k]), Y(v * scale))));
@@ -185,8 +186,9 @@ function drawStripLayer(ctx, width, height) {
   const box = stripBox(width, height);
   ctx.imageSmoothingEnabled = false;
   ctx.drawImage(stripImage, box.x, box.y, box.w, box.h);
-  ctx.fillStyle = "#1b1b1f";
-  ctx.strokeStyle = "#1b1b1f";
+  const t = theme($("strip"));
+  ctx.fillStyle = t.text;
+  ctx.strokeStyle = t.text;
   ctx.font = "11px system-ui, sans-serif";
   const max = table.thickness_nm[table.thickness_nm.length - 1];
   for (let d = 0; d <= max; d += 250) {
@@ -224,7 +226,8 @@ function drawDiagramLayer(ctx, width, height) {
   const { box, X, Y } = diagramScale(width, height);
   const ticks = (values, f) => values.map((v) => [v.toFixed(1), f(v)]);
   axes(ctx, box, ticks([0, 0.2, 0.4, 0.6, 0.8], X), ticks([0, 0.2, 0.4, 0.6, 0.8], Y), "x", "y");
-  ctx.strokeStyle = "#5b5b66";
+  const t = theme($("diagram"));
+  ctx.strokeStyle = t.muted;
   ctx.lineWidth = 1.5;
   ctx.beginPath();
   table.locus_xy.forEach(([x, y], k) => (k ? ctx.lineTo(X(x), Y(y)) : ctx.moveTo(X(x), Y(y))));
@@ -240,7 +243,7 @@ function drawDiagramLayer(ctx, width, height) {
     previous = [x, y];
   });
   const [wx, wy] = table.white_xy;
-  ctx.strokeStyle = "#1b1b1f";
+  ctx.strokeStyle = t.text;
   ctx.beginPath(); ctx.moveTo(X(wx) - 5, Y(wy)); ctx.lineTo(X(wx) + 5, Y(wy));
   ctx.moveTo(X(wx), Y(wy) - 5); ctx.lineTo(X(wx), Y(wy) + 5); ctx.stroke();
 }
@@ -252,9 +255,10 @@ function drawDiagram(i) {
   const { X, Y } = diagramScale(width, height);
   const [x, y] = table.xy[i];
   if (x >= 0) {
-    ctx.lineWidth = 3; ctx.strokeStyle = "#ffffff";
+    const t = theme(canvas);
+    ctx.lineWidth = 3; ctx.strokeStyle = t.bg;
     ctx.beginPath(); ctx.arc(X(x), Y(y), 6, 0, 2 * Math.PI); ctx.stroke();
-    ctx.lineWidth = 1.5; ctx.strokeStyle = "#000000";
+    ctx.lineWidth = 1.5; ctx.strokeStyle = t.text;
     ctx.beginPath(); ctx.arc(X(x), Y(y), 6, 0, 2 * Math.PI); ctx.stroke();
   }
 }
