@@ -121,9 +121,18 @@ function drawEmittedLight(levels) {
   const box = $("emitted-box"), hidden = S.setting !== 1 || !levels;
   if (box.hidden !== hidden) box.hidden = hidden;
   if (hidden) return;
-  drawEmitted($("emitted"), levels, S.dists[1][0]);
+  const target = S.dists[1][0];
+  // the server's answer repeats what the fast path drew (to rounding): drawn once (glitch 5)
+  if (!(emittedDrawn && near(emittedDrawn[0], levels) && near(emittedDrawn[1], target))) {
+    drawEmitted($("emitted"), levels, target);
+    emittedDrawn = [levels.slice(), target.slice()];
+  }
   setText($("emitted-caption"), emittedCaption());
 }
+/** The levels last drawn in the emitted-light graph, [emitted, distribution]. */
+let emittedDrawn = null;
+/** Equal to a millionth of a level (far below a pixel of the graph), bin for bin. */
+const near = (a, b) => a.length === b.length && a.every((v, k) => Math.abs(v - b[k]) <= 1e-6);
 /** What the emitted light matches, truthfully: the codes are those of the colour as shown, i.e.
  * adapted to the display's white when an adaptation is chosen, so the screen's light is then no
  * metamer of the distribution (it matches the adapted colour). */
