@@ -4,7 +4,7 @@
 
 import {$, el, fill, svgEl} from "./dom.js";
 import {S} from "./state.js";
-import {cssColour, additive} from "./view.js";
+import {cssColour, additive, setText, setAttr, setBackground} from "./view.js";
 
 const P = (x, y) => `${x.toFixed(4)},${(-y).toFixed(4)}`;
 const LABELLED_NM = [460, 480, 490, 500, 520, 540, 560, 580, 600, 620, 700];
@@ -53,25 +53,28 @@ export function buildPoints(count) {
 }
 
 /** Move the markers (numbered, in their patch colours) and update the legend. The white light
- * of settings 4 and 5 is the reference white itself (the ring). */
+ * of settings 4 and 5 is the reference white itself (the ring). Only what changed is written
+ * (issue 28, glitch 5). */
 export function drawPoints(colours, labels, server) {
   const white = server ? server.white_xy : S.model.white_xy;
   const wc = document.querySelector("#chroma .white");
-  wc.setAttribute("cx", white[0]); wc.setAttribute("cy", -white[1]);
-  for (const g of document.querySelectorAll("#pts .mark")) {
+  setAttr(wc, "cx", String(white[0])); setAttr(wc, "cy", String(-white[1]));
+  for (const g of $("pts").children) {
     const i = Number(g.dataset.i), c = colours[i];
-    g.style.display = c.xy[0] === null ? "none" : "";
+    const display = c.xy[0] === null ? "none" : "";
+    if (g.style.display !== display) g.style.display = display;
     if (c.xy[0] === null) continue;
     const dot = g.firstChild, n = g.lastChild;
-    dot.setAttribute("cx", c.xy[0]); dot.setAttribute("cy", -c.xy[1]); dot.setAttribute("fill", cssColour(c));
-    dot.firstChild.textContent = labels[i];
-    n.setAttribute("x", c.xy[0]); n.setAttribute("y", -c.xy[1] + 0.0075);
+    setAttr(dot, "cx", String(c.xy[0])); setAttr(dot, "cy", String(-c.xy[1])); setAttr(dot, "fill", cssColour(c));
+    setText(dot.firstChild, labels[i]);
+    setAttr(n, "x", String(c.xy[0])); setAttr(n, "y", String(-c.xy[1] + 0.0075));
   }
   mixLine(colours);
-  for (const li of document.querySelectorAll("#legend li[data-i]")) {
+  for (const li of $("legend").children) {
+    if (li.dataset.i === undefined) continue;
     const i = Number(li.dataset.i);
-    li.firstChild.style.background = cssColour(colours[i]);
-    if (li.lastChild.textContent !== labels[i]) li.lastChild.textContent = labels[i];
+    setBackground(li.firstChild, cssColour(colours[i]));
+    setText(li.lastChild, labels[i]);
   }
 }
 
@@ -85,10 +88,11 @@ function mixLine(colours) {
   }
   const [a, b] = [colours[1], colours[2]];
   const shown = additive() && a && b && a.xy[0] !== null && b.xy[0] !== null;
-  line.style.display = shown ? "" : "none";
+  const display = shown ? "" : "none";
+  if (line.style.display !== display) line.style.display = display;
   if (!shown) return;
-  line.setAttribute("x1", a.xy[0]); line.setAttribute("y1", -a.xy[1]);
-  line.setAttribute("x2", b.xy[0]); line.setAttribute("y2", -b.xy[1]);
+  setAttr(line, "x1", String(a.xy[0])); setAttr(line, "y1", String(-a.xy[1]));
+  setAttr(line, "x2", String(b.xy[0])); setAttr(line, "y2", String(-b.xy[1]));
 }
 
 function curve(g, w, h, values, top, colour, dash = []) {

@@ -3,7 +3,7 @@
 
 import {$, el, fill} from "./dom.js";
 import {S, EDITORS, FULL, quantise, remember} from "./state.js";
-import {displayName, product, additive, sum} from "./view.js";
+import {displayName, product, additive, sum, setText, setAttr} from "./view.js";
 
 const PAD_TOP = 14, PAD_BOTTOM = 16;
 const OUTLINE = "#d7dbe4";  // bar outline: ≥ 3:1 against the panel (#1e2128) for every tint
@@ -76,9 +76,38 @@ export function setLevel(i, k, v) {
   }
 }
 
-function plotArea(cv) {
+// ---- issue 28, glitch 5: each canvas's CSS size is kept from a ResizeObserver, so a redraw
+// reads no layout (clientWidth after the patches' text changed forced a layout in the key press's
+// handler); a canvas whose size changes is redrawn in that frame, before it is painted.
+const sizes = new WeakMap(), redraws = new WeakMap();
+const resized = new ResizeObserver((entries) => {
+  const again = new Set();
+  for (const entry of entries) {
+    const box = entry.contentBoxSize && entry.contentBoxSize[0];
+    const size = box ? [box.inlineSize, box.blockSize] : [entry.contentRect.width, entry.contentRect.height];
+    const old = sizes.get(entry.target);
+    sizes.set(entry.target, size);
+    if (old && (old[0] !== size[0] || old[1] !== size[1]) && redraws.has(entry.target)) again.add(redraws.get(entry.target));
+  }
+  for (const redraw of again) redraw();
+});
+/** The CSS size [w, h] of canvas `cv`: observed, or read once (a canvas drawn before its first
+ * observation, or while it was hidden). `redraw` draws it again when its size changes. */
+function cssSize(cv, redraw) {
+  let size = sizes.get(cv);
+  if (!size || !size[0]) {
+    size = [cv.clientWidth, cv.clientHeight];
+    sizes.set(cv, size);
+    resized.observe(cv);
+  }
+  redraws.set(cv, redraw);
+  return size;
+}
+// ---- end of glitch 5's part
+
+function plotArea(cv, redraw) {
   const dpr = window.devicePixelRatio || 1;
-  const w = cv.clientWidth, h = cv.clientHeight;
+  const [w, h] = cssSize(cv, redraw);
   if (cv.width !== Math.round(w * dpr) || cv.height !== Math.round(h * dpr)) {
     cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr);
   }
@@ -106,6 +135,8 @@ function labels(g, w, h, hh, top = FULL) {  // drawn over the bars, with a dark 
   }
 }
 
+const redrawEditors = () => drawEditors();
+
 /** Redraw the bar editors: all of them, or (during a drag) only editor `only` and those that
  * follow it (setting 3's other side, setting 5's product). */
 export function drawEditors(only = null) {
@@ -117,7 +148,7 @@ export function drawEditors(only = null) {
   document.querySelectorAll("#editors .editor").forEach((ed, i) => {
     if (!follows(i)) return;
     const cv = ed.querySelector("canvas");
-    const [g, w, h] = plotArea(cv);
+    const [g, w, h] = plotArea(cv, redrawEditors);
     const levels = lists[i], K = levels.length, bw = w / K, hh = h - PAD_TOP - PAD_BOTTOM;
     const top = S.setting === 5 && i === 2 && additive() ? 2 * FULL : FULL;  // the sum reaches 60
     grid(g, w, hh, top);
@@ -143,15 +174,15 @@ export function drawEditors(only = null) {
     }
     labels(g, w, h, hh, top);
     const active = i < names.length && S.active[S.setting] === i;
-    ed.classList.toggle("active", active && names.length > 1);
+    if (ed.classList.contains("active") !== (active && names.length > 1)) ed.classList.toggle("active", active && names.length > 1);
     if (i >= names.length) return;
     const k = cursorOf(i);
     g.strokeStyle = active ? "#6aa9ff" : "#8b93a5"; g.lineWidth = 2; g.strokeRect(k * bw + 1, PAD_TOP, Math.max(2, bw - 2), hh);
     const value = levels[k], digits = S.step === 10 && Number.isInteger(value) ? 0 : 1;
-    ed.querySelector(".cur").textContent = `${S.wl[k]} nm: ${value.toFixed(digits)} of ${FULL}`;
-    ed.querySelector(".pname").textContent = displayName(S.setting, i);
-    cv.setAttribute("aria-valuenow", String(value));
-    cv.setAttribute("aria-valuetext", `${S.wl[k]} nm, ${value.toFixed(digits)} of ${FULL}`);
+    setText(ed.querySelector(".cur"), `${S.wl[k]} nm: ${value.toFixed(digits)} of ${FULL}`);
+    setText(ed.querySelector(".pname"), displayName(S.setting, i));
+    setAttr(cv, "aria-valuenow", String(value));
+    setAttr(cv, "aria-valuetext", `${S.wl[k]} nm, ${value.toFixed(digits)} of ${FULL}`);
   });
 }
 
@@ -159,7 +190,7 @@ export function drawEditors(only = null) {
  * drawn with the distribution it matches, both in levels on one scale (the top of the graph is
  * the larger peak). */
 export function drawEmitted(cv, emitted, target) {
-  const [g, w, h] = plotArea(cv);
+  const [g, w, h] = plotArea(cv, () => drawEmitted(cv, emitted, target));
   const hh = h - PAD_TOP - PAD_BOTTOM;
   const top = Math.max(...emitted, ...target);
   g.font = "10px system-ui, sans-serif"; g.fillStyle = "#cfd4de";

@@ -7,7 +7,7 @@ import {apiJSON, api} from "./api.js";
 import {S, FULL, EDITORS, SETTING_NAMES, remember, undo, redo, resampleAll, stateURL, readURLOptions,
   readURLDistributions, persist, readPersisted} from "./state.js";
 import {hasFastPath, localColour, localWeights, whiteOf, emitted} from "./colour.js";
-import {buildPatches, buildCards, paint, evalSpec, markStale, displayName} from "./view.js";
+import {buildPatches, buildCards, paint, evalSpec, markStale, displayName, setText} from "./view.js";
 import {buildEditors, drawEditors, drawEmitted, setLevel, editorCount, cursorOf} from "./editors.js";
 import {drawDiagram, buildPoints, drawPoints, drawDisplayLight} from "./diagram.js";
 import {applyPreset, presetButtons, moveButtons} from "./presets.js";
@@ -94,15 +94,18 @@ async function pump() {
 
 /** Setting 4: how well the illuminant renders colours (the library's lighting metrics). */
 function showLightMetrics(m) {
-  const box = $("light-metrics");
-  box.hidden = S.setting !== 4 || !m;
-  if (box.hidden) return;
+  const box = $("light-metrics"), hidden = S.setting !== 4 || !m;
+  if (box.hidden !== hidden) box.hidden = hidden;
+  if (hidden) return;
   const f = (v, d) => (v === null || v === undefined ? "—" : Number(v).toFixed(d));
-  box.replaceChildren();
   const text = m.Ra === undefined ? m.note
     : `The illuminant: CCT ${f(m.cct_K, 0)} K, Duv ${f(m.duv, 4)} · CRI Ra ${f(m.Ra, 1)}, R9 ${f(m.R9, 1)}`
       + `${m.cri_meaningful ? "" : " (not meaningful: |Duv| > 0.0054)"} · TM-30 Rf ${f(m.Rf, 1)}, Rg ${f(m.Rg, 1)} · `
       + `${f(m.LER_lm_per_W, 0)} lm/W · melanopic DER ${f(m.melanopic_DER, 2)}. `;
+  const shown = `${text}\n${m.Ra === undefined ? "" : m.note}`;
+  if (box.__shown === shown) return;  // the same answer: nothing to rebuild (issue 28, glitch 5)
+  box.__shown = shown;
+  box.replaceChildren();
   box.append(document.createTextNode(text));
   if (m.Ra !== undefined) {
     const link = document.createElement("a");
@@ -115,12 +118,21 @@ function showLightMetrics(m) {
 
 /** Setting 1: the light the screen emits for the colour (SPECTRA's step 4) beside the bars. */
 function drawEmittedLight(levels) {
-  const box = $("emitted-box");
-  box.hidden = S.setting !== 1 || !levels;
-  if (box.hidden) return;
-  drawEmitted($("emitted"), levels, S.dists[1][0]);
-  $("emitted-caption").textContent = emittedCaption();
+  const box = $("emitted-box"), hidden = S.setting !== 1 || !levels;
+  if (box.hidden !== hidden) box.hidden = hidden;
+  if (hidden) return;
+  const target = S.dists[1][0];
+  // the server's answer repeats what the fast path drew (to rounding): drawn once (glitch 5)
+  if (!(emittedDrawn && near(emittedDrawn[0], levels) && near(emittedDrawn[1], target))) {
+    drawEmitted($("emitted"), levels, target);
+    emittedDrawn = [levels.slice(), target.slice()];
+  }
+  setText($("emitted-caption"), emittedCaption());
 }
+/** The levels last drawn in the emitted-light graph, [emitted, distribution]. */
+let emittedDrawn = null;
+/** Equal to a millionth of a level (far below a pixel of the graph), bin for bin. */
+const near = (a, b) => a.length === b.length && a.every((v, k) => Math.abs(v - b[k]) <= 1e-6);
 /** What the emitted light matches, truthfully: the codes are those of the colour as shown, i.e.
  * adapted to the display's white when an adaptation is chosen, so the screen's light is then no
  * metamer of the distribution (it matches the adapted colour). */
@@ -132,26 +144,36 @@ function emittedCaption() {
 }
 
 // ---------------------------------------------------------------- history and the URL
-// ---- issue 28, glitch 5: the address and storage are written after the frame, at most once per
-// frame and at most every SAVE_GAP_MS (a held arrow key repeats 30 times a second: writing both on
-// every press cost a frame on up to 39 % of presses, and Chromium ignores an address changed more
-// than 200 times in 10 s). The last state is always written: when the gap has passed, when the page
-// is hidden or left (pagehide), and before the address is pushed or read (settings, Back). The page
-// counts as settled only once it is written.
-const SAVE_GAP_MS = 120;
-let saveQueued = false, lastSave = -Infinity, saveTimer = null, settleAfterSave = false;
+// ---- issue 28, glitch 5: the address and storage are written once the edits pause: SAVE_QUIET_MS
+// after the last edit, or SAVE_MAX_WAIT_MS after the first unwritten one while they go on, never
+// in the frame of an edit (a held arrow key repeats 30 times a second: writing both on every press
+// cost a frame on up to 39 % of presses, replaceState alone 1-4 ms, and Chromium ignores an address
+// changed more than 200 times in 10 s). The last state is always written: when the edits pause,
+// when the page is hidden or left (pagehide), and before the address is pushed or read (settings,
+// Back). The page counts as settled only once it is written.
+const SAVE_QUIET_MS = 250, SAVE_MAX_WAIT_MS = 1000;
+let saveQueued = false, firstUnsaved = 0, lastEdit = 0, saveTimer = null, settleAfterSave = false;
 function queueSave() {
+  lastEdit = performance.now();
   if (saveQueued) return;
   saveQueued = true;
+  firstUnsaved = lastEdit;
   requestAnimationFrame(() => {  // the frame of this edit is painted first
-    saveTimer = setTimeout(flushSave, Math.max(0, lastSave + SAVE_GAP_MS - performance.now()));
+    clearTimeout(saveTimer);
+    saveTimer = setTimeout(saveWhenQuiet, SAVE_QUIET_MS);
   });
+}
+/** Write the queued state if the edits have paused (or waited long enough), else wait on. */
+function saveWhenQuiet() {
+  if (!saveQueued) return;
+  const now = performance.now(), due = Math.min(lastEdit + SAVE_QUIET_MS, firstUnsaved + SAVE_MAX_WAIT_MS);
+  if (now >= due - 1) flushSave();
+  else saveTimer = setTimeout(saveWhenQuiet, due - now);
 }
 function flushSave() {
   clearTimeout(saveTimer);
   if (!saveQueued) return;
   saveQueued = false;
-  lastSave = performance.now();
   saveState();
   if (settleAfterSave) {
     settleAfterSave = false;
@@ -176,8 +198,9 @@ function saveState() {
 }
 
 function undoButtons() {
-  $("undo").disabled = !S.undo[S.setting].length;
-  $("redo").disabled = !S.redo[S.setting].length;
+  const u = $("undo"), r = $("redo");
+  if (u.disabled !== !S.undo[S.setting].length) u.disabled = !S.undo[S.setting].length;
+  if (r.disabled !== !S.redo[S.setting].length) r.disabled = !S.redo[S.setting].length;
 }
 
 function doUndo(back) {

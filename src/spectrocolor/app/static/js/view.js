@@ -7,6 +7,20 @@ import {hexOf, lab} from "./colour.js";
 
 const fmt = (v, n) => (v === null || v === undefined || !Number.isFinite(v)) ? "—" : v.toFixed(n);
 
+// ---- issue 28, glitch 5: a repaint writes only what changed. Setting textContent replaces the
+// text node even when the text is the same, and every replaced node is laid out again (a key
+// press re-laid out 137 of the page's 577 boxes, most of them unchanged labels); so each write
+// below compares first (reading text or an attribute never forces a layout).
+/** Set `node`'s text, unless it already reads `text`. */
+export function setText(node, text) { if (node && node.textContent !== text) node.textContent = text; }
+/** Set attribute `name` of `node`, unless it already has `value`. */
+export function setAttr(node, name, value) { if (node && node.getAttribute(name) !== value) node.setAttribute(name, value); }
+/** Set `node`'s background to the CSS colour `css`, unless it was last set to it here. */
+export function setBackground(node, css) {
+  if (node && node.__bg !== css) { node.style.background = css; node.__bg = css; }
+}
+// ---- end of glitch 5's part
+
 /** The label of a choice, from the registries via /api/options (choices: [name, label, help] rows). */
 const choiceRow = (kind, v) => (((S.options && S.options.choices) || {})[kind] || []).find(([n]) => n === v);
 export const gamutLabel = (g) => (choiceRow("gamut", g) || [g, g])[1];
@@ -65,7 +79,12 @@ export function buildPatches() {
         patchbox("filters", "", patch(1), patch(2))]; break;
   }
   fill($("patches"), boxes);
+  PATCHES = [...$("patches").querySelectorAll(".patch")].map((p) => ({node: p, i: Number(p.dataset.i), tag: p.querySelector(".tag")}));
+  BOXES = [...$("patches").querySelectorAll(".patchbox")].map((box) => ({node: box,
+    members: [...box.querySelectorAll(".patch")].map((p) => Number(p.dataset.i))}));
 }
+/** The patches and their boxes as built (paint looks nothing up). */
+let PATCHES = [], BOXES = [];
 
 const ROWS = [
   ["XYZ", "X Y Z", "CIE tristimulus values; Y = 100 for the full spectrum (settings 1–3, 5) or the perfect white under the illuminant (4)."],
@@ -84,15 +103,17 @@ const lmsBar = ([name, colour]) => el("span", {class: "lms-bar", "data-cone": na
 
 function paintLMS(cell, bars, dom, note) {
   const v = dom ? dom.LMS : null;
-  cell.textContent = !v ? "…" : v.map((x) => fmt(x, 2)).join("  ");
-  cell.title = note || "";
+  setText(cell, !v ? "…" : v.map((x) => fmt(x, 2)).join("  "));
+  setAttr(cell, "title", note || "");
   // while the server's answer is pending (a drag's local repaint) the bars keep their last
   // lengths, dimmed, rather than dropping to zero and jumping back
-  if (bars) bars.querySelectorAll(".lms-bar").forEach((b, j) => {
-    b.style.opacity = v ? "1" : "0.35";
+  bars.forEach((b, j) => {
+    const opacity = v ? "1" : "0.35";
+    if (b.style.opacity !== opacity) b.style.opacity = opacity;
     if (!v) return;
     const x = v[j] !== null && Number.isFinite(v[j]) ? Math.max(0, Math.min(v[j], 100)) : 0;
-    b.style.width = `${(0.6 * x).toFixed(1)}px`;
+    const width = `${(0.6 * x).toFixed(1)}px`;
+    if (b.__width !== width) { b.style.width = width; b.__width = width; }
   });
 }
 
@@ -115,7 +136,21 @@ export function buildCards(count) {
         el("button", {class: "badge-switch", type: "button"}))));
   }
   fill($("numbers"), cards);
+  CARDS = [];
+  for (const card of $("numbers").querySelectorAll(".card[data-i]")) {
+    const cells = Object.fromEntries(ROWS.map(([cls]) => [cls, card.querySelector(`td.${cls}`)]));
+    cells.hex = card.querySelector("td.hex");
+    cells.bars = [...card.querySelectorAll("td.lms-bars .lms-bar")];
+    CARDS[Number(card.dataset.i)] = {sw: card.querySelector(".sw"), cname: card.querySelector(".cname"), cells,
+      xyzHead: cells.XYZ.previousElementSibling, status: card.querySelector(".status"),
+      badge: card.querySelector(".badge"), badgeText: card.querySelector(".badge-text"),
+      badgeSwitch: card.querySelector(".badge-switch")};
+  }
+  const de = $("numbers").querySelector(".de-card");
+  DE = de && {title: de.querySelector(".de-title"), value: de.querySelector(".de"), status: de.querySelector(".de-status")};
 }
+/** The number cards' cells as built, by colour (paint looks nothing up). */
+let CARDS = [], DE = null;
 
 // ---------------------------------------------------------------- updating
 export function cssColour(c) {
@@ -136,99 +171,100 @@ function statusOf(c, gamut) {
   return S.normalise === "per-colour" ? ["Optimised!", "opt"] : ["", ""];
 }
 
-/** Repaint patches and numbers from `colours` (local fast path, or the server's answer). */
+/** Repaint patches and numbers from `colours` (local fast path, or the server's answer). Only
+ * what changed is written (setText): a key press costs a frame otherwise (issue 28, glitch 5). */
 export function paint(colours, server) {
   const e = evalSpec(), m = S.model;
   const gamut = server ? server.gamut : S.gamut;  // what was applied (local: what was asked)
   const local = S.localWhite;
+  const css = colours.map(cssColour), hex = colours.map((c) => hexOf(c.codes, m));
+  const statuses = colours.map((c) => statusOf(c, gamut));
+  for (const p of PATCHES) {
+    const i = p.i;
+    setBackground(p.node, css[i]);
+    setText(p.tag, e.labels[i]);
+    setAttr(p.node, "title", `${e.labels[i]}: ${hex[i]}${statuses[i][0] ? ", " + statuses[i][0] : ""}`);
+  }
+  // SPECTRA's step 1 in "spectra-exact": one k per channel (model.channel_factors; 1 otherwise)
+  const k = (m && m.channel_factors) || [1, 1, 1];
+  const exact = S.normalise === "spectra-exact";
   colours.forEach((c, i) => {
-    const css = cssColour(c), hex = hexOf(c.codes, m);
-    for (const p of document.querySelectorAll(`#patches .patch[data-i='${i}']`)) {
-      p.style.background = css;
-      p.querySelector(".tag").textContent = e.labels[i];
-    }
-    const card = document.querySelector(`#numbers .card[data-i='${i}']`);
+    const card = CARDS[i];
     if (!card) return;
-    const [status, cls] = statusOf(c, gamut);
-    card.querySelector(".sw").style.background = css;
-    card.querySelector(".cname").textContent = e.labels[i];
-    const cell = (k) => card.querySelector(`td.${k}`);
-    // SPECTRA's step 1 in "spectra-exact": one k per channel (model.channel_factors; 1 otherwise)
-    const k = (m && m.channel_factors) || [1, 1, 1];
-    cell("XYZ").textContent = c.XYZ.map((v, j) => fmt(v * k[j], 2)).join("  ");
-    cell("XYZ").title = S.normalise === "spectra-exact"
+    const [status, cls] = statuses[i], cell = card.cells;
+    setBackground(card.sw, css[i]);
+    setText(card.cname, e.labels[i]);
+    setText(cell.XYZ, c.XYZ.map((v, j) => fmt(v * k[j], 2)).join("  "));
+    setAttr(cell.XYZ, "title", exact
       ? `SPECTRA's step 1: one k per channel, so the full spectrum shows X = Y = Z = 100 as in SPECTRA. CIE (one k for all three): ${c.XYZ.map((v) => fmt(v, 3)).join("  ")}. x y, L*a*b* and λd are CIE's.`
-      : "";
-    cell("XYZ").previousElementSibling.textContent = S.normalise === "spectra-exact" ? "X Y Z (SPECTRA k)" : "X Y Z";
-    cell("xy").textContent = c.xy.map((v) => fmt(v, 4)).join("  ");
+      : "");
+    setText(card.xyzHead, exact ? "X Y Z (SPECTRA k)" : "X Y Z");
+    setText(cell.xy, c.xy.map((v) => fmt(v, 4)).join("  "));
     const L = server ? server.colours[i].lab : lab(c.XYZ, local);
-    cell("lab").textContent = L.map((v) => fmt(v, 1)).join("  ");
-    cell("lab").title = server && server.lab_note ? server.lab_note : "";
-    cell("rgb").textContent = c.rgb_unmapped.map((v) => fmt(v, 3)).join("  ");
-    cell("codes").textContent = c.codes.join("  ");
-    cell("hex").textContent = hex;
+    setText(cell.lab, L.map((v) => fmt(v, 1)).join("  "));
+    setAttr(cell.lab, "title", server && server.lab_note ? server.lab_note : "");
+    setText(cell.rgb, c.rgb_unmapped.map((v) => fmt(v, 3)).join("  "));
+    setText(cell.codes, c.codes.join("  "));
+    setText(cell.hex, hex[i]);
     const dom = server ? server.colours[i] : null;
-    cell("dom").textContent = !dom ? "…" : dom.dominant_nm === null ? (dom.dominant_note ? "— (undefined: see the tooltip)" : "— (the white itself)")
-      : `${dom.complementary ? "λc" : "λd"} ${fmt(dom.dominant_nm, 1)} nm${dom.complementary ? " (compl.)" : ""}, p ${fmt(dom.purity, 3)}`;
-    cell("dom").title = dom && dom.dominant_note ? dom.dominant_note : "";
-    paintLMS(cell("lms"), cell("lms-bars"), dom, server ? server.lms_note : "");
-    const st = card.querySelector(".status");
-    st.textContent = status; st.className = `status ${cls}`;
-    const badge = card.querySelector(".badge");
-    badge.hidden = c.in_gamut || !(c.XYZ[1] > 0);
-    if (!badge.hidden) {
+    setText(cell.dom, !dom ? "…" : dom.dominant_nm === null ? (dom.dominant_note ? "— (undefined: see the tooltip)" : "— (the white itself)")
+      : `${dom.complementary ? "λc" : "λd"} ${fmt(dom.dominant_nm, 1)} nm${dom.complementary ? " (compl.)" : ""}, p ${fmt(dom.purity, 3)}`);
+    setAttr(cell.dom, "title", dom && dom.dominant_note ? dom.dominant_note : "");
+    paintLMS(cell.lms, cell.bars, dom, server ? server.lms_note : "");
+    setText(card.status, status);
+    setAttr(card.status, "class", `status ${cls}`);
+    const badge = card.badge, hidden = c.in_gamut || !(c.XYZ[1] > 0);
+    if (badge.hidden !== hidden) badge.hidden = hidden;
+    if (!hidden) {
       const channels = [...c.negative.map((ch) => `${ch} negative`), ...c.over.map((ch) => `${ch} above 1`)].join(", ");
       const applied = dom ? dom.gamut_applied || gamut : gamut;
-      badge.querySelector(".badge-text").textContent = `${channels}: ${gamutAction(applied) || gamutLabel(applied)}`;
-      badge.title = dom && dom.explanation ? dom.explanation : `${gamutLabel(applied)}: ${gamutAction(applied)}`;
+      setText(card.badgeText, `${channels}: ${gamutAction(applied) || gamutLabel(applied)}`);
+      setAttr(badge, "title", dom && dom.explanation ? dom.explanation : `${gamutLabel(applied)}: ${gamutAction(applied)}`);
       const strict = gamut === "flag";
-      const sw = badge.querySelector(".badge-switch");
-      sw.textContent = strict ? "show the nearest colour" : "strict: cannot be reproduced";
+      setText(card.badgeSwitch, strict ? "show the nearest colour" : "strict: cannot be reproduced");
       const preferred = (S.options.defaults || {}).gamut;
-      sw.dataset.gamut = strict ? (preferred && preferred !== "flag" ? preferred : "desaturate") : "flag";
+      const to = strict ? (preferred && preferred !== "flag" ? preferred : "desaturate") : "flag";
+      if (card.badgeSwitch.dataset.gamut !== to) card.badgeSwitch.dataset.gamut = to;
     }
-    const p = document.querySelector(`#patches .patch[data-i='${i}']`);
-    if (p) p.title = `${e.labels[i]}: ${hex}${status ? ", " + status : ""}`;
   });
-  for (const box of document.querySelectorAll("#patches .patchbox")) {
-    const shown = [...box.querySelectorAll(".patch")].map((p) => {
-      const i = Number(p.dataset.i);
-      return `${e.labels[i]} ${hexOf(colours[i].codes, m)}${colours[i].in_gamut ? "" : " (outside the display)"}`;
-    });
-    box.setAttribute("aria-label", `Colour patch: ${shown.join("; ")}`);
+  for (const box of BOXES) {
+    const shown = box.members.map((i) => `${e.labels[i]} ${hex[i]}${colours[i].in_gamut ? "" : " (outside the display)"}`);
+    setAttr(box.node, "aria-label", `Colour patch: ${shown.join("; ")}`);
   }
   if (S.setting === 2 || S.setting === 3) {
     // SPECTRA: the border vanishes when the two displayed lights are the same (equal codes)
     const same = colours[0].in_gamut && colours[1].in_gamut && colours[0].codes.every((v, j) => v === colours[1].codes[j]);
-    document.querySelector("#patches .patchbox.split").classList.toggle("metameric", same);
+    const split = BOXES.find((b) => b.node.classList.contains("split"));
+    if (split && split.node.classList.contains("metameric") !== same) split.node.classList.toggle("metameric", same);
   }
   paintDeltaE(server);
 }
 
 function paintDeltaE(server) {
-  const card = document.querySelector("#numbers .de-card");
-  if (!card) return;
-  card.querySelector(".de-title").textContent = `ΔE00 between ${S.setting === 4 ? "the samples" : "the two"}:`;
-  if (!server || !server.delta_e_2000.length) { card.querySelector(".de").textContent = "…"; return; }
+  if (!DE) return;
+  setText(DE.title, `ΔE00 between ${S.setting === 4 ? "the samples" : "the two"}:`);
+  if (!server || !server.delta_e_2000.length) { setText(DE.value, "…"); return; }
   // Under B each patch is scaled on its own, so the split patch compares the lights as shown;
   // the unscaled lights' difference is given beside it.
   const scaled = S.normalise === "per-colour";
   const de = scaled ? server.delta_e_2000_shown[0] : server.delta_e_2000[0];
-  card.querySelector(".de").textContent = fmt(de, 2);
-  const st = card.querySelector(".de-status");
+  setText(DE.value, fmt(de, 2));
   if (de === null) {  // CIELAB undefined for this reference white (the server says why)
-    st.textContent = server.lab_note || "undefined"; st.className = "status de-status"; return;
+    setText(DE.status, server.lab_note || "undefined"); setAttr(DE.status, "class", "status de-status"); return;
   }
-  st.textContent = [de < 0.5 ? "metameric" : "", scaled ? `as shown (B); unscaled lights ${fmt(server.delta_e_2000[0], 2)}` : ""]
-    .filter(Boolean).join(" · ");
-  st.className = `status de-status ${de < 0.5 ? "opt" : ""}`;
+  setText(DE.status, [de < 0.5 ? "metameric" : "", scaled ? `as shown (B); unscaled lights ${fmt(server.delta_e_2000[0], 2)}` : ""]
+    .filter(Boolean).join(" · "));
+  setAttr(DE.status, "class", `status de-status ${de < 0.5 ? "opt" : ""}`);
 }
 
 /** Mark results that could not be recomputed (or clear the mark). */
 export function markStale(reason) {
   S.stale = Boolean(reason);
-  for (const id of ["patches", "numbers"]) $(id).classList.toggle("stale", S.stale);
+  for (const id of ["patches", "numbers"]) {
+    const node = $(id);
+    if (node.classList.contains("stale") !== S.stale) node.classList.toggle("stale", S.stale);
+  }
   const note = $("stale-note");
-  note.hidden = !S.stale;
-  note.textContent = S.stale ? `Not recomputed (${reason}): the colours and numbers shown belong to an earlier state, or are missing.` : "";
+  if (note.hidden !== !S.stale) note.hidden = !S.stale;
+  setText(note, S.stale ? `Not recomputed (${reason}): the colours and numbers shown belong to an earlier state, or are missing.` : "");
 }
