@@ -117,17 +117,17 @@ def test_the_banded_kkt_solve_agrees_with_the_dense_one(seed, m):
 
 
 def test_a_hessian_that_is_not_tridiagonal_takes_the_dense_solve():
-    """``_equality_qp`` must not use the banded path for a Q with entries off its three
+    """``equality_qp`` must not use the banded path for a Q with entries off its three
     diagonals: the answer then equals the dense KKT solution, not the banded one's."""
     rng = np.random.default_rng(7)
     Q, W, free = _random_kkt(rng, 12, 3, 10.0)
     Q = Q + 0.05 * np.eye(12, k=3) + 0.05 * np.eye(12, k=-3)
-    assert not dense_active_set._is_tridiagonal(Q)
+    assert not dense_active_set.is_tridiagonal(Q)
     active = np.ones(12, dtype=bool)
     active[free] = False
     rho = np.where(active, 0.3, 0.0)
     b = rng.uniform(1.0, 2.0, 3)
-    got = dense_active_set._equality_qp(Q, W, b, rho, active)
+    got = dense_active_set.equality_qp(Q, W, b, rho, active)
     assert got is not None
     x, mu = got
     # stationarity on the free samples and the colour, with the full Q: to rounding of terms

@@ -22,7 +22,7 @@ from scipy.linalg import LinAlgWarning, lu_factor, lu_solve
 from . import certificate
 from .tolerances import REFINE_STEPS as _REFINE_STEPS
 
-__all__ = ["polish", "primal_active_set"]
+__all__ = ["equality_qp", "is_tridiagonal", "polish", "primal_active_set"]
 
 
 def polish(W, Q, b, rho, mu, lower, upper, steps=2):
@@ -86,10 +86,13 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
     kkt[:F.size, F.size:] = -W[F]
     kkt[F.size:, :F.size] = W[F].T
     # with free weights of full rank and a tridiagonal Q the KKT matrix is nonsingular, and
-    # its banded solve (O(K m)) is the least-squares step; else the dense least squares (O(K³))
-    sv = np.linalg.svd(W[F], compute_uv=False) if F.size >= m else np.zeros(1)
-    banded = (F.size < len(Q) and sv.size == m and sv[m - 1] > 1e-12 * sv[0]
-              and _is_tridiagonal(Q))
+    # its banded solve (O(K m)) is the least-squares step; a weight column that is zero on every
+    # free sample (z̄ beyond 560 nm on a face ρ = 0 wherever z̄ > 0) decouples: its multiplier
+    # and colour row cannot move, as in the least-squares step; else the dense least squares
+    seen = np.flatnonzero(np.any(W[F] != 0, axis=0))
+    sv = np.linalg.svd(W[np.ix_(F, seen)], compute_uv=False) if F.size >= seen.size else np.zeros(1)
+    banded = (seen.size > 0 and F.size < len(Q) and sv.size == seen.size
+              and sv[-1] > 1e-12 * sv[0] and is_tridiagonal(Q))
     diag, off = np.diagonal(Q)[F], np.where(np.diff(F) == 1, np.diagonal(Q, 1)[F[:-1]], 0.0)
     def ratio(rho, mu):
         return float(certificate.certify(W, 2.0 / Q[0, 0], b[None], rho[None], mu[None], lower,
@@ -102,8 +105,14 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
         stationarity = (Ql[F] @ r_l - Wl[F] @ m_l)
         colour = bl - r_l @ Wl
         rhs = np.concatenate([-stationarity, colour]).astype(float)
-        step = (_banded_kkt_solve(diag, off, W[F], rhs[:F.size], rhs[F.size:]) if banded
-                else None)
+        step = None
+        if banded:
+            part = _banded_kkt_solve(diag, off, W[np.ix_(F, seen)], rhs[:F.size],
+                                     rhs[F.size + seen])
+            if part is not None:
+                step = np.zeros(F.size + m)
+                step[:F.size] = part[:F.size]
+                step[F.size + seen] = part[F.size:]
         if step is None:
             step = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
         new = rho[F] + step[:F.size]
@@ -115,7 +124,7 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
     return best[1], best[2]
 
 
-def _equality_qp(Q, W, b, rho, active, tridiagonal=None):
+def equality_qp(Q, W, b, rho, active, tridiagonal=None):
     """Minimiser of ``rho Q rho / 2`` with ``W.T rho = b`` and ``rho[active]`` held fixed.
 
     KKT solve on the free indices; returns (rho, mu) or None where the free weights cannot
@@ -124,8 +133,39 @@ def _equality_qp(Q, W, b, rho, active, tridiagonal=None):
     positive definite unless every sample is free: the solve then goes through the block's
     banded Cholesky factor and the ``m × m`` Schur complement (:func:`_banded_kkt_solve`,
     O(K m) a step instead of the dense LU's O(K³), which made a face at 1 nm take seconds),
-    and falls back to the dense LU where that does not reach rounding level. ``tridiagonal``
-    says whether ``Q`` is (tested here when None; a caller solving many steps tests once).
+    and falls back to the dense LU where that does not reach rounding level.
+
+    Parameters
+    ----------
+    Q : numpy.ndarray, shape (K, K)
+        Hessian of the roughness, nm⁻¹ (:meth:`.qp.Problem.hessian_dense`).
+    W : numpy.ndarray, shape (K, m)
+        Weights (XYZ100 per unit reflectance, or their projection on a face).
+    b : numpy.ndarray, shape (m,)
+        The colour (same units as ``W``).
+    rho : numpy.ndarray, shape (K,)
+        Values of the held samples (the others are ignored).
+    active : numpy.ndarray of bool, shape (K,)
+        The samples held fixed.
+    tridiagonal : bool or None, default None
+        Whether ``Q`` is tridiagonal (tested here when None; a caller solving many steps with
+        one ``Q`` tests once, :func:`is_tridiagonal`).
+
+    Returns
+    -------
+    tuple of numpy.ndarray or None
+        ``(rho, mu)``: all K values (held ones unchanged) and the m multipliers.
+
+    Examples
+    --------
+    >>> from spectrocolor import wavelength_grid, weights
+    >>> from spectrocolor.recovery.qp import make_problem
+    >>> W = np.asarray(weights(wavelength_grid(400, 700, 20), illuminant="D65"))
+    >>> Q = make_problem(W, 20.0).hessian_dense()
+    >>> held = np.zeros(len(W), dtype=bool); held[0] = True
+    >>> rho, mu = equality_qp(Q, W, np.array([30.0, 30.0, 30.0]), np.zeros(len(W)), held)
+    >>> float(rho[0]), bool(np.allclose(rho @ W, 30.0))
+    (0.0, True)
     """
     F = np.flatnonzero(~active)
     m = W.shape[1]
@@ -138,7 +178,7 @@ def _equality_qp(Q, W, b, rho, active, tridiagonal=None):
     fixed = np.where(active, rho, 0.0)
     sol = None
     if tridiagonal is None:
-        tridiagonal = _is_tridiagonal(Q)
+        tridiagonal = is_tridiagonal(Q)
     if n < Q.shape[0] and tridiagonal:
         diag, off = np.diagonal(Q), np.diagonal(Q, 1)
         Q_fixed = diag * fixed
@@ -160,7 +200,7 @@ def _equality_qp(Q, W, b, rho, active, tridiagonal=None):
     return out, sol[n:]
 
 
-def _is_tridiagonal(Q):
+def is_tridiagonal(Q):
     """Whether the square matrix ``Q`` has nothing off its three central diagonals."""
     return not np.any(np.triu(Q, 2)) and not np.any(np.tril(Q, -2))
 
@@ -253,7 +293,7 @@ def _feasible_start(prob, Q, b, lower, upper, rho_ip, ratio, at_upper):
     for count in range(m, K + 1):
         active = np.ones(K, dtype=bool)
         active[order[:count]] = False
-        sol = _equality_qp(Q, W, b, fixed, active)
+        sol = equality_qp(Q, W, b, fixed, active)
         if sol is not None and np.all((sol[0] >= lower) & (sol[0] <= upper)) and _exact(
                 W, b, sol[0]):
             return sol[0], active
@@ -362,9 +402,9 @@ def primal_active_set(Q, W, b, lower, upper, rho, active, pinned=None, max_iter=
     pinned = np.zeros(K, dtype=bool) if pinned is None else pinned
     rho, active = rho.copy(), active | pinned
     max_iter = 10 * K if max_iter is None else max_iter
-    tridiagonal = _is_tridiagonal(Q)
+    tridiagonal = is_tridiagonal(Q)
     for it in range(1, max_iter + 1):
-        sol = _equality_qp(Q, W, b, rho, active, tridiagonal)
+        sol = equality_qp(Q, W, b, rho, active, tridiagonal)
         if sol is None:  # the working set keeps W[free] of rank m, up to rounding
             return (*nan, it, False)
         target, mu = sol

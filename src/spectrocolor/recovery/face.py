@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import qp, zonotope
+from . import dense_active_set, qp, zonotope
 
 #: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
 PLANE_TOLERANCE = 1e-10
@@ -290,6 +290,8 @@ def face_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upp
 #: A colour component is lifted (:func:`lift_component`) when it is at most this fraction of the
 #: colour's largest component: below what a face solution of the whole colour resolves.
 LIFT_FRACTION = 1e-10
+#: Steps per sample the primal active-set method may take for :func:`zero_component_solution`.
+LIFT_STEPS_PER_SAMPLE = 3
 
 
 def liftable_components(W: np.ndarray, b: np.ndarray, lower: float) -> list[int]:
@@ -314,6 +316,11 @@ def zero_component_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int,
     S = W[:, c] > 0
     others = [i for i in range(W.shape[1]) if i != c]
     Wo = W[:, others]
+    got = _pinned_active_set_iterations(Q, Wo, b[others], lower, upper, S)
+    if got is not None:
+        mu = np.zeros(W.shape[1])
+        mu[others] = got[1]
+        return got[0], mu
     start = qp._vertex_start(Wo[~S], b[others], lower, upper)
     if start is None:
         return None
@@ -321,14 +328,49 @@ def zero_component_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int,
     rho[~S] = start[0]
     working = np.ones(len(W), dtype=bool)
     working[~S] = start[1]
+    # from a vertex the method frees about one sample a step (a narrow band at 1 nm: 300-430
+    # steps for K = 401); one that has not settled in 3 K steps is left to the other routes
     rho, mu_o, _, _, ok = qp.primal_active_set(Q, Wo, b[others], lower, upper, rho, working,
-                                               pinned=S)
+                                               pinned=S, max_iter=LIFT_STEPS_PER_SAMPLE * len(W))
     if not ok:
         return None
-    rho, mu_o = qp.polish(Wo, Q, b[others], rho, mu_o, lower, upper, steps=4)
     mu = np.zeros(W.shape[1])
     mu[others] = mu_o
     return rho, mu
+
+
+#: Primal-dual active-set iterations :func:`_pinned_active_set_iterations` may take.
+PINNED_ITERATIONS = 40
+
+
+def _pinned_active_set_iterations(Q, W, b, lower, upper, pinned):
+    """Primal-dual active-set iterations (the rule of :func:`.qp._pdas`, one colour, each step
+    a banded KKT solve) with the ``pinned`` samples held at ``lower``: from the bounds the
+    unbounded solution violates, usually settled in a few steps where the primal method from a
+    vertex frees one sample a step. Returns ``(rho, mu)`` once the sets settle with the values
+    within the bounds and every bound's multiplier signed to half the certificate's tolerance,
+    or None (the caller goes on from a vertex)."""
+    from .certificate import dual_tolerance
+
+    K = len(Q)
+    at_lower, at_upper = pinned.copy(), np.zeros(K, dtype=bool)
+    rho = np.full(K, float(lower))
+    tridiagonal = dense_active_set.is_tridiagonal(Q)
+    for _ in range(PINNED_ITERATIONS):
+        active = at_lower | at_upper
+        rho = np.where(at_upper, upper, np.where(at_lower, lower, 0.0))
+        sol = dense_active_set.equality_qp(Q, W, b, rho, active, tridiagonal)
+        if sol is None:
+            return None
+        rho, mu = sol
+        lam = Q @ rho - W @ mu
+        tol = 0.5 * dual_tolerance(W, 2.0 / Q[0, 0], rho, mu)
+        new_lower = pinned | np.where(active, at_lower & (lam > -tol), rho < lower)
+        new_upper = ~pinned & np.where(active, at_upper & (lam < tol), rho > upper)
+        if np.array_equal(new_lower, at_lower) and np.array_equal(new_upper, at_upper):
+            return rho, mu
+        at_lower, at_upper = new_lower, new_upper
+    return None
 
 
 def lift_component(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int, rho0: np.ndarray,
@@ -352,16 +394,29 @@ def lift_component(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int, rho0: np
     S = np.flatnonzero(W[:, c] > 0)
     if S.size == 0 or np.any(rho0[S] != 0.0):
         return None
-    others = [i for i in range(W.shape[1]) if i != c]
-    g = (Q[S] @ rho0) - W[np.ix_(S, np.array(others))] @ mu0[others]
-    ratio = g / W[S, c]
-    j = int(np.argmin(ratio))
-    rho, mu = rho0.copy(), mu0.copy()
-    mu[c] = ratio[j]
+    others = np.array([i for i in range(W.shape[1]) if i != c])
+
+    def with_largest_mu_c(rho, mu):
+        g = (Q[S] @ rho) - W[np.ix_(S, others)] @ mu[others]
+        ratio = g / W[S, c]
+        j = int(np.argmin(ratio))
+        mu = mu.copy()
+        mu[c] = ratio[j]
+        return mu, j
+
+    # with μ_c chosen every bound of S is signed, so the zeroed colour's certificate measures
+    # the free samples alone, and refinement against it can tell a better iterate (on the
+    # pinned problem the unsigned bounds of S hid every improvement)
+    zeroed = b.copy()
+    zeroed[c] = 0.0
+    mu, _ = with_largest_mu_c(rho0, mu0)
+    rho, mu = qp.polish(W, Q, zeroed, rho0, mu, 0.0, upper)
+    mu, j = with_largest_mu_c(rho, mu)
+    rho = rho.copy()
     rho[S[j]] = b[c] / W[S[j], c]
     # where b_c is not far below rounding of the rest, the left-out terms are not: the free
     # samples (j among them) are refined against the whole colour
-    return qp.polish(W, Q, b, rho, mu, 0.0, upper, steps=4)
+    return qp.polish(W, Q, b, rho, mu, 0.0, upper)
 
 
 def lifted_candidates(W: np.ndarray, Q: np.ndarray, b: np.ndarray, lower: float, upper: float):

@@ -570,7 +570,7 @@ def _dense_free_solve(WT, absWT, b, t, lower, upper, lo, up, rho_out, mu_out, wo
     nearly dependent (cond ``W_F`` up to about 1e8); ``M`` squares that condition and its
     determinant test rejects it, yet the KKT matrix ``[[Q_FF, −W_F], [W_Fᵀ, 0]]`` itself is
     solved by LU with partial pivoting and iterative refinement (Higham 2002, ch. 12) to the
-    certificate's rounding level, as :func:`.dense_active_set._equality_qp` does. Returns 3
+    certificate's rounding level, as :func:`.dense_active_set.equality_qp` does. Returns 3
     where the refined residuals are within a quarter of the certificate's tolerance, else 0
     (more than ``DENSE_FREE`` or fewer than m free samples, a zero pivot, or residuals that
     refinement could not bring down: the caller treats the sets as singular). ``rho_out`` and

@@ -25,7 +25,7 @@ PRIMAL_FACTOR = 2.0
 #: for every summation order.
 DUAL_FACTOR = 32.0
 #: Iterative-refinement steps of the reduced solves (:func:`.qp._reduced_solve`,
-#: :func:`.dense_active_set._equality_qp`, the compiled kernels): what brings a solve to the
+#: :func:`.dense_active_set.equality_qp`, the compiled kernels): what brings a solve to the
 #: certificate's rounding level.
 REFINE_STEPS = 3
 
