@@ -93,7 +93,7 @@ def polish(W, Q, b, rho, mu, lower, upper, steps=2):
     sv = np.linalg.svd(W[np.ix_(F, seen)], compute_uv=False) if F.size >= seen.size else np.zeros(1)
     banded = (seen.size > 0 and F.size < len(Q) and sv.size == seen.size
               and sv[-1] > 1e-12 * sv[0] and is_tridiagonal(Q))
-    diag, off = np.diagonal(Q)[F], np.where(np.diff(F) == 1, np.diagonal(Q, 1)[F[:-1]], 0.0)
+    diag, off = free_bands(Q, F)
     def ratio(rho, mu):
         return float(certificate.certify(W, 2.0 / Q[0, 0], b[None], rho[None], mu[None], lower,
                                          upper, [True]).rounding_ratio[0])
@@ -184,9 +184,8 @@ def equality_qp(Q, W, b, rho, active, tridiagonal=None):
         Q_fixed = diag * fixed
         Q_fixed[:-1] += off * fixed[1:]
         Q_fixed[1:] += off * fixed[:-1]
-        # the free block's bands: neighbours in F that are neighbours on the grid couple
-        sol = _banded_kkt_solve(diag[F], np.where(np.diff(F) == 1, off[F[:-1]], 0.0), W[F],
-                                -Q_fixed[F], b - fixed @ W)
+        free_diag, free_off = free_bands(Q, F)
+        sol = _banded_kkt_solve(free_diag, free_off, W[F], -Q_fixed[F], b - fixed @ W)
     if sol is None:
         kkt = np.zeros((n + m, n + m))
         kkt[:n, :n] = Q[np.ix_(F, F)]
@@ -198,6 +197,12 @@ def equality_qp(Q, W, b, rho, active, tridiagonal=None):
     out = fixed.copy()
     out[F] = sol[:n]
     return out, sol[n:]
+
+
+def free_bands(Q, F):
+    """The diagonal and superdiagonal of the tridiagonal ``Q``'s block on the sorted indices
+    ``F``: samples that are neighbours in ``F`` couple only where they are neighbours on the grid."""
+    return np.diagonal(Q)[F], np.where(np.diff(F) == 1, np.diagonal(Q, 1)[F[:-1]], 0.0)
 
 
 def is_tridiagonal(Q):

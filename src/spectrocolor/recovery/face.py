@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import dense_active_set, qp, zonotope
+from .certificate import dual_tolerance
 
 #: A generator is in a facet plane when ``|n . w| <= PLANE_TOLERANCE * |w|``.
 PLANE_TOLERANCE = 1e-10
@@ -316,27 +317,30 @@ def zero_component_solution(W: np.ndarray, Q: np.ndarray, b: np.ndarray, c: int,
     S = W[:, c] > 0
     others = [i for i in range(W.shape[1]) if i != c]
     Wo = W[:, others]
-    got = _pinned_active_set_iterations(Q, Wo, b[others], lower, upper, S)
-    if got is not None:
-        mu = np.zeros(W.shape[1])
-        mu[others] = got[1]
-        return got[0], mu
-    start = qp._vertex_start(Wo[~S], b[others], lower, upper)
+    got = (_pinned_active_set_iterations(Q, Wo, b[others], lower, upper, S)
+           or _pinned_from_vertex(Q, Wo, b[others], lower, upper, S))
+    if got is None:
+        return None
+    mu = np.zeros(W.shape[1])
+    mu[others] = got[1]
+    return got[0], mu
+
+
+def _pinned_from_vertex(Q, W, b, lower, upper, pinned):
+    """The primal active-set method with the ``pinned`` samples held at 0, from a vertex of the
+    others: ``(rho, mu)`` or None."""
+    start = qp._vertex_start(W[~pinned], b, lower, upper)
     if start is None:
         return None
     rho = np.zeros(len(W))
-    rho[~S] = start[0]
+    rho[~pinned] = start[0]
     working = np.ones(len(W), dtype=bool)
-    working[~S] = start[1]
+    working[~pinned] = start[1]
     # from a vertex the method frees about one sample a step (a narrow band at 1 nm: 300-430
     # steps for K = 401); one that has not settled in 3 K steps is left to the other routes
-    rho, mu_o, _, _, ok = qp.primal_active_set(Q, Wo, b[others], lower, upper, rho, working,
-                                               pinned=S, max_iter=LIFT_STEPS_PER_SAMPLE * len(W))
-    if not ok:
-        return None
-    mu = np.zeros(W.shape[1])
-    mu[others] = mu_o
-    return rho, mu
+    rho, mu, _, _, ok = qp.primal_active_set(Q, W, b, lower, upper, rho, working, pinned=pinned,
+                                             max_iter=LIFT_STEPS_PER_SAMPLE * len(W))
+    return (rho, mu) if ok else None
 
 
 #: Primal-dual active-set iterations :func:`_pinned_active_set_iterations` may take.
@@ -350,11 +354,7 @@ def _pinned_active_set_iterations(Q, W, b, lower, upper, pinned):
     vertex frees one sample a step. Returns ``(rho, mu)`` once the sets settle with the values
     within the bounds and every bound's multiplier signed to half the certificate's tolerance,
     or None (the caller goes on from a vertex)."""
-    from .certificate import dual_tolerance
-
-    K = len(Q)
-    at_lower, at_upper = pinned.copy(), np.zeros(K, dtype=bool)
-    rho = np.full(K, float(lower))
+    at_lower, at_upper = pinned.copy(), np.zeros(len(Q), dtype=bool)
     tridiagonal = dense_active_set.is_tridiagonal(Q)
     for _ in range(PINNED_ITERATIONS):
         active = at_lower | at_upper
